@@ -1,0 +1,31 @@
+# Every dependency comes from a Debian package (see scripts/install_deps.sh).
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(Ceres REQUIRED)
+find_package(TBB REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(fmt REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(nanoflann REQUIRED)
+find_package(Threads REQUIRED)
+
+find_package(liblzf REQUIRED)   # PCD binary_compressed
+
+# stb (image writing/reading for `hba render`): Debian ships the compiled
+# implementations as libstb, so no *_IMPLEMENTATION define is needed.
+find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
+find_library(STB_LIBRARY NAMES stb)
+if(NOT STB_INCLUDE_DIR OR NOT STB_LIBRARY)
+  message(FATAL_ERROR "stb not found: install the Debian package libstb-dev")
+endif()
+add_library(hba_stb INTERFACE)
+target_include_directories(hba_stb SYSTEM INTERFACE ${STB_INCLUDE_DIR})
+target_link_libraries(hba_stb INTERFACE ${STB_LIBRARY})
+
+if(HBA_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(HBA_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,35 @@
+# hba_add_module(<name> SOURCES ... DEPS ... PRIVATE_DEPS ...)
+# Defines the static library hba_<name> (alias hba::<name>) of one module;
+# a module without sources yet is an interface library.
+function(hba_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  set(target hba_${name})
+  if(ARG_SOURCES)
+    add_library(${target} STATIC ${ARG_SOURCES})
+    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/include)
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE hba_warnings ${ARG_PRIVATE_DEPS})
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  else()
+    add_library(${target} INTERFACE)
+    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  endif()
+  add_library(hba::${name} ALIAS ${target})
+endfunction()
+
+# hba_add_test(<name> SOURCES ... DEPS ...)
+# A GoogleTest executable whose tests ctest discovers one by one.
+function(hba_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} hba_test_support GTest::gtest GTest::gtest_main
+                                        hba_warnings)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+endfunction()
+
+# hba_add_benchmark(<name> SOURCES ... DEPS ...)
+function(hba_add_benchmark name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark hba_warnings)
+endfunction()

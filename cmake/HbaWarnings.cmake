@@ -1,0 +1,10 @@
+# One interface target carries the project's warning and sanitizer flags,
+# so every library, tool and test links the same settings.
+add_library(hba_warnings INTERFACE)
+target_compile_options(hba_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow=local)
+
+if(HBA_SANITIZE)
+  target_compile_options(hba_warnings INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(hba_warnings INTERFACE -fsanitize=address,undefined)
+endif()

@@ -1,0 +1,62 @@
+#pragma once
+// Plane bundle adjustment of a small set of scans (a window): the public entry
+// point of the BA core. See docs/ba.md for the method and its conventions.
+//
+// Pose perturbation convention (used by the Hessian below): frame i's pose is
+// updated as R_i <- Exp(dphi_i) R_i, t_i <- t_i + dt_i (world frame), and the
+// 6 coordinates of frame i are ordered (dt_i, dphi_i), at rows 6i .. 6i+5.
+//
+// Cost: sum over plane features of N_p * lambda_min(C_p), i.e. the sum of the
+// squared point-to-plane distances of all plane points.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::ba {
+
+struct PlaneSettings {
+  double voxel_size = 4.0;    // V, root voxel edge (m)
+  double eigen_ratio = 0.05;  // theta: plane if lambda_min / lambda_max < theta
+  int max_depth = 3;          // octree splits below the root voxel
+  int min_points = 10;        // fewest points a voxel needs for the plane test
+};
+
+struct BaSettings {
+  PlaneSettings planes;
+  int max_iterations = 10;         // LM iterations per association round
+  int association_rounds = 3;      // rebuild the voxel planes from updated poses
+  double reject_ratio = 0.05;      // drop this fraction of planes, worst residuals first
+  double relative_cost_tolerance = 1e-6;  // stop when the cost settles
+};
+
+struct BaResult {
+  std::vector<Pose> poses;  // optimized, same count and order as the input
+  // Hessian of the cost at the solution, 6K x 6K in the convention above
+  // (not gauge-fixed: the caller chooses which frame to fix).
+  Eigen::MatrixXd hessian;
+  double initial_cost = 0.0;  // at the initial poses and first association
+  double final_cost = 0.0;    // at the solution and last association
+  std::size_t num_planes = 0;       // plane features used in the last round
+  std::size_t num_plane_points = 0;
+  int iterations = 0;               // LM iterations over all rounds
+  // Per plane of the last round: RMS point-to-plane distance (m) before and
+  // after, in the same order.
+  std::vector<double> plane_rms_initial;
+  std::vector<double> plane_rms_final;
+  // Per frame: indices (into that frame's input cloud) of the points that
+  // belong to plane features in the last round, sorted. Keyframes are built
+  // from these.
+  std::vector<std::vector<std::uint32_t>> plane_point_indices;
+};
+
+// Optimizes the poses of `scans` (sensor frame, already downsampled) starting
+// from `initial`. Frame 0 is held fixed (gauge). Thread-safe and
+// deterministic for any thread count. Scans are only read.
+BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
+                        const std::vector<Pose>& initial, const BaSettings& settings);
+
+}  // namespace hba::ba

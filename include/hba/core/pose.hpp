@@ -1,0 +1,42 @@
+#pragma once
+// A rigid pose T = (R, t) that maps sensor points into the world: p_w = R p + t.
+#include <vector>
+
+#include "hba/core/types.hpp"
+
+namespace hba {
+
+struct Pose {
+  Quat q = Quat::Identity();  // unit quaternion, rotation sensor -> world
+  Vec3 t = Vec3::Zero();      // sensor origin in the world
+
+  Pose() = default;
+  Pose(const Quat& rotation, const Vec3& translation);
+  Pose(const Mat3& rotation, const Vec3& translation);
+  static Pose identity() { return Pose(); }
+  static Pose fromMatrix(const Mat4& m);
+
+  Mat3 R() const { return q.toRotationMatrix(); }
+  Mat4 matrix() const;
+  Pose inverse() const;
+  Pose operator*(const Pose& other) const;
+  Vec3 operator*(const Vec3& p) const { return q * p + t; }
+};
+
+// Relative pose a^-1 * b: b expressed in the frame of a.
+Pose relative(const Pose& a, const Pose& b);
+
+// A sequence of poses with optional timestamps (empty, or one per pose).
+struct Trajectory {
+  std::vector<Pose> poses;
+  std::vector<double> stamps;
+
+  std::size_t size() const { return poses.size(); }
+  bool empty() const { return poses.empty(); }
+  bool hasStamps() const { return !stamps.empty(); }
+};
+
+// Sum of distances between consecutive positions, in metres.
+double pathLength(const std::vector<Pose>& poses);
+
+}  // namespace hba

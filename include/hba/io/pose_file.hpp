@@ -1,0 +1,31 @@
+#pragma once
+// Trajectory files.
+//  - hba:   the original HBA pose.json, one pose a line: tx ty tz qw qx qy qz
+//  - kitti: 12 numbers a line, row-major 3x4 [R | t]
+//  - tum:   t tx ty tz qx qy qz qw
+// All map sensor points into the world. Quaternions are renormalized on read.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "hba/core/pose.hpp"
+
+namespace hba::io {
+
+enum class PoseFormat { Hba, Kitti, Tum };
+
+std::string toString(PoseFormat format);
+// "hba", "kitti" or "tum"; throws hba::Error for anything else.
+PoseFormat poseFormatFromString(const std::string& name);
+// Guesses the format from the first data line's number count (7, 12 or 8).
+// Throws hba::Error naming the file if it cannot tell.
+PoseFormat detectPoseFormat(const std::filesystem::path& path);
+
+Trajectory readPoses(const std::filesystem::path& path, PoseFormat format);
+Trajectory readPoses(const std::filesystem::path& path);  // detected format
+// Written atomically with at least 9 significant digits. TUM needs stamps;
+// without them the pose index is written as the time.
+void writePoses(const std::filesystem::path& path, const Trajectory& trajectory,
+                PoseFormat format);
+
+}  // namespace hba::io

@@ -1,0 +1,18 @@
+#pragma once
+// Reads or writes a scan in the format its extension names (.pcd, .bin, .ply).
+#include <filesystem>
+#include <string>
+
+#include "hba/core/point_cloud.hpp"
+
+namespace hba::io {
+
+enum class ScanFormat { Pcd, KittiBin, Ply };
+
+// Throws hba::Error for an extension hba does not read.
+ScanFormat scanFormatFromExtension(const std::filesystem::path& path);
+bool isScanFile(const std::filesystem::path& path);  // .pcd, .bin or .ply
+PointCloud readScan(const std::filesystem::path& path);
+void writeScan(const std::filesystem::path& path, const PointCloud& cloud);
+
+}  // namespace hba::io

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Configures and builds hba (Release) into ./build. Extra arguments go to cmake.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs="${HBA_JOBS:-$(nproc)}"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
+cmake --build build -j "$jobs"

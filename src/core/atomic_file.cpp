@@ -1,0 +1,88 @@
+#include "hba/core/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+
+#include "hba/core/error.hpp"
+
+namespace hba {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Unique per process and call, so concurrent writers never share a temp file.
+fs::path temporaryNameFor(const fs::path& target) {
+  static std::atomic<unsigned> counter{0};
+  return target.parent_path() /
+         ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
+          std::to_string(counter++));
+}
+
+std::string describeErrno(int err) {
+  if (err == ENOSPC) return "no space left on device (disk full)";
+  if (err == EDQUOT) return "disk quota exceeded";
+  return std::strerror(err);
+}
+
+void syncFile(const fs::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) failAt(path, "cannot reopen to sync: " + describeErrno(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0) failAt(path, "cannot sync to disk: " + describeErrno(err));
+}
+
+}  // namespace
+
+AtomicFile::AtomicFile(fs::path target, bool binary)
+    : target_(std::move(target)), temp_(temporaryNameFor(target_)) {
+  const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+  if (!fs::is_directory(dir)) failAt(target_, "the output folder does not exist");
+  errno = 0;
+  out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
+                          : std::ios::out | std::ios::trunc);
+  if (!out_) failAt(target_, "cannot create a file here: " + describeErrno(errno));
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) {
+    out_.close();
+    std::error_code ec;
+    fs::remove(temp_, ec);
+  }
+}
+
+void AtomicFile::commit() {
+  errno = 0;
+  out_.flush();
+  const int flush_err = errno;
+  out_.close();
+  if (out_.fail()) {
+    std::error_code ec;
+    fs::remove(temp_, ec);
+    failAt(target_, "write failed: " + describeErrno(flush_err ? flush_err : EIO));
+  }
+  syncFile(temp_);
+  std::error_code ec;
+  fs::rename(temp_, target_, ec);
+  if (ec) {
+    fs::remove(temp_, ec);
+    failAt(target_, "cannot move the finished file into place: " + ec.message());
+  }
+  committed_ = true;
+}
+
+void writeFileAtomically(const fs::path& target, const std::function<void(std::ostream&)>& fill,
+                         bool binary) {
+  AtomicFile file(target, binary);
+  fill(file.stream());
+  file.commit();
+}
+
+}  // namespace hba

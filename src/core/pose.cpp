@@ -1,0 +1,45 @@
+#include "hba/core/pose.hpp"
+
+namespace hba {
+
+Pose::Pose(const Quat& rotation, const Vec3& translation)
+    : q(rotation.normalized()), t(translation) {}
+
+Pose::Pose(const Mat3& rotation, const Vec3& translation)
+    : q(Quat(rotation).normalized()), t(translation) {}
+
+Pose Pose::fromMatrix(const Mat4& m) {
+  return Pose(Mat3(m.topLeftCorner<3, 3>()), Vec3(m.topRightCorner<3, 1>()));
+}
+
+Mat4 Pose::matrix() const {
+  Mat4 m = Mat4::Identity();
+  m.topLeftCorner<3, 3>() = R();
+  m.topRightCorner<3, 1>() = t;
+  return m;
+}
+
+Pose Pose::inverse() const {
+  const Quat qi = q.conjugate();
+  Pose out;
+  out.q = qi;
+  out.t = -(qi * t);
+  return out;
+}
+
+Pose Pose::operator*(const Pose& other) const {
+  Pose out;
+  out.q = (q * other.q).normalized();
+  out.t = q * other.t + t;
+  return out;
+}
+
+Pose relative(const Pose& a, const Pose& b) { return a.inverse() * b; }
+
+double pathLength(const std::vector<Pose>& poses) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < poses.size(); ++i) length += (poses[i].t - poses[i - 1].t).norm();
+  return length;
+}
+
+}  // namespace hba
