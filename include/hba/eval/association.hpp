@@ -1,0 +1,43 @@
+#pragma once
+// Pairing the poses of two trajectories before comparing them.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "hba/core/pose.hpp"
+
+namespace hba::eval {
+
+enum class AssociationMode {
+  Auto,   // by time when both trajectories have stamps, by index otherwise
+  Index,  // pose i with pose i; the counts must be equal
+  Time    // each estimated pose with the nearest reference stamp within a tolerance
+};
+
+std::string toString(AssociationMode mode);
+// "auto", "index" or "time"; throws hba::Error for anything else.
+AssociationMode associationModeFromString(const std::string& name);
+
+// Matched pose pairs, in increasing order of the estimate's index.
+struct Association {
+  std::vector<std::size_t> reference;  // index into the reference trajectory
+  std::vector<std::size_t> estimate;   // index into the estimated trajectory
+  AssociationMode mode = AssociationMode::Index;  // Index or Time: how the pairs were made
+  std::size_t size() const { return reference.size(); }
+};
+
+// Pose i with pose i. Throws hba::Error if the counts differ: silently
+// dropping a tail would hide a mismatched pair of files.
+Association associateByIndex(std::size_t reference_count, std::size_t estimate_count);
+
+// Each estimated stamp with the nearest reference stamp if |dt| <= max_diff;
+// a reference pose is used at most once (the closer estimate wins). Stamps
+// need not be sorted. Throws hba::Error if nothing matches.
+Association associateByTime(const std::vector<double>& reference_stamps,
+                            const std::vector<double>& estimate_stamps, double max_diff);
+
+// Dispatches on `mode` (Auto as documented above). Throws hba::Error.
+Association associate(const Trajectory& reference, const Trajectory& estimate,
+                      AssociationMode mode, double max_time_diff);
+
+}  // namespace hba::eval

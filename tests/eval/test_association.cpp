@@ -1,0 +1,47 @@
+// Pairing poses by index and by timestamp.
+#include <gtest/gtest.h>
+
+#include "hba/core/error.hpp"
+#include "hba/eval/association.hpp"
+
+namespace hba::eval {
+namespace {
+
+TEST(Association, ByIndexNeedsEqualCounts) {
+  const Association a = associateByIndex(3, 3);
+  EXPECT_EQ(a.reference, (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_EQ(a.estimate, a.reference);
+  EXPECT_THROW(associateByIndex(3, 4), Error);
+}
+
+TEST(Association, ByTimeTakesTheNearestStampWithinTolerance) {
+  const std::vector<double> reference{0.0, 1.0, 2.0, 3.0, 4.0};
+  // 0.004 -> 0, 1.02 too far, 2.995 -> 3, 3.001 also nearest to 3 and closer.
+  const std::vector<double> estimate{0.004, 1.02, 2.995, 3.001};
+  const Association a = associateByTime(reference, estimate, 0.01);
+  EXPECT_EQ(a.mode, AssociationMode::Time);
+  EXPECT_EQ(a.estimate, (std::vector<std::size_t>{0, 3}));
+  EXPECT_EQ(a.reference, (std::vector<std::size_t>{0, 3}));
+}
+
+TEST(Association, ByTimeHandlesUnsortedReference) {
+  const std::vector<double> reference{2.0, 0.0, 1.0};
+  const Association a = associateByTime(reference, {0.0, 1.0, 2.0}, 0.001);
+  EXPECT_EQ(a.reference, (std::vector<std::size_t>{1, 2, 0}));
+  EXPECT_THROW(associateByTime(reference, {10.0}, 0.1), Error);
+}
+
+TEST(Association, AutoUsesIndexWhenEitherSideHasNoStamps) {
+  Trajectory stamped, plain;
+  for (int i = 0; i < 4; ++i) {
+    stamped.poses.emplace_back();
+    stamped.stamps.push_back(100.0 + i);
+    plain.poses.emplace_back();
+  }
+  EXPECT_EQ(associate(stamped, plain, AssociationMode::Auto, 0.01).mode, AssociationMode::Index);
+  EXPECT_EQ(associate(stamped, stamped, AssociationMode::Auto, 0.01).mode, AssociationMode::Time);
+  EXPECT_THROW(associate(stamped, plain, AssociationMode::Time, 0.01), Error);
+}
+
+}  // namespace
+}  // namespace hba::eval
