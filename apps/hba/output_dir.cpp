@@ -1,0 +1,39 @@
+#include "output_dir.hpp"
+
+#include "hba/core/error.hpp"
+
+namespace hba::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool isInside(const fs::path& path, const fs::path& folder) {
+  const fs::path p = fs::weakly_canonical(path);
+  const fs::path f = fs::weakly_canonical(folder);
+  auto pi = p.begin();
+  for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi) {
+    if (fi->empty()) continue;  // a trailing separator
+    if (pi == p.end() || *pi != *fi) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+fs::path prepareOutputDir(const fs::path& output, const io::Dataset& dataset) {
+  for (const fs::path& input : {dataset.root(), dataset.scansDir()}) {
+    if (!input.empty() && isInside(output, input)) {
+      failAt(output, "is inside the input folder " + input.string() +
+                         "; choose an output folder outside the dataset (hba never writes into its input)");
+    }
+  }
+  std::error_code ec;
+  if (fs::exists(output, ec) && !fs::is_directory(output, ec)) {
+    failAt(output, "exists and is not a folder");
+  }
+  fs::create_directories(output, ec);
+  if (ec) failAt(output, "cannot create the output folder: " + ec.message());
+  return output;
+}
+
+}  // namespace hba::cli

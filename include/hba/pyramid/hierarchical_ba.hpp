@@ -1,0 +1,67 @@
+#pragma once
+// The whole method: bottom-up hierarchical BA over a pyramid of keyframes,
+// then a top-down pose graph (or direct assignment) back to every scan,
+// repeated until the poses settle. See docs/pyramid.md.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "hba/core/pose.hpp"
+#include "hba/pyramid/scan_source.hpp"
+#include "hba/pyramid/settings.hpp"
+
+namespace hba::pyramid {
+
+// What one layer's BAs did in one outer iteration.
+struct LayerReport {
+  int iteration = 0;  // outer iteration, from 1
+  int layer = 0;      // pyramid layer, from 1 (layer 1 = input scans)
+  bool global = false;  // the top layer's single global BA
+  std::size_t frames = 0;
+  std::size_t windows = 0;
+  std::size_t windows_without_planes = 0;
+  std::size_t planes = 0;        // summed over windows
+  std::size_t plane_points = 0;  // summed over windows
+  std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
+  double cost_before = 0.0;      // summed BA cost over windows
+  double cost_after = 0.0;
+  double rms_before = 0.0;       // point-to-plane RMS over all plane points (m)
+  double rms_after = 0.0;
+  double seconds = 0.0;
+};
+
+struct IterationReport {
+  int iteration = 0;
+  std::size_t factors = 0;
+  double graph_cost_before = 0.0;
+  double graph_cost_after = 0.0;
+  double max_translation_update = 0.0;  // m, over all layer-1 poses
+  double max_rotation_update = 0.0;     // degrees
+  double seconds_graph = 0.0;
+};
+
+struct HbaReport {
+  int layers = 0;
+  std::size_t frames = 0;
+  std::vector<LayerReport> layer_reports;
+  std::vector<IterationReport> iterations;
+  double seconds_load = 0.0;      // reading + downsampling layer-1 scans
+  double seconds_ba = 0.0;        // all BAs (voxelization, LM)
+  double seconds_keyframes = 0.0; // building keyframe clouds
+  double seconds_graph = 0.0;     // pose graph solves
+  double seconds_total = 0.0;
+  bool converged = false;  // the last outer iteration moved no pose beyond tolerance
+  std::vector<std::string> warnings;
+};
+
+struct HbaResult {
+  std::vector<Pose> poses;  // optimized layer-1 poses, same order as the input
+  HbaReport report;
+};
+
+// Throws hba::Error if the pose count differs from the scan count or the
+// settings are inconsistent. Scans are only read.
+HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+                            const HbaSettings& settings);
+
+}  // namespace hba::pyramid

@@ -1,0 +1,57 @@
+#pragma once
+// Settings of the whole method: pyramid shape, BA settings per level, pose
+// graph, iterations. Defaults are the paper's Table I where it gives one.
+#include <cstddef>
+
+#include "hba/ba/window_ba.hpp"
+#include "hba/graph/information.hpp"
+
+namespace hba::pyramid {
+
+// How the top-down stage turns the pyramid into layer-1 poses.
+enum class TopDownMode {
+  PoseGraph,     // the paper's method: a pose graph over all layer-1 poses
+  DirectAssign,  // the paper's ablation: copy upper poses down the pyramid
+};
+
+// Which frame pairs of a BA window become pose-graph factors.
+enum class FactorPairs {
+  Adjacent,  // (k, k+1): the paper's factor graph
+  AllPairs,  // every (a, b) with a < b in the window
+};
+
+struct HbaSettings {
+  int window = 10;  // w: frames per local window
+  int stride = 5;   // s: frames between window starts (s < w: windows overlap)
+  int layers = 0;   // pyramid layers including layer 1; 0 = the default rule
+  int threads = 0;  // for the layer-count rule only (0 = hardware concurrency)
+
+  double scan_voxel = 0.1;      // layer-1 scans are downsampled to this (m)
+  double keyframe_voxel = 0.1;  // keyframe clouds are downsampled to this (m)
+
+  ba::BaSettings local;   // theta 0.05, V 4 m
+  ba::BaSettings global;  // theta 0.1,  V 4 m (looser: finds large divergences)
+
+  graph::InformationSettings information;
+  TopDownMode top_down = TopDownMode::PoseGraph;
+  FactorPairs factor_pairs = FactorPairs::Adjacent;
+  int graph_max_iterations = 100;
+
+  int outer_iterations = 2;          // bottom-up + top-down rounds at most
+  double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
+  double outer_tolerance_deg = 1e-3;
+
+  HbaSettings() { global.planes.eigen_ratio = 0.1; }
+};
+
+// The paper's optimal layer count l* = floor(1/2 log_s(3 N^2 (s^3 - s) n / w^3)),
+// clamped to [1, the number of layers the sequence can hold].
+int paperLayerCount(std::size_t frames, int window, int stride, int threads);
+// Largest layer count for which every layer below the top has >= 2 windows'
+// worth of frames (the top layer then holds at least `window` frames, or the
+// whole sequence if it is shorter).
+int maxLayerCount(std::size_t frames, int window, int stride);
+// The layer count hba uses when settings.layers == 0 (see pyramid docs).
+int defaultLayerCount(std::size_t frames, const HbaSettings& settings);
+
+}  // namespace hba::pyramid

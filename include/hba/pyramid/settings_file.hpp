@@ -1,0 +1,33 @@
+#pragma once
+// Settings from YAML (the `hba optimize --config FILE` format) and as JSON
+// (printed at start and stored in report.json).
+//
+// YAML keys (all optional; unknown keys are an error, so typos never pass
+// silently):
+//   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel,
+//   top_down: pose_graph | direct_assign, factor_pairs: adjacent | all,
+//   point_sigma,
+//   local:  { voxel_size, eigen_ratio, max_depth, min_points, max_iterations,
+//             association_rounds, reject_ratio }
+//   global: { same keys as local }
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hba/pyramid/settings.hpp"
+
+namespace hba::pyramid {
+
+// Applies the keys present in `yaml_text` on top of `settings`. Throws
+// hba::Error naming `source` (a file name, for messages) and the bad key.
+void applySettingsYaml(const std::string& yaml_text, const std::string& source,
+                       HbaSettings& settings);
+void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings);
+
+// Throws hba::Error if the settings are out of range (negative voxel, ...).
+void checkSettings(const HbaSettings& settings);
+
+nlohmann::json settingsToJson(const HbaSettings& settings);
+
+}  // namespace hba::pyramid

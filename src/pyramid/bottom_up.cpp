@@ -1,0 +1,214 @@
+#include "bottom_up.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "hba/graph/information.hpp"
+#include "keyframe.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct WindowBa {
+  WindowOutcome outcome;
+  double cost_before = 0.0;
+  double cost_after = 0.0;
+  double sq_rms_before = 0.0;  // sum over planes of rms^2
+  double sq_rms_after = 0.0;
+  std::size_t planes = 0;
+  std::size_t plane_points = 0;
+};
+
+std::vector<graph::RelativePoseFactor> windowFactors(const ba::BaResult& result,
+                                                     const std::vector<std::size_t>& anchors,
+                                                     const Window& window,
+                                                     const HbaSettings& settings) {
+  std::vector<graph::RelativePoseFactor> factors;
+  const std::size_t n = window.count;
+  for (std::size_t a = 0; a + 1 < n; ++a) {
+    const std::size_t last_b = settings.factor_pairs == FactorPairs::Adjacent ? a + 1 : n - 1;
+    for (std::size_t b = a + 1; b <= last_b; ++b) {
+      graph::RelativePoseFactor factor;
+      factor.from = anchors[window.first + a];
+      factor.to = anchors[window.first + b];
+      factor.measurement = relative(result.poses[a], result.poses[b]);
+      factor.information = graph::relativePoseInformation(result.hessian, result.poses, a, b,
+                                                          settings.information);
+      factors.push_back(factor);
+    }
+  }
+  return factors;
+}
+
+WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window& window,
+                   const HbaSettings& settings) {
+  WindowBa out;
+  out.outcome.window = window;
+  out.outcome.optimized = result.poses;
+  out.outcome.has_planes = result.num_planes > 0;
+  out.outcome.factors = windowFactors(result, layer.anchors, window, settings);
+  out.cost_before = result.initial_cost;
+  out.cost_after = result.final_cost;
+  out.planes = result.num_planes;
+  out.plane_points = result.num_plane_points;
+  for (double r : result.plane_rms_initial) out.sq_rms_before += r * r;
+  for (double r : result.plane_rms_final) out.sq_rms_after += r * r;
+  return out;
+}
+
+// Layer-1 scans for a range of frames, loaded in parallel and dropped once
+// no later window needs them.
+class StreamedClouds {
+ public:
+  explicit StreamedClouds(const ScanSource& source) : source_(source) {}
+
+  void keepRange(std::size_t first, std::size_t end) {
+    for (auto it = cache_.begin(); it != cache_.end();) {
+      it = it->first < first ? cache_.erase(it) : std::next(it);
+    }
+    std::vector<std::size_t> missing;
+    for (std::size_t i = first; i < end; ++i) {
+      if (!cache_.count(i)) missing.push_back(i);
+    }
+    std::vector<PointCloud> loaded(missing.size());
+    tbb::parallel_for(std::size_t{0}, missing.size(),
+                      [&](std::size_t k) { loaded[k] = source_.load(missing[k]); });
+    for (std::size_t k = 0; k < missing.size(); ++k) cache_[missing[k]] = std::move(loaded[k]);
+  }
+
+  const PointCloud* get(std::size_t i) const { return &cache_.at(i); }
+  std::size_t points() const {
+    std::size_t n = 0;
+    for (const auto& [index, cloud] : cache_) n += cloud.size();
+    return n;
+  }
+
+ private:
+  const ScanSource& source_;
+  std::map<std::size_t, PointCloud> cache_;
+};
+
+}  // namespace
+
+LayerOutcome optimizeLayer(const Layer& layer, const ScanSource* source,
+                           const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
+                           const HbaSettings& settings, bool build_keyframes, StageTimes& times) {
+  LayerOutcome outcome;
+  outcome.windows.resize(windows.size());
+  std::vector<WindowBa> results(windows.size());
+
+  std::optional<StreamedClouds> streamed;
+  if (source) streamed.emplace(*source);
+  const std::size_t concurrency = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
+  const std::size_t batch = source ? std::max<std::size_t>(4, 4 * concurrency) : windows.size();
+
+  std::size_t cloud_points = 0;
+  if (!source) {
+    for (const auto& cloud : layer.clouds) cloud_points += cloud.size();
+  }
+  std::size_t counted_end = 0;  // layer-1 frames whose points are counted
+  for (std::size_t b0 = 0; b0 < windows.size(); b0 += batch) {
+    const std::size_t b1 = std::min(windows.size(), b0 + batch);
+    if (streamed) {
+      const auto start = Clock::now();
+      const std::size_t first = windows[b0].first;
+      const std::size_t end = windows[b1 - 1].first + windows[b1 - 1].count;
+      streamed->keepRange(first, end);
+      for (std::size_t i = std::max(first, counted_end); i < end; ++i) {
+        cloud_points += streamed->get(i)->size();
+      }
+      counted_end = end;
+      times.load += secondsSince(start);
+    }
+    auto cloudsOf = [&](const Window& window) {
+      std::vector<const PointCloud*> clouds(window.count);
+      for (std::size_t k = 0; k < window.count; ++k) {
+        clouds[k] = streamed ? streamed->get(window.first + k) : &layer.clouds[window.first + k];
+      }
+      return clouds;
+    };
+
+    auto start = Clock::now();
+    std::vector<ba::BaResult> ba_results(b1 - b0);
+    tbb::parallel_for(b0, b1, [&](std::size_t w) {
+      const Window& window = windows[w];
+      const auto first = layer.poses.begin() + static_cast<long>(window.first);
+      const std::vector<Pose> initial(first, first + static_cast<long>(window.count));
+      ba_results[w - b0] = ba::optimizeWindow(cloudsOf(window), initial, ba_settings);
+      results[w] = summarize(layer, ba_results[w - b0], window, settings);
+    });
+    times.ba += secondsSince(start);
+
+    if (build_keyframes) {
+      start = Clock::now();
+      tbb::parallel_for(b0, b1, [&](std::size_t w) {
+        const ba::BaResult& result = ba_results[w - b0];
+        results[w].outcome.keyframe = buildKeyframe(cloudsOf(windows[w]), result.poses,
+                                                    result.plane_point_indices,
+                                                    settings.keyframe_voxel);
+      });
+      times.keyframes += secondsSince(start);
+    }
+  }
+
+  LayerReport& report = outcome.report;
+  report.frames = layer.poses.size();
+  report.windows = windows.size();
+  report.cloud_points = cloud_points;
+  double sq_before = 0.0;
+  double sq_after = 0.0;
+  for (std::size_t w = 0; w < windows.size(); ++w) {
+    WindowBa& r = results[w];
+    report.planes += r.planes;
+    report.plane_points += r.plane_points;
+    report.cost_before += r.cost_before;
+    report.cost_after += r.cost_after;
+    sq_before += r.sq_rms_before;
+    sq_after += r.sq_rms_after;
+    if (!r.outcome.has_planes) ++report.windows_without_planes;
+    outcome.windows[w] = std::move(r.outcome);
+  }
+  if (report.planes > 0) {
+    report.rms_before = std::sqrt(sq_before / static_cast<double>(report.planes));
+    report.rms_after = std::sqrt(sq_after / static_cast<double>(report.planes));
+  }
+  return outcome;
+}
+
+Layer buildUpperLayer(const Layer& lower, LayerOutcome& outcome, int stride) {
+  Layer upper;
+  const std::size_t n = outcome.windows.size();
+  upper.anchors.reserve(n);
+  upper.poses.reserve(n);
+  upper.clouds.reserve(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    WindowOutcome& window = outcome.windows[j];
+    upper.anchors.push_back(lower.anchors[window.window.first]);
+    if (j == 0) {
+      upper.poses.push_back(window.optimized.front());
+    } else {
+      // T_j = T_{j-1} * (relative pose of frame s in window j-1, optimized).
+      const WindowOutcome& previous = outcome.windows[j - 1];
+      const auto s = static_cast<std::size_t>(stride);
+      upper.poses.push_back(upper.poses.back() *
+                            relative(previous.optimized.front(), previous.optimized[s]));
+    }
+    upper.clouds.push_back(std::move(window.keyframe));
+  }
+  return upper;
+}
+
+}  // namespace hba::pyramid

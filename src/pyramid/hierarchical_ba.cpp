@@ -1,0 +1,179 @@
+#include "hba/pyramid/hierarchical_ba.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "bottom_up.hpp"
+#include "hba/core/error.hpp"
+#include "hba/core/lie.hpp"
+#include "hba/graph/pose_graph.hpp"
+#include "top_down.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void validate(const ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
+  if (initial.size() != scans.size()) {
+    throw Error("pose count (" + std::to_string(initial.size()) + ") differs from scan count (" +
+                std::to_string(scans.size()) + ")");
+  }
+  if (initial.empty()) throw Error("no scans to optimize");
+  planWindows(initial.size(), s.window, s.stride);  // throws on a bad window/stride
+  if (s.layers < 0) throw Error("layer count must be >= 0 (0 = automatic)");
+  if (s.outer_iterations < 1) throw Error("outer iterations must be >= 1");
+}
+
+void logLayer(const LayerReport& r) {
+  spdlog::info("  layer {}{}: {} frames, {} windows, {} planes, plane RMS {:.4f} -> {:.4f} m, {:.2f} s",
+               r.layer, r.global ? " (global BA)" : "", r.frames, r.windows, r.planes, r.rms_before,
+               r.rms_after, r.seconds);
+  if (r.windows_without_planes > 0) {
+    spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer,
+                 r.windows_without_planes, r.windows);
+  }
+}
+
+struct Update {
+  double translation = 0.0;
+  double rotation_deg = 0.0;
+};
+
+Update largestUpdate(const std::vector<Pose>& before, const std::vector<Pose>& after) {
+  Update u;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    u.translation = std::max(u.translation, (after[i].t - before[i].t).norm());
+    u.rotation_deg = std::max(u.rotation_deg,
+                              so3Log(Quat(before[i].q.conjugate() * after[i].q)).norm() * 180.0 / M_PI);
+  }
+  return u;
+}
+
+// One bottom-up pass and one top-down pass from `poses`.
+std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& poses,
+                          const HbaSettings& settings, int layers, int iteration,
+                          HbaReport& report) {
+  StageTimes times;
+  Layer layer;
+  layer.poses = poses;
+  layer.anchors.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) layer.anchors[i] = i;
+
+  std::vector<LayerOutcome> local;  // layers 1 .. layers-1
+  for (int level = 1; level < layers; ++level) {
+    const auto start = Clock::now();
+    const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
+    LayerOutcome outcome = optimizeLayer(layer, level == 1 ? &scans : nullptr, windows,
+                                         settings.local, settings, true, times);
+    outcome.report.iteration = iteration;
+    outcome.report.layer = level;
+    outcome.report.seconds = secondsSince(start);
+    logLayer(outcome.report);
+    report.layer_reports.push_back(outcome.report);
+    Layer upper = buildUpperLayer(layer, outcome, settings.stride);
+    local.push_back(std::move(outcome));
+    layer = std::move(upper);
+  }
+
+  // The top layer: one global BA with its own, looser settings.
+  const auto start = Clock::now();
+  const std::vector<Window> all{Window{0, layer.poses.size()}};
+  LayerOutcome top = optimizeLayer(layer, layers == 1 ? &scans : nullptr, all, settings.global,
+                                   settings, false, times);
+  top.report.iteration = iteration;
+  top.report.layer = layers;
+  top.report.global = true;
+  top.report.seconds = secondsSince(start);
+  logLayer(top.report);
+  report.layer_reports.push_back(top.report);
+  report.seconds_load += times.load;
+  report.seconds_ba += times.ba;
+  report.seconds_keyframes += times.keyframes;
+
+  std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized, settings.stride);
+  IterationReport iteration_report;
+  iteration_report.iteration = iteration;
+  if (settings.top_down == TopDownMode::DirectAssign) {
+    report.iterations.push_back(iteration_report);
+    return assigned;
+  }
+
+  // Top-down: a pose graph over all layer-1 poses with every window's factors,
+  // started from the direct assignment (close to the answer, so LM has little to do).
+  std::vector<graph::RelativePoseFactor> factors = top.windows.front().factors;
+  for (const auto& outcome : local) {
+    for (const auto& window : outcome.windows) {
+      factors.insert(factors.end(), window.factors.begin(), window.factors.end());
+    }
+  }
+  const auto graph_start = Clock::now();
+  graph::PoseGraphSettings graph_settings;
+  graph_settings.max_iterations = settings.graph_max_iterations;
+  graph::PoseGraphResult solved = graph::optimizePoseGraph(assigned, factors, graph_settings);
+  iteration_report.factors = factors.size();
+  iteration_report.graph_cost_before = solved.initial_cost;
+  iteration_report.graph_cost_after = solved.final_cost;
+  iteration_report.seconds_graph = secondsSince(graph_start);
+  report.seconds_graph += iteration_report.seconds_graph;
+  spdlog::info("  pose graph: {} poses, {} factors, cost {:.4g} -> {:.4g}, {:.2f} s", poses.size(),
+               factors.size(), solved.initial_cost, solved.final_cost,
+               iteration_report.seconds_graph);
+  report.iterations.push_back(iteration_report);
+  return solved.poses;
+}
+
+}  // namespace
+
+HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+                            const HbaSettings& settings) {
+  validate(scans, initial, settings);
+  const auto start = Clock::now();
+  HbaResult result;
+  HbaReport& report = result.report;
+  report.frames = initial.size();
+  report.layers = settings.layers > 0
+                      ? std::min(settings.layers, maxLayerCount(initial.size(), settings.window,
+                                                                settings.stride))
+                      : defaultLayerCount(initial.size(), settings);
+  if (settings.layers > report.layers) {
+    report.warnings.push_back("requested " + std::to_string(settings.layers) +
+                              " layers; the sequence holds at most " +
+                              std::to_string(report.layers));
+    spdlog::warn("{}", report.warnings.back());
+  }
+
+  result.poses = initial;
+  for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
+    spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
+    std::vector<Pose> updated = iterate(scans, result.poses, settings, report.layers, iteration, report);
+    const Update u = largestUpdate(result.poses, updated);
+    report.iterations.back().max_translation_update = u.translation;
+    report.iterations.back().max_rotation_update = u.rotation_deg;
+    spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation, u.rotation_deg);
+    result.poses = std::move(updated);
+    if (u.translation < settings.outer_tolerance_m && u.rotation_deg < settings.outer_tolerance_deg) {
+      report.converged = true;
+      break;
+    }
+  }
+
+  std::size_t planes = 0;
+  for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;
+  if (planes == 0) {
+    report.warnings.push_back("no plane features found: poses returned unchanged");
+    spdlog::warn("{}", report.warnings.back());
+    result.poses = initial;
+  }
+  report.seconds_total = secondsSince(start);
+  return result;
+}
+
+}  // namespace hba::pyramid

@@ -1,0 +1,46 @@
+#include "hba/pyramid/report_json.hpp"
+
+namespace hba::pyramid {
+
+nlohmann::json reportToJson(const HbaReport& r) {
+  nlohmann::json layers = nlohmann::json::array();
+  for (const auto& l : r.layer_reports) {
+    layers.push_back({{"iteration", l.iteration},
+                      {"layer", l.layer},
+                      {"global", l.global},
+                      {"frames", l.frames},
+                      {"windows", l.windows},
+                      {"windows_without_planes", l.windows_without_planes},
+                      {"planes", l.planes},
+                      {"plane_points", l.plane_points},
+                      {"cloud_points", l.cloud_points},
+                      {"cost_before", l.cost_before},
+                      {"cost_after", l.cost_after},
+                      {"plane_rms_before_m", l.rms_before},
+                      {"plane_rms_after_m", l.rms_after},
+                      {"seconds", l.seconds}});
+  }
+  nlohmann::json iterations = nlohmann::json::array();
+  for (const auto& it : r.iterations) {
+    iterations.push_back({{"iteration", it.iteration},
+                          {"factors", it.factors},
+                          {"pose_graph_cost_before", it.graph_cost_before},
+                          {"pose_graph_cost_after", it.graph_cost_after},
+                          {"max_translation_update_m", it.max_translation_update},
+                          {"max_rotation_update_deg", it.max_rotation_update},
+                          {"seconds_pose_graph", it.seconds_graph}});
+  }
+  return {{"frames", r.frames},
+          {"layers", r.layers},
+          {"converged", r.converged},
+          {"layer_reports", layers},
+          {"iterations", iterations},
+          {"seconds", {{"load_and_downsample", r.seconds_load},
+                       {"bundle_adjustment", r.seconds_ba},
+                       {"keyframes", r.seconds_keyframes},
+                       {"pose_graph", r.seconds_graph},
+                       {"total", r.seconds_total}}},
+          {"warnings", r.warnings}};
+}
+
+}  // namespace hba::pyramid

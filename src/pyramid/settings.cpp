@@ -1,0 +1,39 @@
+#include "hba/pyramid/settings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "hba/pyramid/window_plan.hpp"
+
+namespace hba::pyramid {
+
+int paperLayerCount(std::size_t frames, int window, int stride, int threads) {
+  const double n = std::max(threads, 1);
+  const double N = static_cast<double>(frames);
+  const double s = stride;
+  const double w = window;
+  const double arg = 3.0 * N * N * (s * s * s - s) * n / (w * w * w);
+  int layers = arg > 1.0 ? static_cast<int>(std::floor(0.5 * std::log(arg) / std::log(s))) : 1;
+  return std::clamp(layers, 1, maxLayerCount(frames, window, stride));
+}
+
+int maxLayerCount(std::size_t frames, int window, int stride) {
+  int layers = 1;
+  std::size_t n = frames;
+  // Another layer pays off only while the current one has more than one window.
+  while (n > static_cast<std::size_t>(window)) {
+    n = planWindows(n, window, stride).size();
+    ++layers;
+  }
+  return layers;
+}
+
+int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
+  const int threads = settings.threads > 0
+                          ? settings.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return paperLayerCount(frames, settings.window, settings.stride, threads);
+}
+
+}  // namespace hba::pyramid

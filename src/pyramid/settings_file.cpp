@@ -1,0 +1,148 @@
+#include "hba/pyramid/settings_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "hba/core/error.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+[[noreturn]] void bad(const std::string& source, const std::string& problem) {
+  throw Error(source + ": " + problem);
+}
+
+template <typename T>
+void read(const YAML::Node& node, const char* key, T& value, const std::string& source) {
+  const YAML::Node child = node[key];
+  if (!child) return;
+  try {
+    value = child.as<T>();
+  } catch (const YAML::Exception&) {
+    bad(source, std::string("'") + key + "' has a value of the wrong type");
+  }
+}
+
+void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& known,
+                       const std::string& where, const std::string& source) {
+  for (const auto& entry : node) {
+    const std::string key = entry.first.as<std::string>();
+    if (!known.count(key)) bad(source, "unknown setting '" + where + key + "'");
+  }
+}
+
+void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
+            const std::string& source) {
+  if (!node) return;
+  if (!node.IsMap()) bad(source, "'" + name + "' must be a map of settings");
+  rejectUnknownKeys(node,
+                    {"voxel_size", "eigen_ratio", "max_depth", "min_points", "max_iterations",
+                     "association_rounds", "reject_ratio"},
+                    name + ".", source);
+  read(node, "voxel_size", ba.planes.voxel_size, source);
+  read(node, "eigen_ratio", ba.planes.eigen_ratio, source);
+  read(node, "max_depth", ba.planes.max_depth, source);
+  read(node, "min_points", ba.planes.min_points, source);
+  read(node, "max_iterations", ba.max_iterations, source);
+  read(node, "association_rounds", ba.association_rounds, source);
+  read(node, "reject_ratio", ba.reject_ratio, source);
+}
+
+nlohmann::json baToJson(const ba::BaSettings& ba) {
+  return {{"voxel_size", ba.planes.voxel_size},     {"eigen_ratio", ba.planes.eigen_ratio},
+          {"max_depth", ba.planes.max_depth},       {"min_points", ba.planes.min_points},
+          {"max_iterations", ba.max_iterations},    {"association_rounds", ba.association_rounds},
+          {"reject_ratio", ba.reject_ratio}};
+}
+
+void checkBa(const ba::BaSettings& ba, const std::string& name) {
+  auto fail = [&](const std::string& what) { throw Error("setting " + name + "." + what); };
+  if (!(ba.planes.voxel_size > 0)) fail("voxel_size must be > 0");
+  if (!(ba.planes.eigen_ratio > 0 && ba.planes.eigen_ratio < 1)) fail("eigen_ratio must be in (0, 1)");
+  if (ba.planes.max_depth < 0 || ba.planes.max_depth > 8) fail("max_depth must be in [0, 8]");
+  if (ba.planes.min_points < 3) fail("min_points must be >= 3");
+  if (ba.max_iterations < 1) fail("max_iterations must be >= 1");
+  if (ba.association_rounds < 1) fail("association_rounds must be >= 1");
+  if (!(ba.reject_ratio >= 0 && ba.reject_ratio < 1)) fail("reject_ratio must be in [0, 1)");
+}
+
+}  // namespace
+
+void applySettingsYaml(const std::string& yaml_text, const std::string& source,
+                       HbaSettings& settings) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    bad(source, "not valid YAML (" + std::string(e.what()) + ")");
+  }
+  if (!root || root.IsNull()) return;  // an empty file changes nothing
+  if (!root.IsMap()) bad(source, "expected a map of settings at the top level");
+  try {
+    rejectUnknownKeys(root,
+                      {"window", "stride", "layers", "outer_iterations", "scan_voxel",
+                       "keyframe_voxel", "top_down", "factor_pairs", "point_sigma", "local",
+                       "global"},
+                      "", source);
+    read(root, "window", settings.window, source);
+    read(root, "stride", settings.stride, source);
+    read(root, "layers", settings.layers, source);
+    read(root, "outer_iterations", settings.outer_iterations, source);
+    read(root, "scan_voxel", settings.scan_voxel, source);
+    read(root, "keyframe_voxel", settings.keyframe_voxel, source);
+    read(root, "point_sigma", settings.information.point_sigma, source);
+    std::string mode;
+    read(root, "top_down", mode, source);
+    if (mode == "pose_graph") settings.top_down = TopDownMode::PoseGraph;
+    else if (mode == "direct_assign") settings.top_down = TopDownMode::DirectAssign;
+    else if (!mode.empty()) bad(source, "top_down must be pose_graph or direct_assign");
+    std::string pairs;
+    read(root, "factor_pairs", pairs, source);
+    if (pairs == "adjacent") settings.factor_pairs = FactorPairs::Adjacent;
+    else if (pairs == "all") settings.factor_pairs = FactorPairs::AllPairs;
+    else if (!pairs.empty()) bad(source, "factor_pairs must be adjacent or all");
+    readBa(root["local"], "local", settings.local, source);
+    readBa(root["global"], "global", settings.global, source);
+  } catch (const YAML::Exception& e) {
+    bad(source, "cannot read settings (" + std::string(e.what()) + ")");
+  }
+}
+
+void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings) {
+  std::ifstream in(path);
+  if (!in) failAt(path, "cannot open the settings file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  applySettingsYaml(text.str(), path.string(), settings);
+}
+
+void checkSettings(const HbaSettings& s) {
+  if (s.window < 2) throw Error("setting window must be >= 2");
+  if (s.stride < 1 || s.stride >= s.window) throw Error("setting stride must be in [1, window - 1]");
+  if (s.layers < 0) throw Error("setting layers must be >= 0 (0 = automatic)");
+  if (s.outer_iterations < 1) throw Error("setting outer_iterations must be >= 1");
+  if (!(s.scan_voxel >= 0)) throw Error("setting scan_voxel must be >= 0");
+  if (!(s.keyframe_voxel >= 0)) throw Error("setting keyframe_voxel must be >= 0");
+  if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
+  checkBa(s.local, "local");
+  checkBa(s.global, "global");
+}
+
+nlohmann::json settingsToJson(const HbaSettings& s) {
+  return {{"window", s.window},
+          {"stride", s.stride},
+          {"layers", s.layers},
+          {"outer_iterations", s.outer_iterations},
+          {"scan_voxel", s.scan_voxel},
+          {"keyframe_voxel", s.keyframe_voxel},
+          {"top_down", s.top_down == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign"},
+          {"factor_pairs", s.factor_pairs == FactorPairs::Adjacent ? "adjacent" : "all"},
+          {"point_sigma", s.information.point_sigma},
+          {"local", baToJson(s.local)},
+          {"global", baToJson(s.global)}};
+}
+
+}  // namespace hba::pyramid

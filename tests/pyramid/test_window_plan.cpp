@@ -1,0 +1,86 @@
+#include <gtest/gtest.h>
+
+#include "hba/core/error.hpp"
+#include "hba/pyramid/settings.hpp"
+#include "hba/pyramid/window_plan.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+void expectCoversAllWithOverlap(std::size_t frames, int w, int s) {
+  const auto windows = planWindows(frames, w, s);
+  ASSERT_FALSE(windows.empty());
+  EXPECT_EQ(windows.front().first, 0u);
+  EXPECT_EQ(windows.back().first + windows.back().count, frames);
+  for (std::size_t j = 0; j < windows.size(); ++j) {
+    EXPECT_LE(windows[j].count, static_cast<std::size_t>(w));
+    EXPECT_GE(windows[j].count, std::min<std::size_t>(frames, 2));
+    if (j > 0) {
+      // Window j starts at j*s and overlaps its predecessor.
+      EXPECT_EQ(windows[j].first, j * static_cast<std::size_t>(s));
+      EXPECT_LT(windows[j].first, windows[j - 1].first + windows[j - 1].count);
+    }
+  }
+}
+
+TEST(WindowPlan, ExactFit) {
+  const auto windows = planWindows(20, 10, 5);
+  ASSERT_EQ(windows.size(), 3u);
+  EXPECT_EQ(windows[2].first, 10u);
+  EXPECT_EQ(windows[2].count, 10u);
+}
+
+TEST(WindowPlan, TailIsShorterButCovered) {
+  const auto windows = planWindows(23, 10, 5);
+  ASSERT_EQ(windows.size(), 4u);
+  EXPECT_EQ(windows[3].first, 15u);
+  EXPECT_EQ(windows[3].count, 8u);
+  const auto eleven = planWindows(11, 10, 5);
+  ASSERT_EQ(eleven.size(), 2u);
+  EXPECT_EQ(eleven[1].first, 5u);
+  EXPECT_EQ(eleven[1].count, 6u);
+}
+
+TEST(WindowPlan, ShortLayerIsOneWindow) {
+  const auto windows = planWindows(7, 10, 5);
+  ASSERT_EQ(windows.size(), 1u);
+  EXPECT_EQ(windows[0].count, 7u);
+  EXPECT_TRUE(planWindows(0, 10, 5).empty());
+}
+
+TEST(WindowPlan, ManyShapesCoverEveryFrame) {
+  for (std::size_t n : {2u, 9u, 10u, 11u, 12u, 57u, 1000u, 1003u}) {
+    for (auto [w, s] : {std::pair{10, 5}, std::pair{6, 3}, std::pair{4, 1}, std::pair{2, 1}}) {
+      SCOPED_TRACE(testing::Message() << "n=" << n << " w=" << w << " s=" << s);
+      expectCoversAllWithOverlap(n, w, s);
+    }
+  }
+}
+
+TEST(WindowPlan, RejectsWindowsThatDoNotOverlap) {
+  EXPECT_THROW(planWindows(100, 10, 10), Error);
+  EXPECT_THROW(planWindows(100, 10, 0), Error);
+  EXPECT_THROW(planWindows(100, 1, 1), Error);
+}
+
+TEST(LayerCount, PaperFormula) {
+  // DESIGN.md: the formula gives 4 for N = 1101, w = 10, s = 5, n = 8.
+  EXPECT_EQ(paperLayerCount(1101, 10, 5, 8), 4);
+  // Larger sequences never get fewer layers.
+  int previous = 1;
+  for (std::size_t n : {50u, 300u, 1000u, 5000u, 20000u, 100000u}) {
+    const int layers = paperLayerCount(n, 10, 5, 2);
+    EXPECT_GE(layers, previous);
+    EXPECT_LE(layers, maxLayerCount(n, 10, 5));
+    previous = layers;
+  }
+}
+
+TEST(LayerCount, MaxLayersStopsWhenTopFitsOneWindow) {
+  EXPECT_EQ(maxLayerCount(10, 10, 5), 1);
+  EXPECT_EQ(maxLayerCount(11, 10, 5), 2);  // 11 frames -> 2 windows -> 2 keyframes
+  EXPECT_EQ(maxLayerCount(300, 10, 5), 4);  // 300 -> 59 -> 11 -> 2
+}
+
+}  // namespace
+}  // namespace hba::pyramid
