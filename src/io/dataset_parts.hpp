@@ -1,0 +1,46 @@
+#pragma once
+// Private to the io module: the steps of Dataset::open, one file each.
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "hba/core/pose.hpp"
+#include "hba/io/dataset.hpp"
+
+namespace hba::io::detail {
+
+using Notes = std::vector<DatasetNote>;
+
+// --- dataset_scans.cpp: the scan files of one folder ---
+
+// True if `dir` holds at least one scan file (stops at the first).
+bool containsScanFile(const std::filesystem::path& dir);
+// The scan files of `dir`, ordered by the number in their names (the last run
+// of digits: 7.pcd, 000007.pcd, scan_7.pcd). Throws hba::Error naming the
+// files for: no scans, mixed extensions, a name without a number, two files
+// with one number, or a gap in the numbering.
+std::vector<std::filesystem::path> listNumberedScans(const std::filesystem::path& dir);
+
+// --- dataset_discovery.cpp: which folder and which trajectory ---
+
+// The folder of scans under `root` (pcd/, Scans/, velodyne/, ... or root
+// itself). Throws hba::Error if none or several candidates hold scans.
+std::filesystem::path findScansDir(const std::filesystem::path& root, Notes& notes);
+// The trajectory file in `root`, by a fixed order of preference (odometry
+// before optimized poses). Throws hba::Error if none, or if only unknown
+// names remain and several could be it.
+std::filesystem::path findTrajectoryFile(const std::filesystem::path& root,
+                                         const std::filesystem::path& scans_dir, Notes& notes);
+// An override path as the user typed it: absolute, else relative to the
+// working folder, else relative to `root`. Throws hba::Error if not found.
+std::filesystem::path resolveOverride(const std::filesystem::path& root,
+                                      const std::filesystem::path& path, const char* what);
+
+// --- dataset_sidecars.cpp: calib.txt and times.txt ---
+
+// KITTI calib.txt's `Tr:` line (LiDAR -> camera 0), or nullopt if it has none.
+std::optional<Pose> readKittiLidarToCamera(const std::filesystem::path& calib_file);
+// One timestamp (seconds) a line, e.g. FAST-LIO's or KITTI's times.txt.
+std::vector<double> readTimesFile(const std::filesystem::path& times_file);
+
+}  // namespace hba::io::detail

@@ -1,0 +1,124 @@
+// Lists and orders the scan files of a folder. Only the directory listing is
+// read (no stat, no file content), so 30 000 scans are listed in milliseconds.
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <string>
+#include <system_error>
+
+#include "dataset_parts.hpp"
+#include "hba/core/error.hpp"
+#include "hba/io/scan_file.hpp"
+
+namespace hba::io::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct NumberedScan {
+  std::uint64_t number = 0;
+  fs::path path;
+};
+
+bool isHidden(const fs::path& path) {
+  const std::string name = path.filename().string();
+  return !name.empty() && name.front() == '.';
+}
+
+std::string lowercaseExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The value of the last run of digits in the file's stem.
+std::uint64_t numberInName(const fs::path& path) {
+  const std::string stem = path.stem().string();
+  const auto last_digit = std::find_if(stem.rbegin(), stem.rend(),
+                                       [](unsigned char c) { return std::isdigit(c) != 0; });
+  if (last_digit == stem.rend()) {
+    failAt(path, "cannot order the scans: this file name has no number (expected names like "
+                 "000012.pcd or 12.pcd)");
+  }
+  const auto first_digit = std::find_if(last_digit, stem.rend(),
+                                        [](unsigned char c) { return std::isdigit(c) == 0; });
+  const std::string digits(first_digit.base(), last_digit.base());
+  if (digits.size() > 18) failAt(path, "the number in this file name is too long");
+  return std::stoull(digits);
+}
+
+template <typename OnScan>
+void forEachScanFile(const fs::path& dir, OnScan on_scan) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) failAt(dir, "scans folder not found");
+  if (!fs::is_directory(dir, ec)) failAt(dir, "is not a folder (expected a folder of scans)");
+  fs::directory_iterator it(dir, ec);
+  if (ec) failAt(dir, "cannot list the folder: " + ec.message());
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    if (ec) failAt(dir, "cannot list the folder: " + ec.message());
+    const fs::path& path = it->path();
+    // is_directory uses the type the listing already returned (no stat on Linux).
+    if (isHidden(path) || it->is_directory(ec) || !isScanFile(path)) continue;
+    if (!on_scan(path)) return;
+  }
+  if (ec) failAt(dir, "cannot list the folder: " + ec.message());
+}
+
+void checkConsecutive(const std::vector<NumberedScan>& scans) {
+  for (std::size_t i = 1; i < scans.size(); ++i) {
+    const NumberedScan& prev = scans[i - 1];
+    const NumberedScan& next = scans[i];
+    if (next.number == prev.number) {
+      failAt(next.path, "has the same scan number (" + std::to_string(next.number) + ") as " +
+                            prev.path.filename().string() + "; remove one of them");
+    }
+    if (next.number != prev.number + 1) {
+      const std::string missing =
+          next.number == prev.number + 2
+              ? "number " + std::to_string(prev.number + 1) + " is missing"
+              : "numbers " + std::to_string(prev.number + 1) + " to " +
+                    std::to_string(next.number - 1) + " are missing";
+      failAt(prev.path.parent_path(), "gap in the scan numbering: " +
+                                          prev.path.filename().string() + " is followed by " +
+                                          next.path.filename().string() + " (" + missing + ")");
+    }
+  }
+}
+
+}  // namespace
+
+bool containsScanFile(const fs::path& dir) {
+  bool found = false;
+  forEachScanFile(dir, [&](const fs::path&) {
+    found = true;
+    return false;
+  });
+  return found;
+}
+
+std::vector<fs::path> listNumberedScans(const fs::path& dir) {
+  std::vector<NumberedScan> scans;
+  fs::path first_of_kind;
+  forEachScanFile(dir, [&](const fs::path& path) {
+    if (first_of_kind.empty()) first_of_kind = path;
+    if (lowercaseExtension(path) != lowercaseExtension(first_of_kind)) {
+      failAt(dir, "mixed scan formats: " + first_of_kind.filename().string() + " and " +
+                      path.filename().string() + "; keep one kind of scan file per folder");
+    }
+    scans.push_back({numberInName(path), path});
+    return true;
+  });
+  if (scans.empty()) failAt(dir, "no scan files (.pcd, .bin or .ply) in this folder");
+  // Numeric order: 2.pcd before 10.pcd; ties broken by name so errors are stable.
+  std::sort(scans.begin(), scans.end(), [](const NumberedScan& a, const NumberedScan& b) {
+    return a.number != b.number ? a.number < b.number : a.path < b.path;
+  });
+  checkConsecutive(scans);
+  std::vector<fs::path> paths;
+  paths.reserve(scans.size());
+  for (NumberedScan& scan : scans) paths.push_back(std::move(scan.path));
+  return paths;
+}
+
+}  // namespace hba::io::detail
