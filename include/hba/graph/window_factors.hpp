@@ -1,0 +1,36 @@
+#pragma once
+// Turns one optimized BA window into pose-graph factors (the top-down step of
+// the pyramid): measurements are the window's optimized relative poses,
+// information comes from the window's Hessian (hba/graph/information.hpp).
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hba/core/pose.hpp"
+#include "hba/graph/information.hpp"
+#include "hba/graph/pose_graph.hpp"
+
+namespace hba::graph {
+
+// Which frame pairs of a window of K frames get a factor.
+enum class FactorPairs {
+  Adjacent,   // (k, k+1): K-1 factors, the paper's choice
+  AllPairs,   // every (i, j) with i < j: K(K-1)/2 factors
+  FromFirst,  // (0, k): K-1 factors, the BA's own gauge frame to every frame
+};
+
+// `hessian` (6K x 6K) and `optimized_window_poses` (K) come from one BA window
+// (hba::ba::BaResult); `layer1_indices[k]` is the layer-1 node of window frame
+// k (frame j of layer i is node j * s^(i-1)). Each factor's measurement is
+// relative(poses[i], poses[j]) for a window pair (i, j), mapped to nodes
+// (layer1_indices[i], layer1_indices[j]). Pairs sharing a `from` frame share
+// one Hessian inversion. Throws hba::Error when the sizes disagree, two
+// frames map to the same node, or the Hessian is invalid.
+std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
+                                              const std::vector<Pose>& optimized_window_poses,
+                                              const std::vector<std::size_t>& layer1_indices,
+                                              FactorPairs pairs,
+                                              const InformationSettings& settings = {});
+
+}  // namespace hba::graph

@@ -1,0 +1,31 @@
+#pragma once
+// The two steps of relativePoseInformation, split so that several factors
+// sharing a `from` frame reuse one (costly) inversion.
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hba/core/pose.hpp"
+#include "hba/graph/information.hpp"
+
+namespace hba::graph {
+
+// Throws hba::Error unless `hessian` is a finite 6K x 6K matrix for K = poses.size() >= 2
+// and the settings are valid.
+void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses,
+                           const InformationSettings& settings);
+
+// Covariance of all frames but `anchor` (in frame order) given that frame
+// `anchor` is held fixed; nullopt when the Hessian carries no information.
+std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian,
+                                                  std::size_t anchor,
+                                                  const InformationSettings& settings);
+
+// Information of the relative pose anchor -> b from that covariance.
+Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,
+                                     const std::vector<Pose>& poses, std::size_t anchor,
+                                     std::size_t b, const InformationSettings& settings);
+
+}  // namespace hba::graph

@@ -1,0 +1,72 @@
+#include "hba/graph/window_factors.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "anchored_covariance.hpp"
+#include "hba/core/error.hpp"
+
+namespace hba::graph {
+namespace {
+
+// The window frames that window frame `from` is linked to.
+std::vector<std::size_t> partnersOf(std::size_t from, std::size_t count, FactorPairs pairs) {
+  std::vector<std::size_t> partners;
+  switch (pairs) {
+    case FactorPairs::Adjacent:
+      if (from + 1 < count) partners.push_back(from + 1);
+      break;
+    case FactorPairs::AllPairs:
+      for (std::size_t to = from + 1; to < count; ++to) partners.push_back(to);
+      break;
+    case FactorPairs::FromFirst:
+      if (from == 0) {
+        for (std::size_t to = 1; to < count; ++to) partners.push_back(to);
+      }
+      break;
+  }
+  return partners;
+}
+
+void checkNodes(const std::vector<std::size_t>& layer1_indices, std::size_t count) {
+  if (layer1_indices.size() != count) {
+    throw Error("window factors: " + std::to_string(layer1_indices.size()) +
+                " layer-1 indices for a window of " + std::to_string(count) + " poses");
+  }
+  std::vector<std::size_t> sorted = layer1_indices;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+    throw Error("window factors: two window frames map to the same layer-1 node");
+  }
+}
+
+}  // namespace
+
+std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
+                                              const std::vector<Pose>& optimized_window_poses,
+                                              const std::vector<std::size_t>& layer1_indices,
+                                              FactorPairs pairs,
+                                              const InformationSettings& settings) {
+  const std::vector<Pose>& poses = optimized_window_poses;
+  validateWindowHessian(hessian, poses, settings);
+  checkNodes(layer1_indices, poses.size());
+
+  std::vector<RelativePoseFactor> factors;
+  for (std::size_t from = 0; from < poses.size(); ++from) {
+    const std::vector<std::size_t> partners = partnersOf(from, poses.size(), pairs);
+    if (partners.empty()) continue;
+    const auto covariance = anchoredCovariance(hessian, from, settings);
+    for (const std::size_t to : partners) {
+      RelativePoseFactor factor;
+      factor.from = layer1_indices[from];
+      factor.to = layer1_indices[to];
+      factor.measurement = relative(poses[from], poses[to]);
+      factor.information =
+          relativeInformationFromAnchored(covariance, poses, from, to, settings);
+      factors.push_back(factor);
+    }
+  }
+  return factors;
+}
+
+}  // namespace hba::graph
