@@ -15,15 +15,12 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/voxel/plane_map.hpp"
 
 namespace hba::ba {
 
-struct PlaneSettings {
-  double voxel_size = 4.0;    // V, root voxel edge (m)
-  double eigen_ratio = 0.05;  // theta: plane if lambda_min / lambda_max < theta
-  int max_depth = 3;          // octree splits below the root voxel
-  int min_points = 10;        // fewest points a voxel needs for the plane test
-};
+// The plane extraction settings live with the voxel map (same fields).
+using PlaneSettings = voxel::PlaneSettings;
 
 struct BaSettings {
   PlaneSettings planes;
@@ -40,6 +37,10 @@ struct BaResult {
   Eigen::MatrixXd hessian;
   double initial_cost = 0.0;  // at the initial poses and first association
   double final_cost = 0.0;    // at the solution and last association
+  // The last association's cost at the initial poses: compare with
+  // final_cost for a like-for-like improvement (same planes, same points).
+  double last_association_initial_cost = 0.0;
+  int rounds = 0;                   // association rounds run
   std::size_t num_planes = 0;       // plane features used in the last round
   std::size_t num_plane_points = 0;
   int iterations = 0;               // LM iterations over all rounds

@@ -1,0 +1,34 @@
+#pragma once
+// Levenberg-Marquardt on the poses of a PlaneProblem, frame 0 held fixed
+// (the cost is invariant to one rigid motion of all frames). Dense LDLT on
+// the 6(K-1) system; an accepted step always lowers the cost.
+#include <vector>
+
+#include "hba/ba/plane_problem.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::ba {
+
+struct LmSettings {
+  int max_iterations = 10;                // linear solves (accepted or not)
+  double relative_cost_tolerance = 1e-6;  // stop when a step gains less than this
+  double initial_damping = 1e-4;          // mu, relative to the Hessian diagonal
+};
+
+struct LmSummary {
+  double initial_cost = 0.0;
+  double final_cost = 0.0;
+  int iterations = 0;
+  int accepted_steps = 0;
+  Linearization final_linearization;  // at the returned poses
+};
+
+// Applies the update of window_ba.hpp: R <- Exp(dphi) R, t <- t + dt, with
+// delta holding (dt, dphi) of each frame in order.
+std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::VectorXd& delta);
+
+// Optimizes `poses` in place.
+LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
+                                  const LmSettings& settings);
+
+}  // namespace hba::ba

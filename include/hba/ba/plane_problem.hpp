@@ -1,0 +1,45 @@
+#pragma once
+// The BA cost of a fixed set of plane features (one association) over K
+// frames: evaluation of the cost and assembly of the full gradient and
+// Hessian. Planes are processed in parallel; every sum is taken in a fixed
+// order, so results are bit-identical for any thread count.
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "hba/ba/plane_cost.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::ba {
+
+struct Linearization {
+  double cost = 0.0;
+  Eigen::VectorXd gradient;  // 6K, convention of window_ba.hpp
+  Eigen::MatrixXd hessian;   // 6K x 6K, not gauge-fixed
+};
+
+class PlaneProblem {
+ public:
+  // Throws hba::Error if a plane names a frame >= num_frames.
+  PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames);
+
+  std::size_t numFrames() const { return num_frames_; }
+  std::size_t numPlanes() const { return planes_.size(); }
+  const std::vector<PlaneObservation>& planes() const { return planes_; }
+
+  // Per-plane costs (N * lambda_min), in plane order.
+  std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
+  double cost(const std::vector<Pose>& poses) const;
+  Linearization linearize(const std::vector<Pose>& poses) const;
+
+ private:
+  std::vector<PlaneObservation> planes_;
+  std::size_t num_frames_ = 0;
+  // For each frame, the (plane, cluster index) pairs that observe it, in
+  // plane order: the Hessian is assembled block-row by block-row from these.
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> uses_;
+};
+
+}  // namespace hba::ba

@@ -1,0 +1,48 @@
+#pragma once
+// Adaptive voxel plane extraction (BALM / HBA): the scans are put into the
+// world with their current poses and hashed into cubic voxels of edge V. A
+// voxel whose points pass the plane test is a plane feature; otherwise it is
+// split into 8 octants, recursively, down to a depth limit. See docs/ba.md.
+#include <cstdint>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::voxel {
+
+struct PlaneSettings {
+  double voxel_size = 4.0;    // V, root voxel edge (m)
+  double eigen_ratio = 0.05;  // theta: plane if lambda_min / lambda_max < theta
+  int max_depth = 3;          // octree splits below the root voxel
+  int min_points = 10;        // fewest points a voxel needs for the plane test
+  // Degeneracy guard beyond the paper's test: a cluster with
+  // lambda_min / lambda_mid >= line_ratio is a line (its normal can spin about
+  // it) and is not used as a plane.
+  double line_ratio = 0.25;
+  int min_frames = 2;         // a plane seen by fewer frames constrains nothing
+};
+
+// One point of one scan: scans[frame].points[index].
+struct PointRef {
+  std::uint32_t frame = 0;
+  std::uint32_t index = 0;
+};
+
+struct PlaneFeature {
+  std::vector<PointRef> points;  // sorted by (frame, index)
+  int depth = 0;                 // 0 = root voxel, 1 = octant, ...
+};
+
+// Plane test on the eigenvalues l1 <= l2 <= l3 of a point covariance.
+bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings);
+
+// Extracts the plane features of `scans` placed in the world by `poses`.
+// The output order is fixed (voxels in lexicographic key order, octants in
+// index order) and does not depend on hashing or on the thread count.
+// Throws hba::Error if the sizes differ, a scan is null, or settings are invalid.
+std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
+                                        const std::vector<Pose>& poses,
+                                        const PlaneSettings& settings);
+
+}  // namespace hba::voxel

@@ -1,0 +1,68 @@
+#include "hba/ba/association.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <tbb/parallel_for.h>
+
+namespace hba::ba {
+namespace {
+
+// Two-pass mean and scatter of one run of points (exactly symmetric result).
+PointCluster clusterOf(const PointCloud& scan, const voxel::PointRef* begin,
+                       const voxel::PointRef* end) {
+  PointCluster cluster;
+  cluster.count = static_cast<double>(end - begin);
+  for (const voxel::PointRef* r = begin; r != end; ++r) {
+    cluster.mean += scan.points[r->index].cast<double>();
+  }
+  cluster.mean /= cluster.count;
+  for (const voxel::PointRef* r = begin; r != end; ++r) {
+    const Vec3 d = scan.points[r->index].cast<double>() - cluster.mean;
+    cluster.scatter.noalias() += d * d.transpose();
+  }
+  return cluster;
+}
+
+PlaneObservation observationOf(const voxel::PlaneFeature& feature,
+                               const std::vector<const PointCloud*>& scans) {
+  PlaneObservation obs;
+  const auto& refs = feature.points;  // sorted by frame: one run per frame
+  std::size_t start = 0;
+  while (start < refs.size()) {
+    std::size_t stop = start;
+    while (stop < refs.size() && refs[stop].frame == refs[start].frame) ++stop;
+    const std::uint32_t frame = refs[start].frame;
+    obs.clusters.push_back({frame, clusterOf(*scans[frame], refs.data() + start,
+                                             refs.data() + stop)});
+    start = stop;
+  }
+  return obs;
+}
+
+}  // namespace
+
+std::vector<PlaneObservation> buildObservations(const std::vector<voxel::PlaneFeature>& features,
+                                                const std::vector<const PointCloud*>& scans) {
+  std::vector<PlaneObservation> out(features.size());
+  tbb::parallel_for(std::size_t{0}, features.size(),
+                    [&](std::size_t p) { out[p] = observationOf(features[p], scans); });
+  return out;
+}
+
+std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual,
+                                        double reject_ratio) {
+  std::vector<std::size_t> order(residual.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto drop = static_cast<std::size_t>(
+      std::floor(std::clamp(reject_ratio, 0.0, 1.0) * static_cast<double>(residual.size())));
+  if (drop == 0) return order;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return residual[a] < residual[b]; });
+  order.resize(order.size() - drop);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+}  // namespace hba::ba

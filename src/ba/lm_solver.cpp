@@ -1,0 +1,92 @@
+#include "hba/ba/lm_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "hba/core/lie.hpp"
+
+namespace hba::ba {
+namespace {
+
+constexpr double kMaxDamping = 1e12;
+
+// Marquardt scaling: damp each unknown by its own curvature, with a floor so
+// that an unknown no plane constrains (zero row) still gets a finite step of 0.
+Eigen::VectorXd dampingScale(const Eigen::MatrixXd& H) {
+  Eigen::VectorXd d = H.diagonal().cwiseMax(0.0);
+  const double floor = std::max(1e-9 * d.maxCoeff(), 1e-12);
+  return d.cwiseMax(floor);
+}
+
+bool isFinite(const Eigen::VectorXd& v) { return v.allFinite(); }
+
+}  // namespace
+
+std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::VectorXd& delta) {
+  std::vector<Pose> out = poses;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const Vec3 dt = delta.segment<3>(6 * i);
+    const Vec3 dphi = delta.segment<3>(6 * i + 3);
+    out[i] = Pose(Mat3(so3Exp(dphi) * poses[i].R()), Vec3(poses[i].t + dt));
+  }
+  return out;
+}
+
+LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
+                                  const LmSettings& settings) {
+  LmSummary summary;
+  Linearization lin = problem.linearize(poses);
+  // Costs are compared through cost() only, so rounding differences between
+  // the two eigen solvers can never make an accepted step look uphill.
+  lin.cost = problem.cost(poses);
+  summary.initial_cost = lin.cost;
+  const Eigen::Index free = 6 * static_cast<Eigen::Index>(poses.size()) - 6;  // frame 0 fixed
+  double mu = settings.initial_damping;
+  double nu = 2.0;
+
+  while (free > 0 && summary.iterations < settings.max_iterations && lin.cost > 0.0) {
+    const Eigen::MatrixXd H = lin.hessian.bottomRightCorner(free, free);
+    const Eigen::VectorXd g = lin.gradient.tail(free);
+    if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
+    ++summary.iterations;
+
+    Eigen::MatrixXd damped = H;
+    damped.diagonal() += mu * dampingScale(H);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(damped);
+    Eigen::VectorXd step = -ldlt.solve(g);
+    const double predicted = -(g.dot(step) + 0.5 * step.dot(H * step));
+
+    bool accepted = false;
+    if (ldlt.info() == Eigen::Success && isFinite(step) && predicted > 0.0) {
+      Eigen::VectorXd delta = Eigen::VectorXd::Zero(free + 6);
+      delta.tail(free) = step;
+      std::vector<Pose> trial = applyUpdate(poses, delta);
+      const double trial_cost = problem.cost(trial);
+      if (trial_cost < lin.cost) {  // never accept a step that raises the cost
+        const double gain = lin.cost - trial_cost;
+        const double rho = gain / predicted;
+        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
+        nu = 2.0;
+        poses = std::move(trial);
+        const double previous = lin.cost;
+        lin = problem.linearize(poses);
+        lin.cost = trial_cost;
+        ++summary.accepted_steps;
+        accepted = true;
+        if (gain <= settings.relative_cost_tolerance * previous) break;  // settled
+      }
+    }
+    if (!accepted) {
+      mu *= nu;
+      nu *= 2.0;
+      if (mu > kMaxDamping) break;  // no descent found even with tiny steps
+    }
+  }
+  summary.final_cost = lin.cost;
+  summary.final_linearization = std::move(lin);
+  return summary;
+}
+
+}  // namespace hba::ba

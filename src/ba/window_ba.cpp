@@ -1,0 +1,114 @@
+#include "hba/ba/window_ba.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "hba/ba/association.hpp"
+#include "hba/ba/lm_solver.hpp"
+#include "hba/ba/plane_problem.hpp"
+#include "hba/core/error.hpp"
+
+namespace hba::ba {
+namespace {
+
+void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+              const BaSettings& settings) {
+  if (scans.size() != initial.size()) {
+    throw Error("window BA: " + std::to_string(scans.size()) + " scans but " +
+                std::to_string(initial.size()) + " poses");
+  }
+  for (const PointCloud* scan : scans) {
+    if (scan == nullptr) throw Error("window BA: null scan");
+  }
+  if (settings.max_iterations < 0 || settings.association_rounds < 1 ||
+      !(settings.reject_ratio >= 0.0 && settings.reject_ratio < 1.0) ||
+      !(settings.relative_cost_tolerance >= 0.0)) {
+    throw Error("window BA: invalid settings (need max_iterations >= 0, association_rounds >= 1, "
+                "0 <= reject_ratio < 1, relative_cost_tolerance >= 0)");
+  }
+}
+
+// One association: the plane features at `poses`, minus the worst planes.
+struct Association {
+  std::vector<voxel::PlaneFeature> features;
+  PlaneProblem problem{{}, 0};
+};
+
+Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                      const BaSettings& settings) {
+  std::vector<voxel::PlaneFeature> features = voxel::extractPlanes(scans, poses, settings.planes);
+  std::vector<PlaneObservation> observations = buildObservations(features, scans);
+
+  // Outlier filter on the mean squared distance (not the sum), so that large
+  // planes are not dropped merely for having many points.
+  const FrameTransforms frames(poses);
+  std::vector<double> residual(observations.size());
+  for (std::size_t p = 0; p < observations.size(); ++p) {
+    residual[p] = planeCost(observations[p], frames) / observations[p].pointCount();
+  }
+  Association out;
+  std::vector<PlaneObservation> kept;
+  for (std::size_t p : keepBestPlanes(residual, settings.reject_ratio)) {
+    out.features.push_back(std::move(features[p]));
+    kept.push_back(std::move(observations[p]));
+  }
+  out.problem = PlaneProblem(std::move(kept), poses.size());
+  return out;
+}
+
+std::vector<double> planeRms(const PlaneProblem& problem, const std::vector<Pose>& poses) {
+  std::vector<double> rms = problem.planeCosts(poses);
+  for (std::size_t p = 0; p < rms.size(); ++p) {
+    rms[p] = std::sqrt(rms[p] / problem.planes()[p].pointCount());
+  }
+  return rms;
+}
+
+std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
+    const std::vector<voxel::PlaneFeature>& features, std::size_t num_frames) {
+  std::vector<std::vector<std::uint32_t>> indices(num_frames);
+  for (const voxel::PlaneFeature& feature : features) {
+    for (const voxel::PointRef& ref : feature.points) indices[ref.frame].push_back(ref.index);
+  }
+  // Voxels are disjoint, so no point is listed twice.
+  for (auto& list : indices) std::sort(list.begin(), list.end());
+  return indices;
+}
+
+}  // namespace
+
+BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
+                        const std::vector<Pose>& initial, const BaSettings& settings) {
+  validate(scans, initial, settings);
+  BaResult result;
+  result.poses = initial;
+  const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
+
+  Association last;
+  Linearization final_lin;
+  for (int round = 0; round < settings.association_rounds; ++round) {
+    last = associate(scans, result.poses, settings);
+    const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm);
+    result.iterations += summary.iterations;
+    result.rounds = round + 1;
+    if (round == 0) result.initial_cost = summary.initial_cost;
+    result.final_cost = summary.final_cost;
+    final_lin = summary.final_linearization;
+    const double gain = summary.initial_cost - summary.final_cost;
+    if (!(gain > settings.relative_cost_tolerance * summary.initial_cost)) break;  // settled
+  }
+
+  result.hessian = std::move(final_lin.hessian);
+  result.last_association_initial_cost = last.problem.cost(initial);
+  result.num_planes = last.problem.numPlanes();
+  for (const PlaneObservation& plane : last.problem.planes()) {
+    result.num_plane_points += static_cast<std::size_t>(plane.pointCount());
+  }
+  result.plane_rms_initial = planeRms(last.problem, initial);
+  result.plane_rms_final = planeRms(last.problem, result.poses);
+  result.plane_point_indices = pointIndicesPerFrame(last.features, initial.size());
+  return result;
+}
+
+}  // namespace hba::ba
