@@ -27,6 +27,8 @@ bool isFinite(const Eigen::VectorXd& v) { return v.allFinite(); }
 std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::VectorXd& delta) {
   std::vector<Pose> out = poses;
   for (std::size_t i = 0; i < poses.size(); ++i) {
+    // A frame with no update (the gauge frame) keeps its exact bits.
+    if (delta.segment<6>(6 * i).isZero(0.0)) continue;
     const Vec3 dt = delta.segment<3>(6 * i);
     const Vec3 dphi = delta.segment<3>(6 * i + 3);
     out[i] = Pose(Mat3(so3Exp(dphi) * poses[i].R()), Vec3(poses[i].t + dt));

@@ -1,0 +1,208 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <tbb/global_control.h>
+
+#include "hba/ba/lm_solver.hpp"
+#include "hba/ba/window_ba.hpp"
+#include "hba/core/error.hpp"
+#include "random_planes.hpp"
+#include "synthetic_window.hpp"
+
+namespace hba::ba {
+namespace {
+
+using test::makeSyntheticWindow;
+using test::relativePoseError;
+using test::SyntheticWindowSpec;
+
+BaSettings syntheticSettings() {
+  BaSettings settings;
+  settings.planes.voxel_size = 8.0;  // one patch per root voxel
+  return settings;
+}
+
+TEST(WindowBa, NoiseFreeWindowConvergesToTruth) {
+  const auto window = makeSyntheticWindow(SyntheticWindowSpec{});
+  const auto before = relativePoseError(window.initial, window.truth);
+  ASSERT_GT(before.max_angle_deg, 0.5);  // the start really is wrong
+
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, syntheticSettings());
+  const auto after = relativePoseError(result.poses, window.truth);
+  std::printf("noise-free: %.3g deg %.3g m -> %.3g deg %.3g m, %d iterations\n",
+              before.max_angle_deg, before.max_translation, after.max_angle_deg,
+              after.max_translation, result.iterations);
+  EXPECT_LT(after.max_angle_deg, 0.01);
+  EXPECT_LT(after.max_translation, 1e-3);
+  EXPECT_GE(result.num_planes, 8u);
+  EXPECT_LT(result.final_cost, 1e-4 * result.initial_cost);
+  // Frame 0 is the gauge: untouched.
+  EXPECT_EQ(result.poses[0].t, window.initial[0].t);
+  EXPECT_EQ(result.poses[0].q.coeffs(), window.initial[0].q.coeffs());
+}
+
+TEST(WindowBa, NoisyWindowConvergesToNoiseLevel) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.02;
+  spec.seed = 4;
+  const auto window = makeSyntheticWindow(spec);
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, syntheticSettings());
+  const auto after = relativePoseError(result.poses, window.truth);
+  // The best any estimator can do here: the cost minimum found from the
+  // true poses. The perturbed start must reach the same minimum.
+  const BaResult oracle = optimizeWindow(window.scanPointers(), window.truth, syntheticSettings());
+  const auto floor = relativePoseError(oracle.poses, window.truth);
+  const auto gap = relativePoseError(result.poses, oracle.poses);
+  std::printf("noise %.3g m: -> %.3g deg %.3g m (minimum from truth: %.3g deg %.3g m), "
+              "%d iterations\n",
+              spec.noise_sigma, after.max_angle_deg, after.max_translation, floor.max_angle_deg,
+              floor.max_translation, result.iterations);
+  EXPECT_LT(gap.max_angle_deg, 5e-3);  // far below the error itself
+  EXPECT_LT(gap.max_translation, 5e-4);
+  // The noise level: ~sigma / sqrt(points per patch and frame) on 6 m patches.
+  EXPECT_LT(after.max_angle_deg, 0.1);
+  EXPECT_LT(after.max_translation, 0.01);
+  // The residual RMS ends at the point noise (the planes are exact).
+  std::vector<double> rms = result.plane_rms_final;
+  std::sort(rms.begin(), rms.end());
+  EXPECT_NEAR(rms[rms.size() / 2], spec.noise_sigma, 0.3 * spec.noise_sigma);
+}
+
+TEST(WindowBa, IdenticalResultsWithOneAndTwoThreads) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.01;
+  const auto window = makeSyntheticWindow(spec);
+  const auto run = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return optimizeWindow(window.scanPointers(), window.initial, syntheticSettings());
+  };
+  const BaResult one = run(1);
+  const BaResult two = run(2);
+  ASSERT_EQ(one.poses.size(), two.poses.size());
+  for (std::size_t i = 0; i < one.poses.size(); ++i) {
+    EXPECT_EQ(one.poses[i].t, two.poses[i].t);
+    EXPECT_EQ(one.poses[i].q.coeffs(), two.poses[i].q.coeffs());
+  }
+  EXPECT_EQ(one.final_cost, two.final_cost);
+  EXPECT_EQ(one.hessian, two.hessian);
+  EXPECT_EQ(one.plane_point_indices, two.plane_point_indices);
+}
+
+TEST(WindowBa, HessianAtSolutionHasOnlyTheGaugeFreedom) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.01;
+  const auto window = makeSyntheticWindow(spec);
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, syntheticSettings());
+  const Eigen::Index n = result.hessian.rows();
+  ASSERT_EQ(n, 6 * spec.frames);
+  // Moving every frame by the same translation changes nothing: H v = 0.
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+    for (int f = 0; f < spec.frames; ++f) v(6 * f + axis) = 1.0;
+    EXPECT_LT((result.hessian * v).norm(), 1e-8 * result.hessian.norm());
+  }
+  // With frame 0 fixed the problem is well posed: positive definite.
+  const Eigen::MatrixXd fixed = result.hessian.bottomRightCorner(n - 6, n - 6);
+  const Eigen::VectorXd eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(fixed).eigenvalues();
+  EXPECT_GT(eig(0), 1e-6 * eig(eig.size() - 1));
+}
+
+TEST(WindowBa, ReportsPlanePointsPerFrame) {
+  const auto window = makeSyntheticWindow(SyntheticWindowSpec{});
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, syntheticSettings());
+  ASSERT_EQ(result.plane_point_indices.size(), window.scans.size());
+  std::size_t total = 0;
+  for (std::size_t f = 0; f < window.scans.size(); ++f) {
+    const auto& idx = result.plane_point_indices[f];
+    EXPECT_TRUE(std::is_sorted(idx.begin(), idx.end()));
+    EXPECT_TRUE(std::adjacent_find(idx.begin(), idx.end()) == idx.end());
+    if (!idx.empty()) {
+      EXPECT_LT(idx.back(), window.scans[f].size());
+    }
+    total += idx.size();
+  }
+  EXPECT_EQ(total, result.num_plane_points);
+  EXPECT_EQ(result.plane_rms_initial.size(), result.num_planes);
+  EXPECT_EQ(result.plane_rms_final.size(), result.num_planes);
+}
+
+TEST(WindowBa, WindowWithoutPlanesIsReturnedUnchanged) {
+  // Scattered points: no voxel is planar.
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> u(-10.f, 10.f);
+  std::vector<PointCloud> scans(3);
+  for (PointCloud& scan : scans) {
+    for (int k = 0; k < 300; ++k) scan.add(Vec3f(u(rng), u(rng), u(rng)));
+  }
+  scans.emplace_back();  // and an empty scan
+  const std::vector<const PointCloud*> ptrs = {&scans[0], &scans[1], &scans[2], &scans[3]};
+  const std::vector<Pose> poses = test::randomPoses(rng, 4, 1.0);
+  const BaResult result = optimizeWindow(ptrs, poses, BaSettings{});
+  EXPECT_EQ(result.num_planes, 0u);
+  EXPECT_EQ(result.final_cost, 0.0);
+  ASSERT_EQ(result.hessian.rows(), 24);
+  EXPECT_TRUE(result.hessian.isZero(0.0));
+  for (std::size_t i = 0; i < poses.size(); ++i) EXPECT_EQ(result.poses[i].t, poses[i].t);
+}
+
+TEST(WindowBa, SingleFrameAndIdenticalFramesStayFinite) {
+  const auto window = makeSyntheticWindow(SyntheticWindowSpec{});
+  const BaResult single =
+      optimizeWindow({window.scanPointers()[0]}, {window.initial[0]}, syntheticSettings());
+  EXPECT_EQ(single.num_planes, 0u);  // a plane needs two frames
+  EXPECT_EQ(single.hessian.rows(), 6);
+  EXPECT_TRUE(single.hessian.allFinite());
+
+  // The same scan three times at the same pose: already consistent.
+  const PointCloud* scan = window.scanPointers()[0];
+  const BaResult same = optimizeWindow({scan, scan, scan},
+                                       std::vector<Pose>(3, window.truth[0]), syntheticSettings());
+  EXPECT_GT(same.num_planes, 0u);
+  EXPECT_TRUE(same.hessian.allFinite());
+  EXPECT_LE(same.final_cost, same.last_association_initial_cost);
+  for (const Pose& p : same.poses) EXPECT_TRUE(p.t.allFinite() && p.q.coeffs().allFinite());
+}
+
+TEST(WindowBa, EmptyWindowAndBadInput) {
+  const BaResult empty = optimizeWindow({}, {}, BaSettings{});
+  EXPECT_TRUE(empty.poses.empty());
+  EXPECT_EQ(empty.num_planes, 0u);
+
+  PointCloud scan;
+  EXPECT_THROW(optimizeWindow({&scan}, {}, BaSettings{}), Error);
+  EXPECT_THROW(optimizeWindow({nullptr}, {Pose()}, BaSettings{}), Error);
+  BaSettings bad;
+  bad.planes.voxel_size = 0.0;
+  EXPECT_THROW(optimizeWindow({&scan}, {Pose()}, bad), Error);
+}
+
+TEST(LevenbergMarquardt, NeverIncreasesTheCost) {
+  // Far from the optimum (large pose errors, fixed association): every
+  // accepted step must lower the cost.
+  std::mt19937 rng(17);
+  const std::vector<Pose> truth = test::randomPoses(rng, 4, 2.0);
+  std::vector<PlaneObservation> planes;
+  for (int p = 0; p < 6; ++p) planes.push_back(test::randomPlane(rng, truth, {0, 1, 2, 3}, 30, 0.02).observation);
+  const PlaneProblem problem(planes, 4);
+  for (int trial = 0; trial < 5; ++trial) {
+    std::vector<Pose> poses = truth;
+    for (std::size_t i = 1; i < poses.size(); ++i) {
+      poses[i] = Pose(Mat3(so3Exp(0.3 * test::randomUnit(rng)) * poses[i].R()),
+                      Vec3(poses[i].t + 1.0 * test::randomUnit(rng)));
+    }
+    double previous = problem.cost(poses);
+    for (int step = 0; step < 5; ++step) {
+      const LmSummary s = solveLevenbergMarquardt(problem, poses, LmSettings{1, 0.0});
+      EXPECT_LE(s.final_cost, previous);
+      EXPECT_EQ(s.final_cost, problem.cost(poses));
+      previous = s.final_cost;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hba::ba
