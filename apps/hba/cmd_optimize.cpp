@@ -60,8 +60,9 @@ void run(OptimizeArgs& args, const CLI::App& command) {
                                                          : pyramid::TopDownMode::PoseGraph;
   }
   if (given("--pairs")) {
-    settings.factor_pairs = args.pairs == "all" ? pyramid::FactorPairs::AllPairs
-                                                : pyramid::FactorPairs::Adjacent;
+    settings.factor_pairs = args.pairs == "all"          ? pyramid::FactorPairs::AllPairs
+                            : args.pairs == "from-first" ? pyramid::FactorPairs::FromFirst
+                                                         : pyramid::FactorPairs::Adjacent;
   }
   settings.threads = tbb::this_task_arena::max_concurrency();
   pyramid::checkSettings(settings);
@@ -142,7 +143,7 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_option("--top-down", args->top_down, "pose-graph (the paper) or direct-assign (ablation)")
       ->check(CLI::IsMember({"pose-graph", "direct-assign"}));
   command->add_option("--pairs", args->pairs, "Window frame pairs that become factors")
-      ->check(CLI::IsMember({"adjacent", "all"}));
+      ->check(CLI::IsMember({"adjacent", "all", "from-first"}));
   command->callback([args, command] { run(*args, *command); });
 }
 

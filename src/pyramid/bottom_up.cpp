@@ -10,7 +10,7 @@
 #include <map>
 #include <optional>
 
-#include "hba/graph/information.hpp"
+#include "hba/graph/window_factors.hpp"
 #include "keyframe.hpp"
 
 namespace hba::pyramid {
@@ -32,34 +32,16 @@ struct WindowBa {
   std::size_t plane_points = 0;
 };
 
-std::vector<graph::RelativePoseFactor> windowFactors(const ba::BaResult& result,
-                                                     const std::vector<std::size_t>& anchors,
-                                                     const Window& window,
-                                                     const HbaSettings& settings) {
-  std::vector<graph::RelativePoseFactor> factors;
-  const std::size_t n = window.count;
-  for (std::size_t a = 0; a + 1 < n; ++a) {
-    const std::size_t last_b = settings.factor_pairs == FactorPairs::Adjacent ? a + 1 : n - 1;
-    for (std::size_t b = a + 1; b <= last_b; ++b) {
-      graph::RelativePoseFactor factor;
-      factor.from = anchors[window.first + a];
-      factor.to = anchors[window.first + b];
-      factor.measurement = relative(result.poses[a], result.poses[b]);
-      factor.information = graph::relativePoseInformation(result.hessian, result.poses, a, b,
-                                                          settings.information);
-      factors.push_back(factor);
-    }
-  }
-  return factors;
-}
-
 WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window& window,
                    const HbaSettings& settings) {
   WindowBa out;
   out.outcome.window = window;
   out.outcome.optimized = result.poses;
   out.outcome.has_planes = result.num_planes > 0;
-  out.outcome.factors = windowFactors(result, layer.anchors, window, settings);
+  const auto first = layer.anchors.begin() + static_cast<long>(window.first);
+  const std::vector<std::size_t> anchors(first, first + static_cast<long>(window.count));
+  out.outcome.factors = graph::windowFactors(result.hessian, result.poses, anchors,
+                                             settings.factor_pairs, settings.information);
   out.cost_before = result.initial_cost;
   out.cost_after = result.final_cost;
   out.planes = result.num_planes;

@@ -51,6 +51,15 @@ void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
   read(node, "reject_ratio", ba.reject_ratio, source);
 }
 
+const char* factorPairsName(FactorPairs pairs) {
+  switch (pairs) {
+    case FactorPairs::Adjacent: return "adjacent";
+    case FactorPairs::AllPairs: return "all";
+    case FactorPairs::FromFirst: return "from_first";
+  }
+  return "adjacent";
+}
+
 nlohmann::json baToJson(const ba::BaSettings& ba) {
   return {{"voxel_size", ba.planes.voxel_size},     {"eigen_ratio", ba.planes.eigen_ratio},
           {"max_depth", ba.planes.max_depth},       {"min_points", ba.planes.min_points},
@@ -103,7 +112,8 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "factor_pairs", pairs, source);
     if (pairs == "adjacent") settings.factor_pairs = FactorPairs::Adjacent;
     else if (pairs == "all") settings.factor_pairs = FactorPairs::AllPairs;
-    else if (!pairs.empty()) bad(source, "factor_pairs must be adjacent or all");
+    else if (pairs == "from_first") settings.factor_pairs = FactorPairs::FromFirst;
+    else if (!pairs.empty()) bad(source, "factor_pairs must be adjacent, all or from_first");
     readBa(root["local"], "local", settings.local, source);
     readBa(root["global"], "global", settings.global, source);
   } catch (const YAML::Exception& e) {
@@ -139,7 +149,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"scan_voxel", s.scan_voxel},
           {"keyframe_voxel", s.keyframe_voxel},
           {"top_down", s.top_down == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign"},
-          {"factor_pairs", s.factor_pairs == FactorPairs::Adjacent ? "adjacent" : "all"},
+          {"factor_pairs", factorPairsName(s.factor_pairs)},
           {"point_sigma", s.information.point_sigma},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

@@ -5,6 +5,7 @@
 
 #include "hba/ba/window_ba.hpp"
 #include "hba/graph/information.hpp"
+#include "hba/graph/window_factors.hpp"
 
 namespace hba::pyramid {
 
@@ -14,11 +15,9 @@ enum class TopDownMode {
   DirectAssign,  // the paper's ablation: copy upper poses down the pyramid
 };
 
-// Which frame pairs of a BA window become pose-graph factors.
-enum class FactorPairs {
-  Adjacent,  // (k, k+1): the paper's factor graph
-  AllPairs,  // every (a, b) with a < b in the window
-};
+// Which frame pairs of a BA window become pose-graph factors (adjacent by
+// default, as in the paper's factor graph).
+using graph::FactorPairs;
 
 struct HbaSettings {
   int window = 10;  // w: frames per local window
