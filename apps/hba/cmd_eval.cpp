@@ -1,12 +1,129 @@
-// `hba eval`: not implemented yet.
+// `hba eval --gt A --est B`: absolute and relative trajectory errors.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
 #include "commands.hpp"
-#include "hba/core/error.hpp"
+#include "hba/core/atomic_file.hpp"
+#include "hba/eval/trajectory_error.hpp"
+#include "hba/io/pose_file.hpp"
 
 namespace hba::cli {
+namespace {
+
+struct EvalArgs {
+  std::string gt, est, gt_format, est_format, label, json;
+  std::string align = "se3", assoc = "auto", delta_unit = "frames";
+  double delta = 1.0;
+  double t_max_diff = 0.01;
+};
+
+Trajectory readTrajectory(const std::string& path, const std::string& format) {
+  return format.empty() ? io::readPoses(path) : io::readPoses(path, io::poseFormatFromString(format));
+}
+
+std::string statsRow(const std::string& prefix, const char* name, const eval::ErrorStats& s) {
+  return fmt::format("{}{:<14}{:>10.6f}{:>10.6f}{:>10.6f}{:>10.6f}\n", prefix, name, s.rmse, s.mean,
+                     s.median, s.max);
+}
+
+std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
+  const std::string prefix = args.label.empty() ? "" : args.label + "  ";
+  std::string out = fmt::format(
+      "{}{} of {} estimated poses matched by {}, alignment {}{}; RPE over {} {}\n", prefix,
+      r.matched, r.estimate_count, eval::toString(r.association_used), args.align,
+      args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
+      args.delta_unit);
+  out += fmt::format("{}{:<14}{:>10}{:>10}{:>10}{:>10}\n", prefix, "", "rmse", "mean", "median", "max");
+  out += statsRow(prefix, "ATE trans m", r.ate.translation_m);
+  out += statsRow(prefix, "ATE rot deg", r.ate.rotation_deg);
+  out += statsRow(prefix, "RPE trans m", r.rpe.translation_m);
+  out += statsRow(prefix, "RPE rot deg", r.rpe.rotation_deg);
+  return out;
+}
+
+nlohmann::json statsJson(const eval::ErrorStats& s) {
+  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"max", s.max}};
+}
+
+nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
+  nlohmann::json rotation = nlohmann::json::array();
+  for (int i = 0; i < 3; ++i) rotation.push_back({r.alignment.R(i, 0), r.alignment.R(i, 1), r.alignment.R(i, 2)});
+  return {
+      {"label", args.label},
+      {"gt", args.gt},
+      {"est", args.est},
+      {"association", eval::toString(r.association_used)},
+      {"matched", r.matched},
+      {"gt_poses", r.reference_count},
+      {"est_poses", r.estimate_count},
+      {"alignment",
+       {{"kind", args.align},
+        {"rotation", rotation},
+        {"translation", {r.alignment.t.x(), r.alignment.t.y(), r.alignment.t.z()}},
+        {"scale", r.alignment.scale}}},
+      {"ate", {{"translation_m", statsJson(r.ate.translation_m)}, {"rotation_deg", statsJson(r.ate.rotation_deg)}}},
+      {"rpe",
+       {{"delta", args.delta},
+        {"delta_unit", args.delta_unit},
+        {"translation_m", statsJson(r.rpe.translation_m)},
+        {"rotation_deg", statsJson(r.rpe.rotation_deg)}}},
+  };
+}
+
+void run(const EvalArgs& args) {
+  eval::EvalOptions options;
+  options.alignment = eval::alignmentFromString(args.align);
+  options.association = eval::associationModeFromString(args.assoc);
+  options.max_time_diff = args.t_max_diff;
+  options.rpe_delta = args.delta;
+  options.rpe_unit = eval::deltaUnitFromString(args.delta_unit);
+
+  const Trajectory gt = readTrajectory(args.gt, args.gt_format);
+  const Trajectory est = readTrajectory(args.est, args.est_format);
+  const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
+  if (result.matched < result.estimate_count) {
+    spdlog::warn("{} estimated poses have no ground truth within {} s and are not evaluated",
+                 result.estimate_count - result.matched, args.t_max_diff);
+  }
+  fmt::print("{}", table(args, result));
+  if (!args.json.empty()) {
+    writeFileAtomically(args.json, [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
+  }
+}
+
+}  // namespace
 
 void registerEvalCommand(CLI::App& app) {
-  auto* command = app.add_subcommand("eval", "(not implemented yet)");
-  command->callback([] { throw Error("hba eval is not implemented yet"); });
+  auto args = std::make_shared<EvalArgs>();
+  auto* command = app.add_subcommand(
+      "eval", "Trajectory accuracy: ATE and RPE of an estimate against ground truth (evo's definitions)");
+  command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(CLI::ExistingFile);
+  command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(CLI::ExistingFile);
+  const auto formats = CLI::IsMember({"kitti", "tum", "hba"});
+  command->add_option("--gt-format", args->gt_format, "Format of --gt (default: detected)")->check(formats);
+  command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")->check(formats);
+  command->add_option("--align", args->align, "Alignment of the estimate onto the ground truth")
+      ->check(CLI::IsMember({"se3", "sim3", "none"}))
+      ->capture_default_str();
+  command->add_option("--assoc", args->assoc,
+                      "Pose pairing: auto = by time when both files have timestamps, else by index")
+      ->check(CLI::IsMember({"auto", "index", "time"}))
+      ->capture_default_str();
+  command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--delta", args->delta, "RPE distance between compared poses")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--delta-unit", args->delta_unit, "Unit of --delta")
+      ->check(CLI::IsMember({"frames", "m"}))
+      ->capture_default_str();
+  command->add_option("--label", args->label, "Text printed before every output line");
+  command->add_option("--json", args->json, "Also write the results as JSON to this file");
+  command->callback([args] { run(*args); });
 }
 
 }  // namespace hba::cli

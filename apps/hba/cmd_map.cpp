@@ -1,12 +1,72 @@
-// `hba map`: not implemented yet.
+// `hba map DATA -o map.pcd|map.ply`: the merged, voxel-downsampled map.
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <string>
+
 #include "commands.hpp"
+#include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/eval/merged_map.hpp"
+#include "hba/io/pcd.hpp"
+#include "hba/io/ply.hpp"
 
 namespace hba::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct MapArgs {
+  DatasetArgs data;
+  std::string output;
+  std::string color = "none";
+  eval::MapSettings settings;
+};
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+  return fs::weakly_canonical(a) == fs::weakly_canonical(b);
+}
+
+// hba never writes into its input: not over the trajectory, not among the scans.
+void refuseInputPath(const fs::path& output, const io::Dataset& dataset) {
+  if (sameFile(output, dataset.posesFile()) || sameFile(output.parent_path(), dataset.scansDir())) {
+    failAt(output, "refusing to write the map into the dataset's input files");
+  }
+}
+
+void run(MapArgs& args) {
+  const fs::path output = args.output;
+  const std::string extension = output.extension().string();
+  if (extension != ".pcd" && extension != ".ply") failAt(output, "the map must be a .pcd or .ply file");
+  args.settings.color = eval::mapColorFromString(args.color);
+
+  const io::Dataset dataset = args.data.open();
+  refuseInputPath(output, dataset);
+  spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
+  const PointCloud map = eval::buildMergedMap(dataset, {}, args.settings);
+  if (extension == ".pcd") {
+    io::writePcd(output, map);
+  } else {
+    io::writePly(output, map);
+  }
+  spdlog::info("wrote {} ({} points, voxel {} m, intensity = {})", output.string(), map.size(),
+               args.settings.voxel, args.color == "none" ? "mean scan intensity" : args.color);
+}
+
+}  // namespace
 
 void registerMapCommand(CLI::App& app) {
-  auto* command = app.add_subcommand("map", "(not implemented yet)");
-  command->callback([] { throw Error("hba map is not implemented yet"); });
+  auto args = std::make_shared<MapArgs>();
+  auto* command = app.add_subcommand("map", "Write the merged, voxel-downsampled map of a dataset");
+  args->data.addTo(command);
+  command->add_option("-o,--output", args->output, "Output map file (.pcd or .ply)")->required();
+  command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
+      ->capture_default_str();
+  command->add_option("--color", args->color,
+                      "What the intensity field carries: none (mean intensity), scan (scan index), "
+                      "height (z)")
+      ->check(CLI::IsMember({"none", "scan", "height"}))
+      ->capture_default_str();
+  command->callback([args] { run(*args); });
 }
 
 }  // namespace hba::cli

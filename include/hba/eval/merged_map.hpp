@@ -1,0 +1,74 @@
+#pragma once
+// The merged map of a sequence: every scan moved into the world by its pose,
+// voxel-downsampled as it streams in (only one raw scan is in memory at a
+// time; the map holds one accumulator per occupied voxel).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/io/dataset.hpp"
+#include "hba/voxel/voxel_key.hpp"
+
+namespace hba::eval {
+
+// Which point represents a voxel.
+enum class VoxelRule {
+  Centroid,   // the mean of the voxel's points (PCL VoxelGrid's and voxel::downsample's rule)
+  FirstPoint  // the first point that fell into the voxel, in scan order
+};
+
+// What the output cloud's intensity field carries (the io writers store
+// x y z intensity only, so a colour cue travels there).
+enum class MapColor {
+  None,    // the mean input intensity of the voxel (none if the scans have none)
+  Scan,    // the index of the first scan that touched the voxel
+  Height   // the point's z in metres
+};
+
+std::string toString(MapColor color);
+MapColor mapColorFromString(const std::string& name);  // "none", "scan", "height"
+
+struct MapSettings {
+  double voxel = 0.1;  // m; <= 0 keeps every point
+  VoxelRule rule = VoxelRule::Centroid;
+  MapColor color = MapColor::None;
+};
+
+// Accumulates world points voxel by voxel. Output order is the order in
+// which voxels were first touched, so results are deterministic.
+class VoxelMerger {
+ public:
+  explicit VoxelMerger(const MapSettings& settings);
+  // Adds `scan` (sensor frame) moved into the world by `pose`.
+  void add(const PointCloud& scan, const Pose& pose, std::uint32_t scan_index);
+  std::size_t voxelCount() const { return cells_.size(); }
+  PointCloud result() const;
+
+ private:
+  struct Cell {
+    Vec3 sum = Vec3::Zero();
+    Vec3f first = Vec3f::Zero();
+    double intensity_sum = 0.0;
+    std::uint32_t count = 0;
+    std::uint32_t first_scan = 0;
+  };
+  MapSettings settings_;
+  bool has_intensity_ = true;  // false once a scan without intensity arrives
+  // The grid of hba::voxel::downsample, so both agree on what a voxel is.
+  std::unordered_map<voxel::VoxelKey, std::uint32_t, voxel::VoxelKeyHash> index_;  // -> cells_ slot
+  std::vector<Cell> cells_;
+};
+
+// Streams every scan of `dataset` through a VoxelMerger with `poses` (one per
+// scan; the dataset's own trajectory when `poses` is empty). Throws hba::Error.
+PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
+                          const MapSettings& settings);
+
+// Downsamples a cloud that is already in the world frame (a map file).
+PointCloud downsampleMap(const PointCloud& cloud, const MapSettings& settings);
+
+}  // namespace hba::eval

@@ -1,0 +1,99 @@
+#include "hba/eval/merged_map.hpp"
+
+#include <cmath>
+
+#include "hba/core/error.hpp"
+#include "hba/voxel/voxel_key.hpp"
+
+namespace hba::eval {
+
+std::string toString(MapColor color) {
+  switch (color) {
+    case MapColor::None: return "none";
+    case MapColor::Scan: return "scan";
+    case MapColor::Height: return "height";
+  }
+  return "?";
+}
+
+MapColor mapColorFromString(const std::string& name) {
+  if (name == "none") return MapColor::None;
+  if (name == "scan") return MapColor::Scan;
+  if (name == "height") return MapColor::Height;
+  throw Error("unknown map colour '" + name + "' (expected none, scan or height)");
+}
+
+VoxelMerger::VoxelMerger(const MapSettings& settings) : settings_(settings) {}
+
+void VoxelMerger::add(const PointCloud& scan, const Pose& pose, std::uint32_t scan_index) {
+  if (!scan.hasIntensity()) has_intensity_ = false;
+  const Mat3 R = pose.R();
+  const bool keep_all = !(settings_.voxel > 0.0);
+  for (std::size_t i = 0; i < scan.size(); ++i) {
+    const Vec3 world = R * scan.points[i].cast<double>() + pose.t;
+    std::uint32_t slot = 0;
+    if (keep_all) {
+      slot = static_cast<std::uint32_t>(cells_.size());
+      cells_.emplace_back();
+    } else {
+      const auto [it, inserted] =
+          index_.try_emplace(voxel::VoxelKey::of(world, settings_.voxel),
+                             static_cast<std::uint32_t>(cells_.size()));
+      if (inserted) cells_.emplace_back();
+      slot = it->second;
+    }
+    Cell& cell = cells_[slot];
+    if (cell.count == 0) {
+      cell.first = world.cast<float>();
+      cell.first_scan = scan_index;
+    }
+    cell.sum += world;
+    if (scan.hasIntensity()) cell.intensity_sum += scan.intensity[i];
+    ++cell.count;
+  }
+}
+
+PointCloud VoxelMerger::result() const {
+  PointCloud out;
+  const bool with_intensity = settings_.color != MapColor::None || has_intensity_;
+  out.reserve(cells_.size(), with_intensity);
+  for (const Cell& cell : cells_) {
+    const Vec3f p = settings_.rule == VoxelRule::Centroid
+                        ? Vec3f((cell.sum / static_cast<double>(cell.count)).cast<float>())
+                        : cell.first;
+    if (!with_intensity) {
+      out.add(p);
+      continue;
+    }
+    float value = 0.0f;
+    switch (settings_.color) {
+      case MapColor::None: value = static_cast<float>(cell.intensity_sum / cell.count); break;
+      case MapColor::Scan: value = static_cast<float>(cell.first_scan); break;
+      case MapColor::Height: value = p.z(); break;
+    }
+    out.add(p, value);
+  }
+  return out;
+}
+
+PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
+                          const MapSettings& settings) {
+  const std::vector<Pose>& used = poses.empty() ? dataset.trajectory().poses : poses;
+  if (used.size() != dataset.size()) {
+    throw Error("the dataset has " + std::to_string(dataset.size()) + " scans but " +
+                std::to_string(used.size()) + " poses were given");
+  }
+  VoxelMerger merger(settings);
+  for (std::size_t i = 0; i < dataset.size(); ++i) {
+    merger.add(dataset.loadScan(i), used[i], static_cast<std::uint32_t>(i));
+  }
+  return merger.result();
+}
+
+PointCloud downsampleMap(const PointCloud& cloud, const MapSettings& settings) {
+  VoxelMerger merger(settings);
+  merger.add(cloud, Pose::identity(), 0);
+  return merger.result();
+}
+
+}  // namespace hba::eval
