@@ -1,0 +1,83 @@
+// The procedural world: a free corridor along the path, varied content,
+// determinism.
+#include <gtest/gtest.h>
+
+#include "hba/sim/world.hpp"
+#include "sim_test_world.hpp"
+
+namespace hba::sim {
+namespace {
+
+// Nothing may stand on the road: rays along the path, at several heights and
+// lateral offsets inside the corridor, reach the next pose unobstructed.
+TEST(SimWorld, ThePathStaysFree) {
+  const Simulation& s = test::smallSimulation();
+  const auto& poses = s.truth.poses;
+  for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
+    const Vec3 step = poses[k + 1].t - poses[k].t;
+    const Vec3 left = poses[k].R().col(1);
+    for (double height : {-1.3, 0.0, 1.5}) {  // relative to the 1.8 m sensor
+      for (double lateral : {-1.0, 0.0, 1.0}) {
+        const Ray ray{poses[k].t + Vec3(0, 0, height) + lateral * left, step.normalized()};
+        const auto hit = s.world.intersect(ray, step.norm());
+        EXPECT_FALSE(hit.has_value()) << "frame " << k << " height " << height << " lateral "
+                                      << lateral;
+      }
+    }
+  }
+}
+
+TEST(SimWorld, TheSensorRidesAboveTheGround) {
+  const Simulation& s = test::smallSimulation();
+  for (std::size_t k = 0; k < s.truth.size(); k += 10) {
+    const Ray down{s.truth.poses[k].t, -Vec3::UnitZ()};
+    const auto hit = s.world.intersect(down, 10.0);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->distance, 1.8, 0.01) << "frame " << k;
+  }
+}
+
+TEST(SimWorld, HoldsStructuresAndNonPlanarClutter) {
+  const Simulation& s = test::smallSimulation();
+  EXPECT_GT(s.world.spheres().size(), 20u);
+  // Tall things (buildings, poles, trees) exist around the path.
+  std::size_t tall = 0;
+  for (const Triangle& t : s.world.triangles()) {
+    const double ground = s.terrain.height(t.a.x(), t.a.y());
+    if (std::max({t.a.z(), t.b.z(), t.c.z()}) > ground + 4.0) ++tall;
+  }
+  EXPECT_GT(tall, 200u);
+}
+
+TEST(SimWorld, SameSeedSameWorldOtherSeedOtherWorld) {
+  const Simulation& s = test::smallSimulation();
+  const World again = buildWorld(s.truth.poses, s.terrain, s.config.world, s.config.seed);
+  ASSERT_EQ(again.triangles().size(), s.world.triangles().size());
+  EXPECT_EQ(again.triangles().back().a, s.world.triangles().back().a);
+  const World other = buildWorld(s.truth.poses, s.terrain, s.config.world, s.config.seed + 1);
+  EXPECT_TRUE(other.triangles().size() != s.world.triangles().size() ||
+              other.triangles().back().a != s.world.triangles().back().a);
+}
+
+TEST(SimWorld, TerrainSlopesStayGentle) {
+  const Terrain terrain(11, 0.03);
+  double steepest = 0.0, lowest = 1e9, highest = -1e9;
+  for (double x = -500; x <= 500; x += 10) {
+    for (double y = -500; y <= 500; y += 10) {
+      steepest = std::max(steepest, terrain.gradient(x, y).norm());
+      lowest = std::min(lowest, terrain.height(x, y));
+      highest = std::max(highest, terrain.height(x, y));
+    }
+  }
+  EXPECT_LE(steepest, 0.03 + 1e-12);
+  EXPECT_GT(steepest, 0.01);
+  EXPECT_GT(highest - lowest, 0.5) << "not flat";
+  // The analytic gradient is the height's derivative.
+  const double h = 1e-4;
+  const Eigen::Vector2d numeric((terrain.height(3 + h, 4) - terrain.height(3 - h, 4)) / (2 * h),
+                                (terrain.height(3, 4 + h) - terrain.height(3, 4 - h)) / (2 * h));
+  EXPECT_NEAR((numeric - terrain.gradient(3, 4)).norm(), 0.0, 1e-8);
+}
+
+}  // namespace
+}  // namespace hba::sim
