@@ -56,12 +56,15 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
 
     Eigen::MatrixXd damped = H;
     damped.diagonal() += mu * dampingScale(H);
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(damped);
-    Eigen::VectorXd step = -ldlt.solve(g);
+    // Blocked Cholesky: about twice as fast as LDLT on a top-layer system
+    // (~1800 unknowns), and it refuses an indefinite damped system (far from
+    // the optimum the exact Hessian can be), which then just raises mu.
+    const Eigen::LLT<Eigen::MatrixXd> cholesky(damped);
+    Eigen::VectorXd step = -cholesky.solve(g);
     const double predicted = -(g.dot(step) + 0.5 * step.dot(H * step));
 
     bool accepted = false;
-    if (ldlt.info() == Eigen::Success && isFinite(step) && predicted > 0.0) {
+    if (cholesky.info() == Eigen::Success && isFinite(step) && predicted > 0.0) {
       Eigen::VectorXd delta = Eigen::VectorXd::Zero(free + 6);
       delta.tail(free) = step;
       std::vector<Pose> trial = applyUpdate(poses, delta);

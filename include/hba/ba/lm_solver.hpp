@@ -1,7 +1,7 @@
 #pragma once
 // Levenberg-Marquardt on the poses of a PlaneProblem, frame 0 held fixed
-// (the cost is invariant to one rigid motion of all frames). Dense LDLT on
-// the 6(K-1) system; an accepted step always lowers the cost.
+// (the cost is invariant to one rigid motion of all frames). Dense Cholesky
+// (LLT) on the 6(K-1) system; an accepted step always lowers the cost.
 #include <vector>
 
 #include "hba/ba/plane_problem.hpp"
