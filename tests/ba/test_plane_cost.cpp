@@ -6,6 +6,7 @@
 #include "hba/ba/plane_cost.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/lie.hpp"
+#include "pointwise_plane_cost.hpp"
 #include "random_planes.hpp"
 
 namespace hba::ba {
@@ -173,6 +174,17 @@ TEST(PlaneCost, EqualsSumOfSquaredDistancesToBestPlane) {
     // Hence cost / N is the mean squared point-to-plane distance.
     EXPECT_NEAR(cost / plane.observation.pointCount(), brute / world.size(), 1e-8 * brute);
   }
+}
+
+TEST(PlaneCost, ClusterFormEqualsPointwiseEvaluation) {
+  std::mt19937 rng(31);
+  const std::vector<Pose> poses = randomPoses(rng, 4, 5.0);
+  const auto plane = randomPlane(rng, poses, {0, 1, 2, 3}, 50, 0.03);
+  const PlaneLinearization lin = linearizePlane(plane.observation, FrameTransforms(poses));
+  const test::PointwiseResult naive = test::pointwisePlaneDerivatives(plane.sensor_points, poses);
+  EXPECT_NEAR(lin.cost, naive.cost, 1e-9 * naive.cost);
+  EXPECT_LT(relativeError(lin.gradient, naive.gradient), 1e-9);
+  EXPECT_LT(relativeError(lin.denseHessian(), naive.hessian), 1e-9);
 }
 
 TEST(PlaneCost, DegeneratePlanesGiveFiniteResults) {
