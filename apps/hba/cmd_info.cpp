@@ -1,12 +1,244 @@
-// `hba info`: not implemented yet.
+// `hba info DIR`: what discovery found in a dataset folder and a summary of
+// its scans and trajectory, without reading whole scans where avoidable
+// (PCD headers and .bin file sizes give the point counts).
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
+#include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/pcd.hpp"
+#include "hba/io/scan_file.hpp"
 
 namespace hba::cli {
+namespace {
+namespace fs = std::filesystem;
+
+struct InfoOptions {
+  DatasetArgs dataset;
+  std::size_t sample = 0;  // 0: every scan
+  bool json = false;
+};
+
+struct PointStats {
+  std::uint64_t min = 0, median = 0, max = 0;
+  std::size_t scans_looked_at = 0;
+};
+
+struct Summary {
+  PointStats points;
+  std::vector<std::string> fields;  // of the first scan
+  std::string scan_encoding;        // e.g. "PCD binary", "KITTI float32"
+  double length_m = 0.0;
+  Vec3 extent_min = Vec3::Zero(), extent_max = Vec3::Zero();
+  bool has_duration = false;
+  double duration_s = 0.0;
+};
+
+// `count` indices spread evenly over [0, n), first and last included.
+std::vector<std::size_t> evenlySpaced(std::size_t n, std::size_t count) {
+  std::vector<std::size_t> indices;
+  if (count == 0 || count >= n) count = n;
+  for (std::size_t k = 0; k < count; ++k) {
+    indices.push_back(count == 1 ? 0 : (k * (n - 1) + (count - 1) / 2) / (count - 1));
+  }
+  return indices;
+}
+
+std::string pcdEncodingName(io::PcdEncoding encoding) {
+  switch (encoding) {
+    case io::PcdEncoding::Ascii: return "PCD ascii";
+    case io::PcdEncoding::Binary: return "PCD binary";
+    case io::PcdEncoding::BinaryCompressed: return "PCD binary_compressed";
+  }
+  return "PCD";
+}
+
+constexpr std::uint64_t kKittiPointBytes = 16;  // float32 x y z intensity
+
+// Points stored in one scan: the header for PCD, the size for .bin, a full read for PLY.
+std::uint64_t storedPointCount(const fs::path& path) {
+  switch (io::scanFormatFromExtension(path)) {
+    case io::ScanFormat::Pcd: return io::readPcdHeader(path).points;
+    case io::ScanFormat::KittiBin: {
+      std::error_code ec;
+      const std::uintmax_t bytes = fs::file_size(path, ec);
+      if (ec) failAt(path, "cannot read the file size: " + ec.message());
+      if (bytes % kKittiPointBytes != 0) {
+        failAt(path, "size " + std::to_string(bytes) + " bytes is not a whole number of " +
+                         "16-byte KITTI points");
+      }
+      return bytes / kKittiPointBytes;
+    }
+    case io::ScanFormat::Ply: return io::readScan(path).size();
+  }
+  failAt(path, "unknown scan format");
+}
+
+void describeFirstScan(const fs::path& path, Summary& summary) {
+  switch (io::scanFormatFromExtension(path)) {
+    case io::ScanFormat::Pcd: {
+      const io::PcdHeader header = io::readPcdHeader(path);
+      for (const io::PcdField& field : header.fields) {
+        summary.fields.push_back(field.count == 1 ? field.name
+                                                  : field.name + "[" + std::to_string(field.count) + "]");
+      }
+      summary.scan_encoding = pcdEncodingName(header.encoding);
+      return;
+    }
+    case io::ScanFormat::KittiBin:
+      summary.fields = {"x", "y", "z", "intensity"};
+      summary.scan_encoding = "KITTI float32";
+      return;
+    case io::ScanFormat::Ply: {
+      const PointCloud cloud = io::readScan(path);
+      summary.fields = {"x", "y", "z"};
+      if (cloud.hasIntensity()) summary.fields.push_back("intensity");
+      summary.scan_encoding = "PLY";
+      return;
+    }
+  }
+}
+
+PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
+  const std::vector<std::size_t> indices = evenlySpaced(dataset.size(), sample);
+  std::vector<std::uint64_t> counts(indices.size());
+  std::vector<std::exception_ptr> failures(indices.size());
+  // Reading thousands of headers is I/O latency bound: overlap the reads.
+  tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t k) {
+    try {
+      counts[k] = storedPointCount(dataset.scanPath(indices[k]));
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  });
+  // Report the first bad scan in file order, whichever thread met it first.
+  for (const std::exception_ptr& failure : failures) {
+    if (failure) std::rethrow_exception(failure);
+  }
+  std::sort(counts.begin(), counts.end());
+  return {counts.front(), counts[counts.size() / 2], counts.back(), counts.size()};
+}
+
+Summary summarize(const io::Dataset& dataset, std::size_t sample) {
+  Summary summary;
+  summary.points = pointStats(dataset, sample);
+  describeFirstScan(dataset.scanPath(0), summary);
+  const Trajectory& trajectory = dataset.trajectory();
+  summary.length_m = pathLength(trajectory.poses);
+  summary.extent_min = summary.extent_max = trajectory.poses.front().t;
+  for (const Pose& pose : trajectory.poses) {
+    summary.extent_min = summary.extent_min.cwiseMin(pose.t);
+    summary.extent_max = summary.extent_max.cwiseMax(pose.t);
+  }
+  if (trajectory.hasStamps()) {
+    summary.has_duration = true;
+    summary.duration_s = trajectory.stamps.back() - trajectory.stamps.front();
+  }
+  return summary;
+}
+
+// Rounding noise like -1e-17 would print as "-0.00".
+double printable(double metres) { return std::abs(metres) < 5e-3 ? 0.0 : metres; }
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string out;
+  for (const std::string& word : words) out += (out.empty() ? "" : " ") + word;
+  return out;
+}
+
+void printText(const io::Dataset& dataset, const Summary& s) {
+  const std::string extension = dataset.scanPath(0).extension().string();
+  std::cout << "dataset:     " << dataset.root().string() << "\n"
+            << "layout:      " << dataset.layout() << "\n"
+            << "scans:       " << dataset.size() << " (" << extension << ") in "
+            << dataset.scansDir().string() << "\n"
+            << "poses:       " << dataset.trajectory().size() << " ("
+            << io::toString(dataset.poseFormat()) << ") from " << dataset.posesFile().string()
+            << "\n";
+  if (!dataset.calibrationFile().empty()) {
+    std::cout << "calibration: camera poses turned into LiDAR poses with Tr of "
+              << dataset.calibrationFile().string() << "\n";
+  }
+  std::cout << fmt::format("points/scan: min {}, median {}, max {} ({} of {} scans looked at)\n",
+                           s.points.min, s.points.median, s.points.max, s.points.scans_looked_at,
+                           dataset.size())
+            << "fields:      " << joined(s.fields) << " (" << s.scan_encoding << ")\n"
+            << fmt::format("trajectory:  {:.2f} m long\n", s.length_m)
+            << fmt::format("extent:      x [{:.2f}, {:.2f}]  y [{:.2f}, {:.2f}]  z [{:.2f}, {:.2f}] m\n",
+                           printable(s.extent_min.x()), printable(s.extent_max.x()),
+                           printable(s.extent_min.y()), printable(s.extent_max.y()),
+                           printable(s.extent_min.z()), printable(s.extent_max.z()));
+  if (s.has_duration) {
+    const std::string source = dataset.timesFile().empty() ? dataset.posesFile().filename().string()
+                                                           : dataset.timesFile().filename().string();
+    std::cout << fmt::format("duration:    {:.2f} s (timestamps from {})\n", s.duration_s, source);
+  }
+}
+
+void printJson(const io::Dataset& dataset, const Summary& s) {
+  nlohmann::json out = {
+      {"dataset", dataset.root().string()},
+      {"layout", dataset.layout()},
+      {"scans_dir", dataset.scansDir().string()},
+      {"scan_count", dataset.size()},
+      {"scan_extension", dataset.scanPath(0).extension().string()},
+      {"poses_file", dataset.posesFile().string()},
+      {"pose_format", io::toString(dataset.poseFormat())},
+      {"pose_count", dataset.trajectory().size()},
+      {"calibration_file", dataset.calibrationFile().string()},
+      {"points_per_scan",
+       {{"min", s.points.min}, {"median", s.points.median}, {"max", s.points.max},
+        {"scans_looked_at", s.points.scans_looked_at}}},
+      {"fields", s.fields},
+      {"scan_encoding", s.scan_encoding},
+      {"trajectory_length_m", s.length_m},
+      {"extent_min", {s.extent_min.x(), s.extent_min.y(), s.extent_min.z()}},
+      {"extent_max", {s.extent_max.x(), s.extent_max.y(), s.extent_max.z()}},
+      {"duration_s", s.has_duration ? nlohmann::json(s.duration_s) : nlohmann::json(nullptr)},
+  };
+  std::cout << out.dump(2) << "\n";
+}
+
+void runInfo(const InfoOptions& options) {
+  // With --json, stdout must hold the document alone: messages go to stderr.
+  if (options.json) {
+    auto logger = spdlog::stderr_color_mt("hba_info_stderr");
+    logger->set_level(spdlog::get_level());
+    spdlog::set_default_logger(logger);
+    spdlog::set_pattern("%^[%l]%$ %v");
+  }
+  const io::Dataset dataset = options.dataset.open();
+  const Summary summary = summarize(dataset, options.sample);
+  if (options.json) {
+    printJson(dataset, summary);
+  } else {
+    printText(dataset, summary);
+  }
+}
+
+}  // namespace
 
 void registerInfoCommand(CLI::App& app) {
-  auto* command = app.add_subcommand("info", "(not implemented yet)");
-  command->callback([] { throw Error("hba info is not implemented yet"); });
+  auto options = std::make_shared<InfoOptions>();
+  auto* command = app.add_subcommand(
+      "info", "Show what a dataset folder holds: layout, scans, poses, points, trajectory");
+  options->dataset.addTo(command);
+  command->add_option("--sample", options->sample,
+                      "Look at N evenly spaced scans for the point statistics (0 = all)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--json", options->json, "Print a JSON document instead of text");
+  command->callback([options] { runInfo(*options); });
 }
 
 }  // namespace hba::cli
