@@ -1,0 +1,94 @@
+// PCD "DATA ascii": one point per line, the values of every field in order.
+#include <algorithm>
+#include <string>
+
+#include "hba/core/error.hpp"
+#include "pcd_format.hpp"
+#include "text_numbers.hpp"
+
+namespace hba::io::detail {
+namespace fs = std::filesystem;
+
+namespace {
+
+// float32 text is parsed as float directly: through double it could round twice.
+std::optional<float> parseValue(std::string_view word, ScalarType type) {
+  if (type == ScalarType::Float32) return parseFloat(word);
+  const std::optional<double> value = parseDouble(word);
+  if (!value) return std::nullopt;
+  return static_cast<float>(*value);
+}
+
+// The word positions of the values hba keeps, in the order x y z intensity.
+struct WantedWords {
+  std::size_t index[4];
+  ScalarType type[4];
+  std::size_t count;
+};
+
+WantedWords wantedWords(const PcdHeader& header, const PcdLayout& layout) {
+  WantedWords wanted{};
+  std::size_t fields[4] = {layout.x, layout.y, layout.z, layout.intensity.value_or(0)};
+  wanted.count = layout.intensity ? 4 : 3;
+  for (std::size_t k = 0; k < wanted.count; ++k) {
+    wanted.index[k] = layout.first_words[fields[k]];
+    wanted.type[k] = pcdScalarType(header.fields[fields[k]]);
+  }
+  return wanted;
+}
+
+}  // namespace
+
+PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                          const fs::path& path) {
+  const WantedWords wanted = wantedWords(header, layout);
+  PointCloud cloud;
+  // Every value takes at least two characters, which bounds a lying POINTS.
+  const std::uint64_t most_possible = body.size() / (2 * layout.words_per_point) + 1;
+  cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(header.points, most_possible)),
+                layout.intensity.has_value());
+
+  std::uint64_t points_read = 0;
+  std::uint64_t line_number = 0;
+  std::string_view rest = body;
+  while (!rest.empty()) {
+    std::string_view words = nextLine(rest);
+    ++line_number;
+    const std::string where = "data line " + std::to_string(line_number);
+    std::string_view word = nextWord(words);
+    if (word.empty()) continue;
+    if (points_read == header.points) {
+      failAt(path, where + ": more points than the " + std::to_string(header.points) +
+                       " the header declares");
+    }
+    float values[4] = {0, 0, 0, 0};
+    std::size_t word_index = 0;
+    for (; !word.empty(); word = nextWord(words), ++word_index) {
+      for (std::size_t k = 0; k < wanted.count; ++k) {
+        if (wanted.index[k] != word_index) continue;
+        const std::optional<float> value = parseValue(word, wanted.type[k]);
+        if (!value) failAt(path, where + ": " + quoteToken(word) + " is not a number");
+        values[k] = *value;
+      }
+    }
+    if (word_index != layout.words_per_point) {
+      failAt(path, where + ": " + std::to_string(word_index) + " values, but the fields need " +
+                       std::to_string(layout.words_per_point));
+    }
+    ++points_read;
+    const Vec3f p(values[0], values[1], values[2]);
+    if (!p.allFinite()) continue;
+    if (layout.intensity) {
+      cloud.add(p, values[3]);
+    } else {
+      cloud.add(p);
+    }
+  }
+  if (points_read != header.points) {
+    failAt(path, "truncated: the header declares " + std::to_string(header.points) +
+                     " points but the data holds " + std::to_string(points_read));
+  }
+  return cloud;
+}
+
+}  // namespace hba::io::detail

@@ -1,0 +1,110 @@
+// writePcd: fields x y z [intensity] as float32, written atomically. The file
+// is assembled in memory and written with one call.
+#include <charconv>
+#include <cstring>
+#include <string>
+
+#include "hba/core/atomic_file.hpp"
+#include "hba/core/error.hpp"
+#include "hba/io/pcd.hpp"
+#include "cloud_checks.hpp"
+#include "lzf_block.hpp"
+
+namespace hba::io {
+namespace {
+namespace fs = std::filesystem;
+
+const char* encodingName(PcdEncoding encoding) {
+  switch (encoding) {
+    case PcdEncoding::Ascii: return "ascii";
+    case PcdEncoding::Binary: return "binary";
+    case PcdEncoding::BinaryCompressed: return "binary_compressed";
+  }
+  return "binary";
+}
+
+std::string pcdHeaderText(const PointCloud& cloud, PcdEncoding encoding) {
+  const bool with_i = cloud.hasIntensity();
+  const std::string n = std::to_string(cloud.size());
+  std::string text = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
+  text += with_i ? "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                 : "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  text += "WIDTH " + n + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\n";
+  text += std::string("DATA ") + encodingName(encoding) + "\n";
+  return text;
+}
+
+// Fields written: x, y, z and, when the cloud has it, intensity.
+std::size_t fieldCount(const PointCloud& cloud) { return cloud.hasIntensity() ? 4 : 3; }
+
+float valueOf(const PointCloud& cloud, std::size_t point, std::size_t field) {
+  return field < 3 ? cloud.points[point][static_cast<Eigen::Index>(field)] : cloud.intensity[point];
+}
+
+void appendFloat(std::string& out, float value) {
+  char bytes[sizeof(float)];
+  std::memcpy(bytes, &value, sizeof(float));
+  out.append(bytes, sizeof(float));
+}
+
+// Shortest text that parses back to the same float: ascii round-trips exactly.
+void appendFloatText(std::string& out, float value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof(text), value);
+  out.append(text, result.ptr);
+}
+
+void appendAscii(const PointCloud& cloud, std::string& out) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
+      if (f > 0) out += ' ';
+      appendFloatText(out, valueOf(cloud, i, f));
+    }
+    out += '\n';
+  }
+}
+
+void appendBinary(const PointCloud& cloud, std::string& out) {
+  out.reserve(out.size() + cloud.size() * fieldCount(cloud) * sizeof(float));
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    for (std::size_t f = 0; f < fieldCount(cloud); ++f) appendFloat(out, valueOf(cloud, i, f));
+  }
+}
+
+void appendUint32(std::string& out, std::uint32_t value) {
+  char bytes[sizeof(value)];
+  std::memcpy(bytes, &value, sizeof(value));
+  out.append(bytes, sizeof(value));
+}
+
+// Column-major (all x, then all y, ...) compresses far better than records.
+void appendCompressed(const PointCloud& cloud, std::string& out, const fs::path& path) {
+  std::string columns;
+  columns.reserve(cloud.size() * fieldCount(cloud) * sizeof(float));
+  for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
+    for (std::size_t i = 0; i < cloud.size(); ++i) appendFloat(columns, valueOf(cloud, i, f));
+  }
+  const std::size_t sizes_at = out.size();
+  appendUint32(out, 0);
+  appendUint32(out, static_cast<std::uint32_t>(columns.size()));
+  const std::size_t compressed = detail::lzfCompressAppend(columns, out, path);
+  const auto compressed32 = static_cast<std::uint32_t>(compressed);
+  std::memcpy(&out[sizes_at], &compressed32, sizeof(compressed32));
+}
+
+}  // namespace
+
+void writePcd(const fs::path& path, const PointCloud& cloud, PcdEncoding encoding) {
+  detail::requireOneIntensityPerPoint(cloud, path);
+  std::string content = pcdHeaderText(cloud, encoding);
+  switch (encoding) {
+    case PcdEncoding::Ascii: appendAscii(cloud, content); break;
+    case PcdEncoding::Binary: appendBinary(cloud, content); break;
+    case PcdEncoding::BinaryCompressed: appendCompressed(cloud, content, path); break;
+  }
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+}  // namespace hba::io

@@ -1,0 +1,71 @@
+// writePly: one vertex element with float x y z [intensity], written atomically.
+#include <charconv>
+#include <cstring>
+#include <string>
+
+#include "cloud_checks.hpp"
+#include "hba/core/atomic_file.hpp"
+#include "hba/io/ply.hpp"
+
+namespace hba::io {
+namespace {
+
+std::string plyHeaderText(const PointCloud& cloud, PlyEncoding encoding) {
+  std::string text = "ply\nformat ";
+  text += encoding == PlyEncoding::Ascii ? "ascii" : "binary_little_endian";
+  text += " 1.0\ncomment written by hba\nelement vertex " + std::to_string(cloud.size()) + "\n";
+  text += "property float x\nproperty float y\nproperty float z\n";
+  if (cloud.hasIntensity()) text += "property float intensity\n";
+  text += "end_header\n";
+  return text;
+}
+
+void appendAscii(const PointCloud& cloud, std::string& out) {
+  char text[32];
+  const auto append = [&](float value) {
+    // Shortest text that parses back to the same float: ascii round-trips exactly.
+    out.append(text, std::to_chars(text, text + sizeof(text), value).ptr);
+  };
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    append(cloud.points[i].x());
+    out += ' ';
+    append(cloud.points[i].y());
+    out += ' ';
+    append(cloud.points[i].z());
+    if (cloud.hasIntensity()) {
+      out += ' ';
+      append(cloud.intensity[i]);
+    }
+    out += '\n';
+  }
+}
+
+void appendBinary(const PointCloud& cloud, std::string& out) {
+  const std::size_t values = cloud.hasIntensity() ? 4 : 3;
+  const std::size_t start = out.size();
+  out.resize(start + cloud.size() * values * sizeof(float));
+  char* cursor = &out[start];
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const float record[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
+                             cloud.hasIntensity() ? cloud.intensity[i] : 0.0f};
+    std::memcpy(cursor, record, values * sizeof(float));
+    cursor += values * sizeof(float);
+  }
+}
+
+}  // namespace
+
+void writePly(const std::filesystem::path& path, const PointCloud& cloud, PlyEncoding encoding) {
+  detail::requireOneIntensityPerPoint(cloud, path);
+  std::string content = plyHeaderText(cloud, encoding);
+  if (encoding == PlyEncoding::Ascii) {
+    appendAscii(cloud, content);
+  } else {
+    appendBinary(cloud, content);
+  }
+  writeFileAtomically(path, [&](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+}  // namespace hba::io

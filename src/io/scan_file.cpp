@@ -1,0 +1,49 @@
+// Dispatch on the file extension (case-insensitive: ".PCD" is common on
+// Windows-made datasets).
+#include "hba/io/scan_file.hpp"
+
+#include "hba/core/error.hpp"
+#include "hba/io/kitti_bin.hpp"
+#include "hba/io/pcd.hpp"
+#include "hba/io/ply.hpp"
+#include "text_numbers.hpp"
+
+namespace hba::io {
+namespace {
+
+std::optional<ScanFormat> formatOf(const std::filesystem::path& path) {
+  const std::string extension = path.extension().string();
+  if (detail::equalsIgnoreCase(extension, ".pcd")) return ScanFormat::Pcd;
+  if (detail::equalsIgnoreCase(extension, ".bin")) return ScanFormat::KittiBin;
+  if (detail::equalsIgnoreCase(extension, ".ply")) return ScanFormat::Ply;
+  return std::nullopt;
+}
+
+}  // namespace
+
+ScanFormat scanFormatFromExtension(const std::filesystem::path& path) {
+  if (const auto format = formatOf(path)) return *format;
+  failAt(path, "unknown scan format " + detail::quoteToken(path.extension().string()) +
+                   " (hba reads .pcd, .bin and .ply)");
+}
+
+bool isScanFile(const std::filesystem::path& path) { return formatOf(path).has_value(); }
+
+PointCloud readScan(const std::filesystem::path& path) {
+  switch (scanFormatFromExtension(path)) {
+    case ScanFormat::Pcd: return readPcd(path);
+    case ScanFormat::KittiBin: return readKittiBin(path);
+    case ScanFormat::Ply: return readPly(path);
+  }
+  failAt(path, "unknown scan format");
+}
+
+void writeScan(const std::filesystem::path& path, const PointCloud& cloud) {
+  switch (scanFormatFromExtension(path)) {
+    case ScanFormat::Pcd: writePcd(path, cloud); break;
+    case ScanFormat::KittiBin: writeKittiBin(path, cloud); break;
+    case ScanFormat::Ply: writePly(path, cloud); break;
+  }
+}
+
+}  // namespace hba::io
