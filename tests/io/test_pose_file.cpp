@@ -66,6 +66,14 @@ TEST(PoseFile, TumKeepsStampsAndSkipsComments) {
   EXPECT_NEAR(t.poses[0].q.angularDistance(expected), 0.0, 1e-12);
 }
 
+TEST(PoseFile, WindowsLineEndingsAndTabsAreFine) {
+  test::TempDir dir;
+  test::writeText(dir / "p.json", "1\t2 3 1 0 0 0\r\n4 5 6 1 0 0 0\r\n\r\n");
+  const Trajectory t = readPoses(dir / "p.json");
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t.poses[1].t, Vec3(4, 5, 6));
+}
+
 TEST(PoseFile, EveryFormatRoundTripsExactly) {
   const Trajectory original = randomTrajectory(50, 7);
   test::TempDir dir;
