@@ -114,6 +114,18 @@ TEST(PcdVariants, TrailingBytesAfterTheDataAreIgnored) {
   EXPECT_EQ(readPcdText(content).size(), 1u);
 }
 
+TEST(PcdVariants, HeaderLongerThanTheFirstHeaderReadIsFound) {
+  // readPcdHeader first reads 4 KiB; a longer header needs its second read.
+  std::string comments;
+  while (comments.size() < 6000) comments += "# a tool that writes a long history into its header\n";
+  test::TempDir dir;
+  test::writeText(dir / "long.pcd", comments + "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nDATA ascii\n1 2 3\n");
+  const PcdHeader header = readPcdHeader(dir / "long.pcd");
+  EXPECT_EQ(header.points, 1u);
+  EXPECT_EQ(header.data_offset, test::readText(dir / "long.pcd").size() - 6);
+  EXPECT_EQ(readPcd(dir / "long.pcd").size(), 1u);
+}
+
 TEST(PcdVariants, EmptyCloudReadsAsEmpty) {
   for (const char* data : {"ascii", "binary", "binary_compressed"}) {
     SCOPED_TRACE(data);
