@@ -197,6 +197,7 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"pose_format", io::toString(dataset.poseFormat())},
       {"pose_count", dataset.trajectory().size()},
       {"calibration_file", dataset.calibrationFile().string()},
+      {"times_file", dataset.timesFile().string()},
       {"points_per_scan",
        {{"min", s.points.min}, {"median", s.points.median}, {"max", s.points.max},
         {"scans_looked_at", s.points.scans_looked_at}}},
