@@ -20,7 +20,8 @@ struct NumberRow {
 // a number, or NaN/Inf.
 std::vector<NumberRow> readNumberRows(const std::filesystem::path& path);
 
-// Like readNumberRows but stops after the first data line (format detection).
+// Like readNumberRows but parses only up to the first data line (format
+// detection; the file is still read whole, trajectories are small).
 NumberRow readFirstNumberRow(const std::filesystem::path& path);
 
 // How many numbers one line of `format` has: 7 (hba), 12 (kitti), 8 (tum).
