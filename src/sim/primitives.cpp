@@ -7,6 +7,9 @@ namespace hba::sim {
 namespace {
 // Hits closer than this are self-intersections or the sensor's own housing.
 constexpr double kMinHitDistance = 1e-6;
+// Barycentric slack, so that a ray through a shared edge or vertex of a mesh
+// never slips between its two triangles.
+constexpr double kEdgeSlack = 1e-10;
 }  // namespace
 
 double Aabb::surfaceArea() const {
@@ -19,12 +22,16 @@ bool Aabb::hitBefore(const Vec3& origin, const Vec3& inverse_direction, double t
   double t_enter = 0.0;
   double t_exit = t_max;
   for (int axis = 0; axis < 3; ++axis) {
+    if (std::isinf(inverse_direction[axis])) {
+      // Parallel to this slab (0 * inf would give NaN): inside it or never.
+      if (origin[axis] < min[axis] || origin[axis] > max[axis]) return false;
+      continue;
+    }
     double t0 = (min[axis] - origin[axis]) * inverse_direction[axis];
     double t1 = (max[axis] - origin[axis]) * inverse_direction[axis];
     if (t0 > t1) std::swap(t0, t1);
-    // NaN (0 * inf on a slab boundary) fails both comparisons: treated as a hit.
-    if (t0 > t_enter) t_enter = t0;
-    if (t1 < t_exit) t_exit = t1;
+    t_enter = std::max(t_enter, t0);
+    t_exit = std::min(t_exit, t1);
     if (t_enter > t_exit) return false;
   }
   return true;
@@ -55,10 +62,10 @@ std::optional<double> intersect(const Ray& ray, const Triangle& tri, double t_ma
   const double inv_det = 1.0 / det;
   const Vec3 s = ray.origin - tri.a;
   const double u = s.dot(p) * inv_det;
-  if (u < 0.0 || u > 1.0) return std::nullopt;
+  if (u < -kEdgeSlack || u > 1.0 + kEdgeSlack) return std::nullopt;
   const Vec3 q = s.cross(edge1);
   const double v = ray.direction.dot(q) * inv_det;
-  if (v < 0.0 || u + v > 1.0) return std::nullopt;
+  if (v < -kEdgeSlack || u + v > 1.0 + kEdgeSlack) return std::nullopt;
   const double t = edge2.dot(q) * inv_det;
   if (t <= kMinHitDistance || t >= t_max) return std::nullopt;
   return t;

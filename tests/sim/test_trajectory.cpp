@@ -53,10 +53,19 @@ TEST(SimTrajectory, PitchFollowsTheSlope) {
   TrajectoryConfig config;
   config.frames = 200;
   const Trajectory t = makeTrajectory(config, terrain);
-  for (std::size_t k = 0; k + 1 < t.size(); k += 7) {
-    const Vec3 step = (t.poses[k + 1].t - t.poses[k].t).normalized();
-    EXPECT_GT(t.poses[k].R().col(0).dot(step), 0.9999) << "forward axis along the 3-D path";
+  double steepest = 0.0;
+  for (std::size_t k = 0; k + 1 < t.size(); ++k) {
+    // The forward axis climbs as the road does (the chord's grade; corners
+    // turn the chord but not its grade).
+    const Vec3 step = t.poses[k + 1].t - t.poses[k].t;
+    const double grade = step.z() / step.head<2>().norm();
+    const Vec3 forward = t.poses[k].R().col(0);
+    EXPECT_NEAR(forward.z() / forward.head<2>().norm(), grade, 2e-3) << "frame " << k;
+    steepest = std::max(steepest, std::abs(grade));
+    // No roll beyond the lateral slope.
+    EXPECT_LT(std::abs(t.poses[k].R().col(1).z()), 0.05);
   }
+  EXPECT_GT(steepest, 0.01) << "the test drives on a slope";
 }
 
 TEST(SimTrajectory, KittiCameraPosesBecomeZUpLidarPoses) {
@@ -91,7 +100,7 @@ TEST(SimTrajectory, FollowsTheSharedKittiDrive) {
   ASSERT_EQ(t.size(), 100u);
   // KITTI 00 starts by driving straight ahead: along +x of the LiDAR frame.
   EXPECT_GT(t.poses[99].t.x() - t.poses[0].t.x(), 30.0);
-  EXPECT_LT(std::abs(t.poses[99].t.y() - t.poses[0].t.y()), 5.0);
+  EXPECT_LT(std::abs(t.poses[99].t.y() - t.poses[0].t.y()), 10.0);
 }
 
 TEST(SimTrajectory, RejectsBadSettings) {

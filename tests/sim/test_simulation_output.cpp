@@ -1,0 +1,150 @@
+// Writing a simulated sequence: layout, contents, determinism across thread
+// counts, and never damaging an existing folder.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include "hba/core/error.hpp"
+#include "hba/io/pcd.hpp"
+#include "hba/io/pose_file.hpp"
+#include "hba/sim/simulation.hpp"
+#include "test_support.hpp"
+
+namespace hba::sim {
+namespace {
+namespace fs = std::filesystem;
+
+// Small and quick: 12 frames of a coarse 16-channel sensor.
+Simulation tinySimulation(std::uint64_t seed = 1) {
+  SimulationConfig config;
+  config.seed = seed;
+  config.trajectory.frames = 12;
+  config.sensor.columns = 360;
+  return prepareSimulation(config);
+}
+
+std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Relative path -> content of every file under `root`.
+std::map<std::string, std::string> snapshot(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file()) {
+      files[fs::relative(entry.path(), root).string()] = bytesOf(entry.path());
+    }
+  }
+  return files;
+}
+
+TEST(SimOutput, WritesAnHbaFolderWithGroundTruth) {
+  hba::test::TempDir dir;
+  const Simulation simulation = tinySimulation();
+  writeSimulation(simulation, dir / "seq", WriteOptions{});
+
+  const fs::path seq = dir / "seq";
+  ASSERT_TRUE(fs::is_regular_file(seq / "pcd" / "000000.pcd"));
+  ASSERT_TRUE(fs::is_regular_file(seq / "pcd" / "000011.pcd"));
+  EXPECT_FALSE(fs::exists(seq / "pcd" / "000012.pcd"));
+  const PointCloud cloud = io::readPcd(seq / "pcd" / "000005.pcd");
+  EXPECT_GT(cloud.size(), 1000u);
+  EXPECT_TRUE(cloud.hasIntensity());
+  const io::PcdHeader header = io::readPcdHeader(seq / "pcd" / "000005.pcd");
+  EXPECT_EQ(header.encoding, io::PcdEncoding::Binary);
+
+  const Trajectory truth = io::readPoses(seq / "gt.txt", io::PoseFormat::Tum);
+  const Trajectory initial = io::readPoses(seq / "pose.json", io::PoseFormat::Hba);
+  ASSERT_EQ(truth.size(), 12u);
+  ASSERT_EQ(initial.size(), 12u);
+  EXPECT_NEAR(truth.stamps[3], 0.3, 1e-12);
+  EXPECT_LT((truth.poses[7].t - simulation.truth.poses[7].t).norm(), 1e-9);
+  EXPECT_LT((initial.poses[7].t - simulation.initial[7].t).norm(), 1e-9);
+
+  const std::string yaml = bytesOf(seq / "sim.yaml");
+  EXPECT_NE(yaml.find("seed: 1"), std::string::npos);
+  EXPECT_NE(yaml.find("version:"), std::string::npos);
+  EXPECT_NE(yaml.find("range_noise_m: 0.02"), std::string::npos);
+  // No staging leftovers beside the output.
+  for (const auto& entry : fs::directory_iterator(dir.path())) {
+    EXPECT_EQ(entry.path().filename(), "seq");
+  }
+}
+
+TEST(SimOutput, SameSeedSameBytesWithOneOrTwoThreads) {
+  hba::test::TempDir dir;
+  const Simulation simulation = tinySimulation(5);
+  {
+    const tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    writeSimulation(simulation, dir / "one", WriteOptions{});
+  }
+  {
+    const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    writeSimulation(tinySimulation(5), dir / "two", WriteOptions{});
+  }
+  const auto one = snapshot(dir / "one");
+  const auto two = snapshot(dir / "two");
+  ASSERT_EQ(one.size(), 15u);  // 12 scans + pose.json + gt.txt + sim.yaml
+  EXPECT_TRUE(one == two) << "outputs differ between 1 and 2 threads";
+
+  writeSimulation(tinySimulation(6), dir / "other", WriteOptions{});
+  EXPECT_NE(snapshot(dir / "other").at("pcd/000003.pcd"), one.at("pcd/000003.pcd"));
+}
+
+TEST(SimOutput, RefusesANonEmptyFolderUnlessForced) {
+  hba::test::TempDir dir;
+  fs::create_directory(dir / "data");
+  hba::test::writeText(dir / "data" / "precious.txt", "keep me");
+  const Simulation simulation = tinySimulation();
+  EXPECT_THROW(writeSimulation(simulation, dir / "data", WriteOptions{}), Error);
+  EXPECT_EQ(hba::test::readText(dir / "data" / "precious.txt"), "keep me");
+  EXPECT_FALSE(fs::exists(dir / "data" / "pose.json"));
+
+  WriteOptions forced;
+  forced.force = true;
+  writeSimulation(simulation, dir / "data", forced);
+  EXPECT_FALSE(fs::exists(dir / "data" / "precious.txt"));
+  EXPECT_TRUE(fs::exists(dir / "data" / "pose.json"));
+}
+
+TEST(SimOutput, AcceptsAnEmptyExistingFolder) {
+  hba::test::TempDir dir;
+  fs::create_directory(dir / "empty");
+  writeSimulation(tinySimulation(), dir / "empty", WriteOptions{});
+  EXPECT_TRUE(fs::exists(dir / "empty" / "gt.txt"));
+}
+
+TEST(SimOutput, FailureLeavesNothingThatLooksComplete) {
+  hba::test::TempDir dir;
+  Simulation simulation = tinySimulation();
+  simulation.truth.poses.pop_back();  // frame 11 now has no pose: scanning it throws
+  EXPECT_ANY_THROW(writeSimulation(simulation, dir / "broken", WriteOptions{}));
+  EXPECT_FALSE(fs::exists(dir / "broken"));
+  EXPECT_TRUE(fs::is_empty(dir.path())) << "the staging folder was removed";
+}
+
+TEST(SimOutput, ReportsProgress) {
+  hba::test::TempDir dir;
+  std::vector<std::size_t> reports;
+  WriteOptions options;
+  options.progress_every = 5;
+  options.progress = [&](std::size_t done, std::size_t total) {
+    EXPECT_EQ(total, 12u);
+    reports.push_back(done);
+  };
+  writeSimulation(tinySimulation(), dir / "seq", options);
+  EXPECT_EQ(reports, (std::vector<std::size_t>{5, 10, 12}));
+}
+
+TEST(SimOutput, ScanNamesArePaddedToSixDigitsOrMore) {
+  EXPECT_EQ(scanFileName(7, 300), "000007.pcd");
+  EXPECT_EQ(scanFileName(999999, 1000000), "999999.pcd");
+  EXPECT_EQ(scanFileName(5, 1000001), "0000005.pcd");
+}
+
+}  // namespace
+}  // namespace hba::sim
