@@ -24,7 +24,7 @@ struct MmeArgs {
   bool first_point = false;
   bool at_least = false;
   bool exclude_self = false;
-  bool population = false;
+  bool sample = false;
 };
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -35,7 +35,7 @@ void run(MmeArgs& args) {
   args.map.rule = args.first_point ? eval::VoxelRule::FirstPoint : eval::VoxelRule::Centroid;
   args.entropy.strictly_more = !args.at_least;
   args.entropy.count_query = !args.exclude_self;
-  args.entropy.sample_covariance = !args.population;
+  args.entropy.sample_covariance = args.sample;
 
   const auto start = std::chrono::steady_clock::now();
   PointCloud map;
@@ -81,7 +81,7 @@ void registerMmeCommand(CLI::App& app) {
   rules->add_flag("--first-point", args->first_point, "Keep each voxel's first point, not its centroid");
   rules->add_flag("--at-least", args->at_least, "Use points with >= min neighbours (default: >)");
   rules->add_flag("--exclude-self", args->exclude_self, "Do not count a point as its own neighbour");
-  rules->add_flag("--population", args->population, "Covariance divided by n (default: n - 1)");
+  rules->add_flag("--sample", args->sample, "Covariance divided by n - 1 (default: n)");
   command->callback([args] { run(*args); });
 }
 
