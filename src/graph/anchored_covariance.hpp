@@ -1,6 +1,6 @@
 #pragma once
-// The two steps of relativePoseInformation, split so that several factors
-// sharing a `from` frame reuse one (costly) inversion.
+// The two steps of relativePoseInformation, split so that all factors of a
+// window share one (costly) inversion.
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -23,9 +23,13 @@ std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian
                                                   std::size_t anchor,
                                                   const InformationSettings& settings);
 
-// Information of the relative pose anchor -> b from that covariance.
+// The frame that holds the gauge: the window's first, as in the BA itself.
+inline constexpr std::size_t kGaugeFrame = 0;
+
+// Information of the relative pose a -> b from that covariance.
 Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,
                                      const std::vector<Pose>& poses, std::size_t anchor,
-                                     std::size_t b, const InformationSettings& settings);
+                                     std::size_t a, std::size_t b,
+                                     const InformationSettings& settings);
 
 }  // namespace hba::graph

@@ -60,18 +60,30 @@ std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian
 
 Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,
                                      const std::vector<Pose>& poses, std::size_t anchor,
-                                     std::size_t b, const InformationSettings& settings) {
+                                     std::size_t a, std::size_t b,
+                                     const InformationSettings& settings) {
   const Mat6 fallback = settings.fallback_information * Mat6::Identity();
   if (!covariance) return fallback;
 
-  const std::size_t block = b < anchor ? b : b - 1;
-  const Mat6 cov_b = covariance->block<6, 6>(6 * block, 6 * block);
-  // At the measurement itself (E = I) only frame b moves, so the error's
-  // covariance is J_b Cov_b J_b^T.
-  const Pose measurement = relative(poses[anchor], poses[b]);
-  const Mat6 J_b = relativePoseErrorJacobians(measurement, poses[anchor], poses[b]).d_to;
-  const Mat6 cov_error = J_b * cov_b * J_b.transpose();
-
+  // Linearized at the measurement itself (E = I): e ~ J_a d_a + J_b d_b, where
+  // the anchor's perturbation is zero.
+  const Pose measurement = relative(poses[a], poses[b]);
+  const RelativePoseErrorJacobians J = relativePoseErrorJacobians(measurement, poses[a], poses[b]);
+  const std::size_t frames[2] = {a, b};
+  const Mat6* jacobians[2] = {&J.d_from, &J.d_to};
+  // Row of a frame's block in the covariance, which lacks the anchor's block.
+  auto blockStart = [anchor](std::size_t frame) {
+    return static_cast<Eigen::Index>(6 * (frame < anchor ? frame : frame - 1));
+  };
+  Mat6 cov_error = Mat6::Zero();
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      if (frames[i] == anchor || frames[j] == anchor) continue;
+      cov_error += *jacobians[i] *
+                   covariance->block<6, 6>(blockStart(frames[i]), blockStart(frames[j])) *
+                   jacobians[j]->transpose();
+    }
+  }
   const auto information = clampedInverse(cov_error, settings.min_eigen_ratio);
   if (!information) return fallback;
   return *information;
@@ -85,8 +97,8 @@ Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<P
     throw Error("graph information: frame index out of range (window of " +
                 std::to_string(poses.size()) + " poses)");
   }
-  return relativeInformationFromAnchored(anchoredCovariance(hessian, a, settings), poses, a, b,
-                                         settings);
+  return relativeInformationFromAnchored(anchoredCovariance(hessian, kGaugeFrame, settings), poses,
+                                         kGaugeFrame, a, b, settings);
 }
 
 }  // namespace hba::graph

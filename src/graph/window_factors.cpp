@@ -51,18 +51,16 @@ std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
   validateWindowHessian(hessian, poses, settings);
   checkNodes(layer1_indices, poses.size());
 
+  const auto covariance = anchoredCovariance(hessian, kGaugeFrame, settings);
   std::vector<RelativePoseFactor> factors;
   for (std::size_t from = 0; from < poses.size(); ++from) {
-    const std::vector<std::size_t> partners = partnersOf(from, poses.size(), pairs);
-    if (partners.empty()) continue;
-    const auto covariance = anchoredCovariance(hessian, from, settings);
-    for (const std::size_t to : partners) {
+    for (const std::size_t to : partnersOf(from, poses.size(), pairs)) {
       RelativePoseFactor factor;
       factor.from = layer1_indices[from];
       factor.to = layer1_indices[to];
       factor.measurement = relative(poses[from], poses[to]);
       factor.information =
-          relativeInformationFromAnchored(covariance, poses, from, to, settings);
+          relativeInformationFromAnchored(covariance, poses, kGaugeFrame, from, to, settings);
       factors.push_back(factor);
     }
   }

@@ -30,9 +30,10 @@ struct InformationSettings {
 // (dt, dphi) per frame), not gauge-fixed. Returns the information matrix of
 // the relative pose between window frames a and b, in the tangent of the
 // residual of hba/graph/relative_pose_error.hpp: the gauge is fixed by
-// conditioning on frame a, the covariance of frame b is propagated through
-// the residual's Jacobian, and the result is inverted (symmetric, positive
-// definite). Throws hba::Error on a == b, an index out of range, a Hessian of
+// holding the window's first frame (as the BA does; the relative pose is
+// gauge-invariant, so any frame gives the same covariance), the covariance of
+// frames a and b is propagated through the residual's Jacobians, and the
+// result is inverted (symmetric, positive definite). Throws hba::Error on a == b, an index out of range, a Hessian of
 // the wrong size or with non-finite entries, or invalid settings.
 Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses,
                              std::size_t a, std::size_t b,

@@ -24,8 +24,8 @@ enum class FactorPairs {
 // (hba::ba::BaResult); `layer1_indices[k]` is the layer-1 node of window frame
 // k (frame j of layer i is node j * s^(i-1)). Each factor's measurement is
 // relative(poses[i], poses[j]) for a window pair (i, j), mapped to nodes
-// (layer1_indices[i], layer1_indices[j]). Pairs sharing a `from` frame share
-// one Hessian inversion. Throws hba::Error when the sizes disagree, two
+// (layer1_indices[i], layer1_indices[j]). All pairs share one inversion of
+// the window's Hessian. Throws hba::Error when the sizes disagree, two
 // frames map to the same node, or the Hessian is invalid.
 std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<Pose>& optimized_window_poses,
