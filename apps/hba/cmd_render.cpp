@@ -1,12 +1,71 @@
-// `hba render`: not implemented yet.
+// `hba render DATA -o map.png`: pictures of the merged map and trajectories.
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <string>
+
 #include "commands.hpp"
+#include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/pose_file.hpp"
+#include "hba/render/map_picture.hpp"
 
 namespace hba::cli {
+namespace {
+
+struct RenderArgs {
+  DatasetArgs data;
+  std::string output, compare, gt, crop;
+  bool no_side = false;
+  render::RenderSettings settings;
+};
+
+std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::string& path) {
+  std::vector<Pose> poses = io::readPoses(path).poses;
+  if (poses.size() != dataset.size()) {
+    failAt(path, std::to_string(poses.size()) + " poses for " + std::to_string(dataset.size()) + " scans");
+  }
+  return poses;
+}
+
+void run(RenderArgs& args) {
+  if (std::filesystem::path(args.output).extension() != ".png") failAt(args.output, "the picture must be a .png file");
+  if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);
+  args.settings.side_view = !args.no_side;
+
+  const io::Dataset dataset = args.data.open();
+  std::vector<Pose> gt;
+  if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
+  const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
+  if (args.compare.empty()) {
+    render::writeMapPicture(dataset, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
+  } else {
+    render::writeBeforeAfter(dataset, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
+                             args.output, args.settings);
+  }
+  spdlog::info("wrote {} ({}x{})", args.output, args.settings.width, args.settings.height);
+}
+
+}  // namespace
 
 void registerRenderCommand(CLI::App& app) {
-  auto* command = app.add_subcommand("render", "(not implemented yet)");
-  command->callback([] { throw Error("hba render is not implemented yet"); });
+  auto args = std::make_shared<RenderArgs>();
+  auto* command = app.add_subcommand(
+      "render", "PNG of the merged map seen from above (and the side), with trajectories; "
+                "--compare draws before and after side by side");
+  args->data.addTo(command);
+  command->add_option("-o,--output", args->output, "Output picture (.png)")->required();
+  command->add_option("--compare", args->compare,
+                      "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
+      ->check(CLI::ExistingFile);
+  command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
+  command->add_option("--width", args->settings.width, "Picture width (px)")->check(CLI::Range(200, 16384))->capture_default_str();
+  command->add_option("--height", args->settings.height, "Picture height (px)")->check(CLI::Range(200, 16384))->capture_default_str();
+  command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m)")->capture_default_str();
+  command->add_flag("--no-side", args->no_side, "Leave out the side view (x vs z)");
+  command->callback([args] { run(*args); });
 }
 
 }  // namespace hba::cli

@@ -1,0 +1,33 @@
+#pragma once
+// An 8-bit RGB raster and its PNG output.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace hba::render {
+
+struct Rgb {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+
+class Image {
+ public:
+  Image(int width, int height, Rgb fill = {});
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
+  Rgb at(int x, int y) const;
+  void set(int x, int y, Rgb color);  // ignores pixels outside the image
+  // Mixes `color` over the pixel with opacity alpha in [0, 1].
+  void blend(int x, int y, Rgb color, double alpha);
+  const std::vector<std::uint8_t>& pixels() const { return pixels_; }  // row-major RGB
+
+ private:
+  int width_, height_;
+  std::vector<std::uint8_t> pixels_;
+};
+
+// Encodes as PNG (stb_image_write) and writes atomically. Throws hba::Error.
+void writePng(const std::filesystem::path& path, const Image& image);
+
+}  // namespace hba::render

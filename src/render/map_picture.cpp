@@ -1,0 +1,237 @@
+// Layout of a picture: per panel a title, a bird's-eye view and a side strip;
+// one footer with the legend, the height bar and the scale bar.
+#include "hba/render/map_picture.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "draw.hpp"
+#include "hba/core/error.hpp"
+#include "hba/render/colormap.hpp"
+#include "point_raster.hpp"
+
+namespace hba::render {
+namespace {
+
+constexpr Rgb kBackground{14, 17, 23};
+constexpr Rgb kPanelBackground{22, 26, 34};
+constexpr Rgb kText{225, 228, 235};
+constexpr Rgb kDimText{150, 156, 170};
+constexpr int kGap = 10;
+constexpr int kTitleBand = 38;
+constexpr int kFooter = 46;
+
+// q-quantile of values (copied; q in [0, 1]).
+double quantile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const auto rank = static_cast<std::ptrdiff_t>(q * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + rank, values.end());
+  return values[static_cast<std::size_t>(rank)];
+}
+
+// The region to show: the crop, else where most map points and every
+// trajectory are (extreme 0.5 % of points ignored: stray returns), plus a margin.
+Box2 viewBox(const std::vector<MapPanel>& panels, const RenderSettings& settings) {
+  if (settings.crop) return *settings.crop;
+  std::vector<double> xs, ys;
+  for (const MapPanel& panel : panels) {
+    for (const Vec3f& p : panel.map.points) {
+      xs.push_back(p.x());
+      ys.push_back(p.y());
+    }
+  }
+  Box2 box{quantile(xs, 0.005), quantile(ys, 0.005), quantile(xs, 0.995), quantile(ys, 0.995)};
+  bool empty = xs.empty();
+  for (const MapPanel& panel : panels) {
+    for (const TrajectoryLayer& layer : panel.trajectories) {
+      for (const Pose& pose : layer.poses) {
+        if (empty) box = {pose.t.x(), pose.t.y(), pose.t.x(), pose.t.y()};
+        empty = false;
+        box = {std::min(box.xmin, pose.t.x()), std::min(box.ymin, pose.t.y()),
+               std::max(box.xmax, pose.t.x()), std::max(box.ymax, pose.t.y())};
+      }
+    }
+  }
+  const double margin = 0.04 * std::max({box.xmax - box.xmin, box.ymax - box.ymin, 1.0});
+  return {box.xmin - margin, box.ymin - margin, box.xmax + margin, box.ymax + margin};
+}
+
+bool inside(const Box2& box, double x, double y) {
+  return x >= box.xmin && x <= box.xmax && y >= box.ymin && y <= box.ymax;
+}
+
+// Robust height range of the points in view, for the colormap and side view.
+std::pair<double, double> heightRange(const std::vector<MapPanel>& panels, const Box2& box, double low_q,
+                                      double high_q) {
+  std::vector<double> zs;
+  for (const MapPanel& panel : panels) {
+    for (const Vec3f& p : panel.map.points) {
+      if (inside(box, p.x(), p.y())) zs.push_back(p.z());
+    }
+  }
+  double low = quantile(zs, low_q), high = quantile(zs, high_q);
+  if (high - low < 0.5) {  // flat or empty: still a sensible range
+    const double mid = 0.5 * (low + high);
+    low = mid - 0.25;
+    high = mid + 0.25;
+  }
+  return {low, high};
+}
+
+// 1, 2 or 5 times a power of ten, close to `target` metres.
+double niceLength(double target) {
+  const double power = std::pow(10.0, std::floor(std::log10(target)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * power <= target) return m * power;
+  }
+  return power;
+}
+
+std::string metres(double value) {
+  return std::abs(value) >= 10 || value == std::round(value) ? fmt::format("{:.0f} m", value)
+                                                               : fmt::format("{:.1f} m", value);
+}
+
+struct Rect {
+  int left, top, width, height;
+};
+
+void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const TopViewTransform& view,
+                 const Rect& area, std::pair<double, double> heights) {
+  PointRaster raster(area.width, area.height);
+  for (const Vec3f& p : panel.map.points) {
+    if (!inside(box, p.x(), p.y())) continue;
+    const auto pixel = view.toPixel(p.x(), p.y());
+    raster.add(pixel.x() - area.left, pixel.y() - area.top, p.z());
+  }
+  raster.paint(image, area.left, area.top, heights.first, heights.second);
+  for (const TrajectoryLayer& layer : panel.trajectories) {
+    std::vector<Pixel> line;
+    for (const Pose& pose : layer.poses) line.push_back(view.toPixel(pose.t.x(), pose.t.y()));
+    drawPolyline(image, line, layer.color, 2.2);
+    if (!line.empty()) drawDisc(image, line.front(), 5.0, layer.color);  // the start
+  }
+}
+
+// x (same columns as the top view) against z, z stretched to fill the strip.
+void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const TopViewTransform& view,
+                  const Rect& area, std::pair<double, double> heights, std::pair<double, double> z_range) {
+  const double z_scale = (area.height - 8) / (z_range.second - z_range.first);
+  auto toPixel = [&](double x, double z) {
+    return Pixel(view.toPixel(x, 0).x(), area.top + 4 + (z_range.second - z) * z_scale);
+  };
+  PointRaster raster(area.width, area.height);
+  for (const Vec3f& p : panel.map.points) {
+    if (!inside(box, p.x(), p.y())) continue;
+    const Pixel pixel = toPixel(p.x(), p.z());
+    raster.add(pixel.x() - area.left, pixel.y() - area.top, p.z());
+  }
+  raster.paint(image, area.left, area.top, heights.first, heights.second);
+  for (const TrajectoryLayer& layer : panel.trajectories) {
+    std::vector<Pixel> line;
+    for (const Pose& pose : layer.poses) {
+      if (inside(box, pose.t.x(), pose.t.y())) line.push_back(toPixel(pose.t.x(), pose.t.z()));
+    }
+    drawPolyline(image, line, layer.color, 1.6);
+  }
+  const double exaggeration = z_scale / view.pixels_per_meter;
+  drawText(image, area.left + 8, area.top + 6,
+           fmt::format("side view: x vs z (z x{:.1f}), z {:.1f}..{:.1f} m", exaggeration, z_range.first,
+                       z_range.second),
+           kDimText, 2);
+}
+
+void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights,
+                double pixels_per_meter) {
+  const int y = image.height() - kFooter + 12;
+  int x = kGap + 6;
+  std::vector<std::string> seen;
+  for (const MapPanel& panel : panels) {
+    for (const TrajectoryLayer& layer : panel.trajectories) {
+      if (std::find(seen.begin(), seen.end(), layer.label) != seen.end()) continue;
+      seen.push_back(layer.label);
+      drawPolyline(image, {Pixel(x, y + 8), Pixel(x + 30, y + 8)}, layer.color, 3.0);
+      drawText(image, x + 40, y + 2, layer.label, kText, 2);
+      x += 40 + textWidth(layer.label, 2) + 34;
+    }
+  }
+  // Height bar.
+  const std::string low = "z " + metres(heights.first), high = metres(heights.second);
+  drawText(image, x, y + 2, low, kDimText, 2);
+  x += textWidth(low, 2) + 8;
+  for (int i = 0; i < 200; ++i) fillRect(image, x + i, y + 1, x + i + 1, y + 15, turbo(0.04 + 0.92 * i / 199.0));
+  x += 208;
+  drawText(image, x, y + 2, high, kDimText, 2);
+  // Scale bar at the right.
+  const double length = niceLength(140.0 / pixels_per_meter);
+  const int bar = static_cast<int>(std::round(length * pixels_per_meter));
+  const std::string label = metres(length);
+  const int right = image.width() - kGap - 6;
+  const int bar_left = right - bar;
+  fillRect(image, bar_left, y + 7, right, y + 10, kText);
+  fillRect(image, bar_left, y + 2, bar_left + 2, y + 15, kText);
+  fillRect(image, right - 2, y + 2, right, y + 15, kText);
+  drawText(image, bar_left - textWidth(label, 2) - 10, y + 2, label, kText, 2);
+}
+
+}  // namespace
+
+Box2 parseBox(const std::string& text) {
+  std::stringstream in(text);
+  double v[4];
+  char comma = 0;
+  const bool ok = static_cast<bool>(in >> v[0] >> comma) && comma == ',' &&
+                  static_cast<bool>(in >> v[1] >> comma) && comma == ',' &&
+                  static_cast<bool>(in >> v[2] >> comma) && comma == ',' && static_cast<bool>(in >> v[3]) &&
+                  (in >> std::ws).eof();
+  if (!ok) throw Error("crop '" + text + "': expected xmin,ymin,xmax,ymax in metres");
+  if (!(v[2] > v[0] && v[3] > v[1])) throw Error("crop '" + text + "' is empty (need xmin < xmax, ymin < ymax)");
+  return {v[0], v[1], v[2], v[3]};
+}
+
+Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& settings) {
+  if (panels.empty()) throw Error("nothing to render");
+  const int n = static_cast<int>(panels.size());
+  Picture picture{Image(settings.width, settings.height, kBackground), {}};
+  Image& image = picture.image;
+  const int panel_width = (settings.width - (n + 1) * kGap) / n;
+  const int body = settings.height - kTitleBand - kFooter;
+  const int side_height = settings.side_view ? std::max(60, body / 4) : 0;
+  const int top_height = body - (settings.side_view ? side_height + kGap : 0);
+  if (panel_width < 100 || top_height < 100) throw Error("picture too small for its panels");
+
+  const Box2 box = viewBox(panels, settings);
+  const auto heights = heightRange(panels, box, 0.02, 0.98);
+  const auto z_range = heightRange(panels, box, 0.002, 0.998);
+  const double scale = std::min(panel_width / (box.xmax - box.xmin), top_height / (box.ymax - box.ymin));
+
+  for (int k = 0; k < n; ++k) {
+    const int left = kGap + k * (panel_width + kGap);
+    const Rect top_area{left, kTitleBand, panel_width, top_height};
+    fillRect(image, left, kTitleBand, left + panel_width, kTitleBand + top_height, kPanelBackground);
+    drawText(image, left + 4, 8, panels[k].title, kText, 3);
+
+    TopViewTransform view;
+    view.pixels_per_meter = scale;
+    view.left = left;
+    view.top = kTitleBand;
+    // Centre the box in the area.
+    view.origin_x = 0.5 * (box.xmin + box.xmax) - 0.5 * panel_width / scale;
+    view.origin_y = 0.5 * (box.ymin + box.ymax) + 0.5 * top_height / scale;
+    drawTopView(image, panels[k], box, view, top_area, heights);
+    picture.top_views.push_back(view);
+
+    if (settings.side_view) {
+      const Rect side_area{left, kTitleBand + top_height + kGap, panel_width, side_height};
+      fillRect(image, left, side_area.top, left + panel_width, side_area.top + side_height, kPanelBackground);
+      drawSideView(image, panels[k], box, view, side_area, heights, z_range);
+    }
+  }
+  drawFooter(image, panels, heights, scale);
+  return picture;
+}
+
+}  // namespace hba::render
