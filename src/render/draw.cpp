@@ -21,7 +21,8 @@ double distanceToSegment(const Pixel& p, const Pixel& a, const Pixel& b) {
 }
 
 void strokePolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width,
-                    double alpha) {
+                    double alpha, const Clip& clip) {
+  const int clip_x1 = std::min(image.width(), clip.x1), clip_y1 = std::min(image.height(), clip.y1);
   const double half = 0.5 * width;
   // Per pixel, the best coverage over all segments, so joints are not drawn twice.
   for (std::size_t k = 0; k + 1 < points.size(); ++k) {
@@ -31,9 +32,8 @@ void strokePolyline(Image& image, const std::vector<Pixel>& points, Rgb color, d
     const int x1 = static_cast<int>(std::ceil(std::max(a.x(), b.x()) + half + 1));
     const int y0 = static_cast<int>(std::floor(std::min(a.y(), b.y()) - half - 1));
     const int y1 = static_cast<int>(std::ceil(std::max(a.y(), b.y()) + half + 1));
-    if (x1 < 0 || y1 < 0 || x0 >= image.width() || y0 >= image.height()) continue;
-    for (int y = std::max(y0, 0); y <= std::min(y1, image.height() - 1); ++y) {
-      for (int x = std::max(x0, 0); x <= std::min(x1, image.width() - 1); ++x) {
+    for (int y = std::max(y0, clip.y0); y <= std::min(y1, clip_y1 - 1); ++y) {
+      for (int x = std::max(x0, clip.x0); x <= std::min(x1, clip_x1 - 1); ++x) {
         const Pixel centre(x + 0.5, y + 0.5);
         double c = coverage(distanceToSegment(centre, a, b), half);
         if (c <= 0.0) continue;
@@ -60,9 +60,10 @@ void strokeRect(Image& image, int x0, int y0, int x1, int y1, Rgb color, double 
   fillRect(image, x1 - 1, y0 + 1, x1, y1 - 1, color, alpha);
 }
 
-void drawPolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width) {
-  strokePolyline(image, points, Rgb{0, 0, 0}, width + 2.5, 0.6);
-  strokePolyline(image, points, color, width, 1.0);
+void drawPolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width,
+                  const Clip& clip) {
+  strokePolyline(image, points, Rgb{0, 0, 0}, width + 2.5, 0.6, clip);
+  strokePolyline(image, points, color, width, 1.0, clip);
 }
 
 void drawDisc(Image& image, const Pixel& centre, double radius, Rgb color, double alpha) {

@@ -97,11 +97,32 @@ std::string metres(double value) {
 
 struct Rect {
   int left, top, width, height;
+  Clip clip() const { return {left, top, left + width, top + height}; }
 };
 
+// Pixels covered by one voxel at `pixels_per_meter`, a little more than the
+// voxel so that neighbouring (centroid-jittered) points leave no seams.
+int footprint(double voxel, double pixels_per_meter) {
+  const double pixels = voxel * pixels_per_meter;
+  return pixels < 1.5 ? 1 : static_cast<int>(std::ceil(1.2 * pixels));
+}
+
+void drawScaleBar(Image& image, const Rect& area, double pixels_per_meter) {
+  const double length = niceLength(std::min(140.0, 0.3 * area.width) / pixels_per_meter);
+  const int bar = static_cast<int>(std::round(length * pixels_per_meter));
+  const std::string label = metres(length);
+  const int right = area.left + area.width - 14, y = area.top + area.height - 26;
+  fillRect(image, right - bar - textWidth(label, 2) - 20, y - 6, right + 8, y + 20, kPanelBackground, 0.75);
+  fillRect(image, right - bar, y + 6, right, y + 9, kText);
+  fillRect(image, right - bar, y + 1, right - bar + 2, y + 14, kText);
+  fillRect(image, right - 2, y + 1, right, y + 14, kText);
+  drawText(image, right - bar - textWidth(label, 2) - 10, y + 1, label, kText, 2);
+}
+
 void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const TopViewTransform& view,
-                 const Rect& area, std::pair<double, double> heights) {
-  PointRaster raster(area.width, area.height);
+                 const Rect& area, std::pair<double, double> heights, double voxel) {
+  const int size = footprint(voxel, view.pixels_per_meter);
+  PointRaster raster(area.width, area.height, size, size);
   for (const Vec3f& p : panel.map.points) {
     if (!inside(box, p.x(), p.y())) continue;
     const auto pixel = view.toPixel(p.x(), p.y());
@@ -111,19 +132,24 @@ void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const Top
   for (const TrajectoryLayer& layer : panel.trajectories) {
     std::vector<Pixel> line;
     for (const Pose& pose : layer.poses) line.push_back(view.toPixel(pose.t.x(), pose.t.y()));
-    drawPolyline(image, line, layer.color, 2.2);
-    if (!line.empty()) drawDisc(image, line.front(), 5.0, layer.color);  // the start
+    drawPolyline(image, line, layer.color, 2.2, area.clip());
+    const bool start_visible = !line.empty() && line.front().x() >= area.left + 5 &&
+                               line.front().y() >= area.top + 5 && line.front().x() < area.left + area.width - 5 &&
+                               line.front().y() < area.top + area.height - 5;
+    if (start_visible) drawDisc(image, line.front(), 5.0, layer.color);  // the start
   }
+  drawScaleBar(image, area, view.pixels_per_meter);
 }
 
 // x (same columns as the top view) against z, z stretched to fill the strip.
 void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const TopViewTransform& view,
-                  const Rect& area, std::pair<double, double> heights, std::pair<double, double> z_range) {
+                  const Rect& area, std::pair<double, double> heights, std::pair<double, double> z_range,
+                  double voxel) {
   const double z_scale = (area.height - 8) / (z_range.second - z_range.first);
   auto toPixel = [&](double x, double z) {
     return Pixel(view.toPixel(x, 0).x(), area.top + 4 + (z_range.second - z) * z_scale);
   };
-  PointRaster raster(area.width, area.height);
+  PointRaster raster(area.width, area.height, footprint(voxel, view.pixels_per_meter), footprint(voxel, z_scale));
   for (const Vec3f& p : panel.map.points) {
     if (!inside(box, p.x(), p.y())) continue;
     const Pixel pixel = toPixel(p.x(), p.z());
@@ -135,7 +161,7 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
     for (const Pose& pose : layer.poses) {
       if (inside(box, pose.t.x(), pose.t.y())) line.push_back(toPixel(pose.t.x(), pose.t.z()));
     }
-    drawPolyline(image, line, layer.color, 1.6);
+    drawPolyline(image, line, layer.color, 1.6, area.clip());
   }
   const double exaggeration = z_scale / view.pixels_per_meter;
   drawText(image, area.left + 8, area.top + 6,
@@ -144,8 +170,7 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
            kDimText, 2);
 }
 
-void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights,
-                double pixels_per_meter) {
+void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights) {
   const int y = image.height() - kFooter + 12;
   int x = kGap + 6;
   std::vector<std::string> seen;
@@ -162,19 +187,9 @@ void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<dou
   const std::string low = "z " + metres(heights.first), high = metres(heights.second);
   drawText(image, x, y + 2, low, kDimText, 2);
   x += textWidth(low, 2) + 8;
-  for (int i = 0; i < 200; ++i) fillRect(image, x + i, y + 1, x + i + 1, y + 15, turbo(0.04 + 0.92 * i / 199.0));
+  for (int i = 0; i < 200; ++i) fillRect(image, x + i, y + 1, x + i + 1, y + 15, turbo(kColormapLow + (kColormapHigh - kColormapLow) * i / 199.0));
   x += 208;
   drawText(image, x, y + 2, high, kDimText, 2);
-  // Scale bar at the right.
-  const double length = niceLength(140.0 / pixels_per_meter);
-  const int bar = static_cast<int>(std::round(length * pixels_per_meter));
-  const std::string label = metres(length);
-  const int right = image.width() - kGap - 6;
-  const int bar_left = right - bar;
-  fillRect(image, bar_left, y + 7, right, y + 10, kText);
-  fillRect(image, bar_left, y + 2, bar_left + 2, y + 15, kText);
-  fillRect(image, right - 2, y + 2, right, y + 15, kText);
-  drawText(image, bar_left - textWidth(label, 2) - 10, y + 2, label, kText, 2);
 }
 
 }  // namespace
@@ -221,16 +236,16 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
     // Centre the box in the area.
     view.origin_x = 0.5 * (box.xmin + box.xmax) - 0.5 * panel_width / scale;
     view.origin_y = 0.5 * (box.ymin + box.ymax) + 0.5 * top_height / scale;
-    drawTopView(image, panels[k], box, view, top_area, heights);
+    drawTopView(image, panels[k], box, view, top_area, heights, settings.voxel);
     picture.top_views.push_back(view);
 
     if (settings.side_view) {
       const Rect side_area{left, kTitleBand + top_height + kGap, panel_width, side_height};
       fillRect(image, left, side_area.top, left + panel_width, side_area.top + side_height, kPanelBackground);
-      drawSideView(image, panels[k], box, view, side_area, heights, z_range);
+      drawSideView(image, panels[k], box, view, side_area, heights, z_range, settings.voxel);
     }
   }
-  drawFooter(image, panels, heights, scale);
+  drawFooter(image, panels, heights);
   return picture;
 }
 

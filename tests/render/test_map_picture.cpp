@@ -1,0 +1,125 @@
+// Pictures: decoded back with stb_image, the map must be where it belongs.
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <memory>
+
+#include "hba/core/error.hpp"
+#include "hba/render/colormap.hpp"
+#include "hba/render/map_picture.hpp"
+#include "../eval/synthetic_scans.hpp"
+#include "hba/io/pose_file.hpp"
+#include "test_support.hpp"
+
+namespace hba::render {
+namespace {
+
+// A wall at x = 5 (y in [-3, 3], z in [0, 2]) and a short trajectory.
+MapPanel wallPanel(const std::string& title) {
+  MapPanel panel;
+  panel.title = title;
+  for (double y = -3.0; y <= 3.0; y += 0.05) {
+    for (double z = 0.0; z <= 2.0; z += 0.1) panel.map.add(Vec3f(5.0f, static_cast<float>(y), static_cast<float>(z)));
+  }
+  panel.trajectories.push_back(
+      {"poses", {Pose(Quat::Identity(), Vec3(0, -2, 1)), Pose(Quat::Identity(), Vec3(0, 2, 1))}, kOptimizedColor});
+  return panel;
+}
+
+int brightness(Rgb c) { return c.r + c.g + c.b; }
+
+TEST(MapPicture, WallIsDrawnWhereItStandsAndNothingElsewhere) {
+  RenderSettings settings;
+  settings.width = 900;
+  settings.height = 600;
+  settings.crop = Box2{-2, -5, 8, 5};
+  const Picture picture = renderPanels({wallPanel("before"), wallPanel("after")}, settings);
+  ASSERT_EQ(picture.image.width(), 900);
+  ASSERT_EQ(picture.image.height(), 600);
+  ASSERT_EQ(picture.top_views.size(), 2u);
+  for (const TopViewTransform& view : picture.top_views) {
+    const auto wall = view.toPixel(5.0, 1.0);
+    const auto empty = view.toPixel(3.0, 1.0);  // open floor: no points
+    const auto path = view.toPixel(0.0, 0.0);   // on the trajectory
+    const Rgb on_wall = picture.image.at(static_cast<int>(wall.x()), static_cast<int>(wall.y()));
+    const Rgb off_wall = picture.image.at(static_cast<int>(empty.x()), static_cast<int>(empty.y()));
+    EXPECT_GT(brightness(on_wall), brightness(off_wall) + 100);
+    EXPECT_LT(brightness(off_wall), 100);  // dark background
+    EXPECT_GT(brightness(picture.image.at(static_cast<int>(path.x()), static_cast<int>(path.y()))), 600);
+  }
+  // Both panels share one view: the same world point, the same row.
+  EXPECT_DOUBLE_EQ(picture.top_views[0].toPixel(5, 1).y(), picture.top_views[1].toPixel(5, 1).y());
+}
+
+TEST(MapPicture, PngRoundTripsThroughStbImage) {
+  test::TempDir tmp;
+  RenderSettings settings;
+  settings.width = 640;
+  settings.height = 400;
+  settings.side_view = false;
+  const Picture picture = renderPanels({wallPanel("map")}, settings);
+  writePng(tmp / "map.png", picture.image);
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> pixels(
+      stbi_load((tmp / "map.png").c_str(), &w, &h, &channels, 3), stbi_image_free);
+  ASSERT_TRUE(pixels);
+  EXPECT_EQ(w, 640);
+  EXPECT_EQ(h, 400);
+  const auto wall = picture.top_views[0].toPixel(5.0, 0.5);
+  const std::size_t i = (static_cast<std::size_t>(wall.y()) * 640 + static_cast<std::size_t>(wall.x())) * 3;
+  const Rgb expected = picture.image.at(static_cast<int>(wall.x()), static_cast<int>(wall.y()));
+  EXPECT_EQ(pixels.get()[i], expected.r);
+  EXPECT_EQ(pixels.get()[i + 2], expected.b);
+}
+
+TEST(MapPicture, BadSettingsAreRejected) {
+  EXPECT_THROW(parseBox("1,2,3"), Error);
+  EXPECT_THROW(parseBox("0,0,-1,5"), Error);
+  EXPECT_EQ(parseBox("-1.5,2,3,4.25").xmax, 3.0);
+  RenderSettings tiny;
+  tiny.width = 120;
+  tiny.height = 120;
+  EXPECT_THROW(renderPanels({wallPanel("a"), wallPanel("b")}, tiny), Error);
+  EXPECT_THROW(renderPanels({}, RenderSettings{}), Error);
+}
+
+TEST(Colormap, RunsFromDarkBlueToDarkRed) {
+  EXPECT_GT(turbo(0.0).b, turbo(0.0).r);
+  EXPECT_GT(turbo(1.0).r, turbo(1.0).b);
+  EXPECT_GT(turbo(0.5).g, 200);
+  EXPECT_EQ(brightness(turbo(-1.0)), brightness(turbo(0.0)));
+}
+
+TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
+  test::TempDir tmp;
+  test::writeSyntheticDataset(tmp / "seq", test::syntheticPoses());
+  Trajectory shifted;  // the "after" trajectory: the same, moved 0.3 m
+  for (Pose p : test::syntheticPoses()) {
+    p.t.y() += 0.3;
+    shifted.poses.push_back(p);
+  }
+  io::writePoses(tmp / "after.txt", shifted, io::PoseFormat::Kitti);
+  const auto run = test::runCommand(test::cliPath().string() + " render " + (tmp / "seq").string() +
+                                    " --compare " + (tmp / "after.txt").string() + " --gt " +
+                                    (tmp / "seq" / "odom_poses.txt").string() +
+                                    " --width 1000 --height 700 -o " + (tmp / "cmp.png").string());
+  std::filesystem::copy_file(tmp / "cmp.png", "/tmp/hba_render_cli.png", std::filesystem::copy_options::overwrite_existing);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> pixels(
+      stbi_load((tmp / "cmp.png").c_str(), &w, &h, &channels, 3), stbi_image_free);
+  ASSERT_TRUE(pixels);
+  EXPECT_EQ(w, 1000);
+  EXPECT_EQ(h, 700);
+  std::size_t lit = 0;  // pixels well above the dark background: map, lines, text
+  for (int i = 0; i < w * h; ++i) lit += pixels.get()[3 * i] + pixels.get()[3 * i + 1] + pixels.get()[3 * i + 2] > 200;
+  EXPECT_GT(lit, static_cast<std::size_t>(w * h / 20));
+
+  const auto bad = test::runCommand(test::cliPath().string() + " render " + (tmp / "seq").string() +
+                                    " --crop 1,2 -o " + (tmp / "x.png").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(tmp / "x.png"));
+}
+
+}  // namespace
+}  // namespace hba::render
