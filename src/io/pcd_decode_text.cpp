@@ -4,7 +4,7 @@
 
 #include "hba/core/error.hpp"
 #include "pcd_format.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;

@@ -9,7 +9,7 @@
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
 #include "pcd_format.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io {
 namespace detail {

@@ -5,7 +5,7 @@
 #include "checked_size.hpp"
 #include "hba/core/error.hpp"
 #include "pcd_format.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;

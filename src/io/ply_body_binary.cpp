@@ -9,7 +9,7 @@
 #include "hba/core/error.hpp"
 #include "ply_body.hpp"
 #include "point_columns.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io::detail {
 

@@ -7,7 +7,7 @@
 #include "hba/core/error.hpp"
 #include "hba/io/ply.hpp"
 #include "ply_body.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io {
 namespace detail {

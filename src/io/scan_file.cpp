@@ -6,7 +6,7 @@
 #include "hba/io/kitti_bin.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 namespace hba::io {
 namespace {

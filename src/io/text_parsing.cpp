@@ -1,4 +1,4 @@
-#include "text_numbers.hpp"
+#include "text_parsing.hpp"
 
 #include <charconv>
 #include <string>
