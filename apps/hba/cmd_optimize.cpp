@@ -50,6 +50,7 @@ void run(OptimizeArgs& args, const CLI::App& command) {
   if (given("--voxel")) settings.local.planes.voxel_size = settings.global.planes.voxel_size = args.voxel;
   if (given("--voxel-local")) settings.local.planes.voxel_size = flags.local.planes.voxel_size;
   if (given("--voxel-global")) settings.global.planes.voxel_size = flags.global.planes.voxel_size;
+  if (given("--final-voxel")) settings.local.final_voxel_size = settings.global.final_voxel_size = flags.local.final_voxel_size;
   if (given("--theta-local")) settings.local.planes.eigen_ratio = flags.local.planes.eigen_ratio;
   if (given("--theta-global")) settings.global.planes.eigen_ratio = flags.global.planes.eigen_ratio;
   if (given("--reject")) settings.local.reject_ratio = settings.global.reject_ratio = flags.local.reject_ratio;
@@ -129,6 +130,9 @@ void registerOptimizeCommand(CLI::App& app) {
       ->default_val(s.local.planes.voxel_size);
   command->add_option("--voxel-global", s.global.planes.voxel_size, "Root voxel size of global BA (m)")
       ->default_val(s.global.planes.voxel_size);
+  command->add_option("--final-voxel", s.local.final_voxel_size,
+                      "Coarse to fine: voxel size of the last associations (m; 0 = off)")
+      ->default_val(s.local.final_voxel_size);
   command->add_option("--theta-local", s.local.planes.eigen_ratio, "Plane test threshold, local BA")
       ->default_val(s.local.planes.eigen_ratio);
   command->add_option("--theta-global", s.global.planes.eigen_ratio, "Plane test threshold, global BA")

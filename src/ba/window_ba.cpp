@@ -87,8 +87,17 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
 
   Association last;
   Linearization final_lin;
-  for (int round = 0; round < settings.association_rounds; ++round) {
-    last = associate(scans, result.poses, settings);
+  // Halvings from voxel_size down to final_voxel_size (coarse to fine).
+  const double coarsest = settings.planes.voxel_size;
+  const double finest = settings.final_voxel_size > 0.0
+                            ? std::min(settings.final_voxel_size, coarsest)
+                            : coarsest;
+  const int halvings = static_cast<int>(std::ceil(std::log2(coarsest / finest) - 1e-9));
+  BaSettings round_settings = settings;
+  for (int round = 0; round < settings.association_rounds + halvings; ++round) {
+    round_settings.planes.voxel_size = std::max(finest, coarsest / std::pow(2.0, round));
+    const bool at_finest = round >= halvings;
+    last = associate(scans, result.poses, round_settings);
     const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm);
     result.iterations += summary.iterations;
     result.rounds = round + 1;
@@ -96,7 +105,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     result.final_cost = summary.final_cost;
     final_lin = summary.final_linearization;
     const double gain = summary.initial_cost - summary.final_cost;
-    if (!(gain > settings.relative_cost_tolerance * summary.initial_cost)) break;  // settled
+    if (at_finest && !(gain > settings.relative_cost_tolerance * summary.initial_cost)) break;  // settled
   }
 
   result.hessian = std::move(final_lin.hessian);

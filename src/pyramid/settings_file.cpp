@@ -39,10 +39,11 @@ void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
   if (!node) return;
   if (!node.IsMap()) bad(source, "'" + name + "' must be a map of settings");
   rejectUnknownKeys(node,
-                    {"voxel_size", "eigen_ratio", "max_depth", "min_points", "max_iterations",
-                     "association_rounds", "reject_ratio"},
+                    {"voxel_size", "final_voxel_size", "eigen_ratio", "max_depth", "min_points",
+                     "max_iterations", "association_rounds", "reject_ratio"},
                     name + ".", source);
   read(node, "voxel_size", ba.planes.voxel_size, source);
+  read(node, "final_voxel_size", ba.final_voxel_size, source);
   read(node, "eigen_ratio", ba.planes.eigen_ratio, source);
   read(node, "max_depth", ba.planes.max_depth, source);
   read(node, "min_points", ba.planes.min_points, source);
@@ -61,7 +62,8 @@ const char* factorPairsName(FactorPairs pairs) {
 }
 
 nlohmann::json baToJson(const ba::BaSettings& ba) {
-  return {{"voxel_size", ba.planes.voxel_size},     {"eigen_ratio", ba.planes.eigen_ratio},
+  return {{"voxel_size", ba.planes.voxel_size},     {"final_voxel_size", ba.final_voxel_size},
+          {"eigen_ratio", ba.planes.eigen_ratio},
           {"max_depth", ba.planes.max_depth},       {"min_points", ba.planes.min_points},
           {"max_iterations", ba.max_iterations},    {"association_rounds", ba.association_rounds},
           {"reject_ratio", ba.reject_ratio}};
@@ -70,6 +72,7 @@ nlohmann::json baToJson(const ba::BaSettings& ba) {
 void checkBa(const ba::BaSettings& ba, const std::string& name) {
   auto fail = [&](const std::string& what) { throw Error("setting " + name + "." + what); };
   if (!(ba.planes.voxel_size > 0)) fail("voxel_size must be > 0");
+  if (!(ba.final_voxel_size >= 0)) fail("final_voxel_size must be >= 0 (0 = off)");
   if (!(ba.planes.eigen_ratio > 0 && ba.planes.eigen_ratio < 1)) fail("eigen_ratio must be in (0, 1)");
   if (ba.planes.max_depth < 0 || ba.planes.max_depth > 8) fail("max_depth must be in [0, 8]");
   if (ba.planes.min_points < 3) fail("min_points must be >= 3");

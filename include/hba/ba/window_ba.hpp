@@ -26,6 +26,13 @@ struct BaSettings {
   PlaneSettings planes;
   int max_iterations = 10;         // LM iterations per association round
   int association_rounds = 3;      // rebuild the voxel planes from updated poses
+  // Coarse to fine: the first association uses planes.voxel_size, each later
+  // one halves it, down to this size (m); rounds stop only once it is reached
+  // and the cost has settled (or association_rounds is spent beyond that).
+  // Large voxels catch large divergences, small ones give crisp local planes
+  // and the Hessian is taken at the finest association. <= 0 or >=
+  // voxel_size: one size for all rounds (the paper).
+  double final_voxel_size = 0.0;
   double reject_ratio = 0.05;      // drop this fraction of planes, worst residuals first
   double relative_cost_tolerance = 1e-6;  // stop when the cost settles
 };

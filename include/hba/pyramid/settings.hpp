@@ -40,7 +40,13 @@ struct HbaSettings {
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
   double outer_tolerance_deg = 1e-3;
 
-  HbaSettings() { global.planes.eigen_ratio = 0.1; }
+  HbaSettings() {
+    global.planes.eigen_ratio = 0.1;
+    // Coarse to fine (not in the paper): associations start at V = 4 m and
+    // end at 1 m, see BENCHMARKS.md for why.
+    local.final_voxel_size = 1.0;
+    global.final_voxel_size = 1.0;
+  }
 };
 
 // The paper's optimal layer count l* = floor(1/2 log_s(3 N^2 (s^3 - s) n / w^3)),
