@@ -29,6 +29,17 @@ std::string describeErrno(int err) {
   return std::strerror(err);
 }
 
+// A stream only says that some write failed, and errno from that write is
+// usually overwritten by the time the failure is seen. When nothing better is
+// known, a file system with no space left is the cause worth naming.
+int writeFailureCause(int err, const fs::path& file) {
+  if (err != 0) return err;
+  std::error_code ec;
+  const fs::space_info space = fs::space(file.parent_path().empty() ? "." : file.parent_path(), ec);
+  if (!ec && (space.available == 0 || space.free == 0)) return ENOSPC;
+  return EIO;
+}
+
 void syncFile(const fs::path& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0) failAt(path, "cannot reopen to sync: " + describeErrno(errno));
@@ -64,9 +75,10 @@ void AtomicFile::commit() {
   const int flush_err = errno;
   out_.close();
   if (out_.fail()) {
+    const int cause = writeFailureCause(flush_err, temp_);  // before removing: the disk is still full
     std::error_code ec;
     fs::remove(temp_, ec);
-    failAt(target_, "write failed: " + describeErrno(flush_err ? flush_err : EIO));
+    failAt(target_, "write failed: " + describeErrno(cause));
   }
   syncFile(temp_);
   std::error_code ec;

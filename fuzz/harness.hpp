@@ -1,0 +1,35 @@
+#pragma once
+// One entry per fuzz target: reads a file the way that target's parser does.
+// Shared by the libFuzzer targets (fuzz/*.cpp) and by the regression test
+// (tests/reliability), so a saved crash input is replayed through exactly the
+// code the fuzzer ran.
+//
+// Each function returns normally when the parser accepted the input or threw
+// hba::Error (the documented way to reject bad input). Any other exception
+// escapes; a parser that returns data breaking its promises (NaN points,
+// non-unit quaternions, mismatched intensity count) aborts.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace hba::fuzz {
+
+using Harness = void (*)(const std::filesystem::path& input);
+
+struct Target {
+  std::string name;  // the fuzz target and the folder of its corpus/regressions
+  Harness feed;
+};
+
+void feedPcd(const std::filesystem::path& input);
+void feedPly(const std::filesystem::path& input);
+void feedKittiBin(const std::filesystem::path& input);
+void feedHbaPoses(const std::filesystem::path& input);
+void feedKittiPoses(const std::filesystem::path& input);
+void feedTumPoses(const std::filesystem::path& input);
+void feedSettingsYaml(const std::filesystem::path& input);
+
+// Every target, in the order scripts/fuzz.sh runs them.
+const std::vector<Target>& allTargets();
+
+}  // namespace hba::fuzz

@@ -1,0 +1,76 @@
+// Writing to a full disk fails with a message that says so, and leaves no
+// partial file under the final name. Needs root to mount a tiny tmpfs (the
+// test is skipped otherwise).
+#include <gtest/gtest.h>
+#include <sys/mount.h>
+
+#include "cli_runs.hpp"
+#include "synthetic_scene.hpp"
+#include "test_support.hpp"
+
+namespace hba {
+namespace {
+namespace fs = std::filesystem;
+using test::quoted;
+using test::TempDir;
+
+// A 64 KiB tmpfs mounted for the life of the object.
+class TinyDisk {
+ public:
+  explicit TinyDisk(const fs::path& where) : path_(where) {
+    fs::create_directories(path_);
+    mounted_ = ::mount("tmpfs", path_.c_str(), "tmpfs", 0, "size=64k") == 0;
+  }
+  ~TinyDisk() {
+    if (mounted_) ::umount(path_.c_str());
+  }
+  TinyDisk(const TinyDisk&) = delete;
+  TinyDisk& operator=(const TinyDisk&) = delete;
+  bool mounted() const { return mounted_; }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+  bool mounted_ = false;
+};
+
+void expectDiskFullMessage(const test::CommandResult& run) {
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("no space left on device"), std::string::npos) << run.output;
+}
+
+// Nothing at all may remain: no final file and no temporary either.
+void expectEmptyFolder(const fs::path& folder) {
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder)) {
+    if (entry.is_regular_file()) ADD_FAILURE() << "left behind: " << entry.path();
+  }
+}
+
+class FullDisk : public testing::Test {
+ protected:
+  void SetUp() override {
+    const std::vector<Pose> poses = test::straightPath(6);
+    test::writeSceneDataset(tmp_ / "data", test::roomScene(3000), poses, poses);
+    if (!disk_.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here (needs root)";
+  }
+  TempDir tmp_;
+  TinyDisk disk_{tmp_ / "disk"};
+};
+
+TEST_F(FullDisk, MapTooLargeForTheDiskIsReportedAsSuch) {
+  // 6 scans x 3000 points x 16 bytes: about 290 KB, far over 64 KiB.
+  const test::CommandResult run = test::runHba("map " + quoted(tmp_ / "data") + " --voxel 0 -o " +
+                                               quoted(disk_.path() / "map.pcd"));
+  expectDiskFullMessage(run);
+  expectEmptyFolder(disk_.path());
+}
+
+TEST_F(FullDisk, SimulateOnAFullDiskIsReportedAsSuch) {
+  const test::CommandResult run =
+      test::runHba("simulate --frames 20 -o " + quoted(disk_.path() / "sim"));
+  expectDiskFullMessage(run);
+  expectEmptyFolder(disk_.path());
+}
+
+}  // namespace
+}  // namespace hba
