@@ -23,9 +23,12 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
   }
   if (settings.max_iterations < 0 || settings.association_rounds < 1 ||
       !(settings.reject_ratio >= 0.0 && settings.reject_ratio < 1.0) ||
-      !(settings.relative_cost_tolerance >= 0.0)) {
+      !(settings.relative_cost_tolerance >= 0.0) ||
+      !(settings.planes.voxel_size > 0.0 && std::isfinite(settings.planes.voxel_size)) ||
+      !(settings.final_voxel_size >= 0.0 && std::isfinite(settings.final_voxel_size))) {
     throw Error("window BA: invalid settings (need max_iterations >= 0, association_rounds >= 1, "
-                "0 <= reject_ratio < 1, relative_cost_tolerance >= 0)");
+                "0 <= reject_ratio < 1, relative_cost_tolerance >= 0, voxel_size > 0, "
+                "final_voxel_size >= 0)");
   }
 }
 
