@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "hba/core/error.hpp"
@@ -28,7 +30,12 @@ int countNulls(const nlohmann::json& value) {
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
 CommandResult runHba(const std::string& arguments) {
-  return runCommand(quoted(cliPath()) + " " + arguments);
+  CommandResult result = runCommand(quoted(cliPath()) + " " + arguments);
+  // For writing RELIABILITY.md: what the tool said in each scenario.
+  if (std::getenv("HBA_SHOW_CLI_OUTPUT")) {
+    std::cout << "$ hba " << arguments << "\n" << result.output << "(exit " << result.exit_code << ")\n";
+  }
+  return result;
 }
 
 CommandResult runOptimize(const fs::path& data, const fs::path& out, const std::string& extra,
