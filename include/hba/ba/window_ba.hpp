@@ -34,7 +34,7 @@ struct BaSettings {
   // voxel_size: one size for all rounds (the paper).
   double final_voxel_size = 0.0;
   double reject_ratio = 0.05;      // drop this fraction of planes, worst residuals first
-  double relative_cost_tolerance = 1e-6;  // stop when the cost settles
+  double relative_cost_tolerance = 1e-4;  // stop when the cost settles
 };
 
 struct BaResult {
