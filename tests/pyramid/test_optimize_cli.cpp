@@ -1,0 +1,117 @@
+// `hba optimize` end to end on simulated sequences with ground truth: the
+// accuracy claims of the method, checked on every CI run (small sizes).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.hpp"
+
+namespace hba {
+namespace {
+namespace fs = std::filesystem;
+
+std::string hba() { return test::cliPath().string(); }
+
+void run(const std::string& command) {
+  const test::CommandResult result = test::runCommand(command);
+  ASSERT_EQ(result.exit_code, 0) << command << "\n" << result.output;
+}
+
+nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(test::readText(path)); }
+
+// ATE translation RMSE (m) of `est` against the simulator's ground truth.
+double ateRmse(const fs::path& gt, const fs::path& est, const fs::path& scratch) {
+  const fs::path json = scratch / "ate.json";
+  const test::CommandResult result =
+      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() +
+                       " --json " + json.string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
+}
+
+class OptimizeSimulated : public testing::Test {
+ protected:
+  test::TempDir dir;
+  fs::path data() const { return dir / "sequence"; }
+  fs::path out() const { return dir / "result"; }
+};
+
+TEST_F(OptimizeSimulated, DriftingSequenceGetsFiveTimesMoreAccurate) {
+  run(hba() + " -q simulate --frames 120 --seed 5 --drift-translation 0.03 --drift-rotation 0.05 -o " +
+      data().string());
+  run(hba() + " -q optimize " + data().string() + " -o " + out().string());
+
+  const double before = ateRmse(data() / "gt.txt", data() / "pose.json", dir.path());
+  const double after = ateRmse(data() / "gt.txt", out() / "pose.json", dir.path());
+  EXPECT_GT(before, 0.1);  // the drift is real
+  EXPECT_LT(after, before / 5.0) << "before " << before << " m, after " << after << " m";
+
+  // Every promised output is there and consistent.
+  for (const char* name : {"pose.json", "poses_kitti.txt", "poses_tum.txt", "report.json"}) {
+    EXPECT_TRUE(fs::exists(out() / name)) << name;
+  }
+  const double kitti = ateRmse(data() / "gt.txt", out() / "poses_kitti.txt", dir.path());
+  EXPECT_NEAR(kitti, after, 1e-6);
+  const nlohmann::json report = readJson(out() / "report.json");
+  EXPECT_EQ(report.at("frames"), 120);
+  EXPECT_GE(report.at("layers").get<int>(), 2);
+  EXPECT_FALSE(report.at("layer_reports").empty());
+  for (const auto& layer : report.at("layer_reports")) {
+    EXPECT_GT(layer.at("planes").get<int>(), 0);
+    EXPECT_LE(layer.at("plane_rms_after_m").get<double>(),
+              layer.at("plane_rms_before_m").get<double>() + 1e-9);
+  }
+  const auto& first = report.at("iterations").at(0);
+  EXPECT_LT(first.at("pose_graph_cost_after").get<double>(),
+            first.at("pose_graph_cost_before").get<double>());
+  EXPECT_GT(report.at("peak_memory_mib").get<double>(), 0.0);
+  EXPECT_EQ(report.at("settings").at("window"), 10);
+}
+
+TEST_F(OptimizeSimulated, LoopClosedInputIsNotMadeWorse) {
+  run(hba() + " -q simulate --frames 100 --seed 6 --loop-closed -o " + data().string());
+  run(hba() + " -q optimize " + data().string() + " -o " + out().string());
+  const double before = ateRmse(data() / "gt.txt", data() / "pose.json", dir.path());
+  const double after = ateRmse(data() / "gt.txt", out() / "pose.json", dir.path());
+  EXPECT_LE(after, before) << "before " << before << " m, after " << after << " m";
+}
+
+TEST_F(OptimizeSimulated, DirectAssignAndSingleBaModesRun) {
+  run(hba() + " -q simulate --frames 60 --seed 7 --drift-translation 0.03 -o " + data().string());
+  const double before = ateRmse(data() / "gt.txt", data() / "pose.json", dir.path());
+  for (const std::string mode : {"--top-down direct-assign", "--layers 1 --iterations 1"}) {
+    SCOPED_TRACE(mode);
+    run(hba() + " -q optimize " + data().string() + " -o " + out().string() + " " + mode);
+    EXPECT_LT(ateRmse(data() / "gt.txt", out() / "pose.json", dir.path()), before);
+  }
+}
+
+TEST_F(OptimizeSimulated, RefusesToWriteIntoTheInput) {
+  run(hba() + " -q simulate --frames 12 --seed 8 -o " + data().string());
+  const test::CommandResult result =
+      test::runCommand(hba() + " optimize " + data().string() + " -o " + (data() / "out").string());
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_NE(result.output.find("inside the input folder"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(data() / "out"));
+}
+
+TEST_F(OptimizeSimulated, SettingsFileAndFlagsCombine) {
+  run(hba() + " -q simulate --frames 30 --seed 9 -o " + data().string());
+  test::writeText(dir / "settings.yaml", "window: 6\nstride: 3\nlocal:\n  eigen_ratio: 0.04\n");
+  run(hba() + " -q optimize " + data().string() + " -o " + out().string() + " --config " +
+      (dir / "settings.yaml").string() + " --stride 2");
+  const nlohmann::json settings = readJson(out() / "report.json").at("settings");
+  EXPECT_EQ(settings.at("window"), 6);   // from the file
+  EXPECT_EQ(settings.at("stride"), 2);   // the flag wins
+  EXPECT_DOUBLE_EQ(settings.at("local").at("eigen_ratio").get<double>(), 0.04);
+
+  test::writeText(dir / "bad.yaml", "windw: 6\n");
+  const test::CommandResult bad = test::runCommand(hba() + " optimize " + data().string() + " -o " +
+                                                   out().string() + " --config " +
+                                                   (dir / "bad.yaml").string());
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("unknown setting 'windw'"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace hba
