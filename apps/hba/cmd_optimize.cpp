@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
@@ -13,6 +14,7 @@
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
+#include "hba/render/map_picture.hpp"
 #include "output_dir.hpp"
 
 namespace hba::cli {
@@ -27,12 +29,36 @@ struct OptimizeArgs {
   std::string top_down;
   std::string pairs;
   double voxel = 0.0;  // sets both local and global voxel sizes
+  std::string ground_truth;
+  bool no_render = false;
 };
 
 double peakMemoryMiB() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+// Ground truth to draw: --gt, or the simulator's gt.txt beside the data.
+std::optional<Trajectory> groundTruth(const OptimizeArgs& args, const io::Dataset& dataset) {
+  fs::path path = args.ground_truth;
+  if (path.empty() && fs::exists(dataset.root() / "gt.txt")) path = dataset.root() / "gt.txt";
+  if (path.empty()) return std::nullopt;
+  Trajectory gt = io::readPoses(path);
+  if (gt.size() != dataset.size()) {
+    spdlog::warn("{}: {} poses for {} scans; not drawn", path.string(), gt.size(), dataset.size());
+    return std::nullopt;
+  }
+  return gt;
+}
+
+void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
+                  const std::vector<Pose>& optimized, const fs::path& out) {
+  const std::optional<Trajectory> gt = groundTruth(args, dataset);
+  const fs::path png = out / "before_after.png";
+  spdlog::info("drawing {}", png.string());
+  render::writeBeforeAfter(dataset, dataset.trajectory().poses, optimized,
+                           gt ? &gt->poses : nullptr, png);
 }
 
 void run(OptimizeArgs& args, const CLI::App& command) {
@@ -101,6 +127,7 @@ void run(OptimizeArgs& args, const CLI::App& command) {
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), out.string());
   spdlog::info("wrote pose.json (HBA), poses_kitti.txt, poses_tum.txt, report.json");
+  if (!args.no_render) writePicture(args, dataset, result.poses, out);
 }
 
 }  // namespace
@@ -113,6 +140,10 @@ void registerOptimizeCommand(CLI::App& app) {
   args->data.addTo(command);
   command->add_option("-o,--output", args->output, "Output folder (created; never the input)")
       ->required();
+  command->add_option("--gt", args->ground_truth,
+                      "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
+      ->check(CLI::ExistingFile);
+  command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_option("--config", args->config, "YAML settings file (flags override it)")
       ->check(CLI::ExistingFile);
   command->add_option("--window", s.window, "Frames per local window (w)")->default_val(s.window);
