@@ -2,15 +2,12 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
-#include "hba/pyramid/settings_file.hpp"
 
 namespace hba::fuzz {
 namespace fs = std::filesystem;
@@ -49,13 +46,6 @@ void feedPoses(const fs::path& input, io::PoseFormat format) {
   rejectOnlyWithError([&] { checkTrajectory(io::readPoses(input)); });
 }
 
-std::string readAll(const fs::path& input) {
-  std::ifstream in(input, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 void feedPcd(const fs::path& input) {
@@ -74,29 +64,5 @@ void feedKittiBin(const fs::path& input) {
 void feedHbaPoses(const fs::path& input) { feedPoses(input, io::PoseFormat::Hba); }
 void feedKittiPoses(const fs::path& input) { feedPoses(input, io::PoseFormat::Kitti); }
 void feedTumPoses(const fs::path& input) { feedPoses(input, io::PoseFormat::Tum); }
-
-// As `hba optimize --config` does: parse, range-check, echo as JSON.
-void feedSettingsYaml(const fs::path& input) {
-  const std::string text = readAll(input);
-  rejectOnlyWithError([&] {
-    pyramid::HbaSettings settings;
-    pyramid::applySettingsYaml(text, "fuzz.yaml", settings);
-    pyramid::checkSettings(settings);
-    pyramid::settingsToJson(settings).dump();
-  });
-}
-
-const std::vector<Target>& allTargets() {
-  static const std::vector<Target> targets = {
-      {"fuzz_pcd", feedPcd},
-      {"fuzz_ply", feedPly},
-      {"fuzz_kitti_bin", feedKittiBin},
-      {"fuzz_pose_hba", feedHbaPoses},
-      {"fuzz_pose_kitti", feedKittiPoses},
-      {"fuzz_pose_tum", feedTumPoses},
-      {"fuzz_settings_yaml", feedSettingsYaml},
-  };
-  return targets;
-}
 
 }  // namespace hba::fuzz

@@ -1,0 +1,18 @@
+#include "harness.hpp"
+
+namespace hba::fuzz {
+
+const std::vector<Target>& allTargets() {
+  static const std::vector<Target> targets = {
+      {"fuzz_pcd", feedPcd},
+      {"fuzz_ply", feedPly},
+      {"fuzz_kitti_bin", feedKittiBin},
+      {"fuzz_pose_hba", feedHbaPoses},
+      {"fuzz_pose_kitti", feedKittiPoses},
+      {"fuzz_pose_tum", feedTumPoses},
+      {"fuzz_settings_yaml", feedSettingsYaml},
+  };
+  return targets;
+}
+
+}  // namespace hba::fuzz
