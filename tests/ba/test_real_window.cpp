@@ -52,7 +52,7 @@ TEST(RealWindow, Hku1TenScansImproveConsistency) {
               result.final_cost, result.initial_cost, rms_before, rms_after);
 
   ASSERT_GT(result.num_planes, 50u);
-  EXPECT_LT(result.final_cost, 0.95 * result.last_association_initial_cost);
+  EXPECT_LT(result.final_cost, 0.97 * result.last_association_initial_cost);
   EXPECT_LT(rms_after, rms_before);
   EXPECT_TRUE(result.hessian.allFinite());
 }

@@ -15,7 +15,9 @@ struct PlaneSettings {
   double voxel_size = 4.0;    // V, root voxel edge (m)
   double eigen_ratio = 0.05;  // theta: plane if lambda_min / lambda_max < theta
   int max_depth = 3;          // octree splits below the root voxel
-  int min_points = 10;        // fewest points a voxel needs for the plane test
+  // Fewest points a voxel needs for the plane test. Few points pass it by
+  // chance: 10 scattered (foliage-like) points often look planar.
+  int min_points = 20;
   // Degeneracy guard beyond the paper's test: a cluster with
   // lambda_min / lambda_mid >= line_ratio is a line (its normal can spin about
   // it) and is not used as a plane.

@@ -1,0 +1,120 @@
+// The pyramid as a library: runHierarchicalBa on simulated scans held in memory.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <random>
+
+#include "hba/core/error.hpp"
+#include "hba/eval/trajectory_error.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/sim/simulation.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+struct Sequence {
+  std::vector<PointCloud> scans;
+  Trajectory truth;
+  std::vector<Pose> initial;
+};
+
+// A short simulated drive (solid-state sensor: small scans, fast test).
+const Sequence& simulated() {
+  static const Sequence sequence = [] {
+    sim::SimulationConfig config;
+    config.seed = 11;
+    config.trajectory.frames = 40;
+    config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
+    config.drift.translation = 0.03;
+    config.drift.rotation_deg_per_m = 0.05;
+    const sim::Simulation simulation = sim::prepareSimulation(config);
+    Sequence s;
+    for (std::size_t i = 0; i < config.trajectory.frames; ++i) {
+      s.scans.push_back(sim::simulateFrame(simulation, i));
+    }
+    s.truth = simulation.truth;
+    s.initial = simulation.initial;
+    return s;
+  }();
+  return sequence;
+}
+
+double ate(const Trajectory& truth, const std::vector<Pose>& poses) {
+  Trajectory estimate;
+  estimate.poses = poses;
+  return eval::evaluateTrajectory(truth, estimate).ate.translation_m.rmse;
+}
+
+HbaResult optimize(const HbaSettings& settings) {
+  const MemoryScanSource source(simulated().scans, settings.scan_voxel);
+  return runHierarchicalBa(source, simulated().initial, settings);
+}
+
+TEST(HierarchicalBa, ReducesTheDriftOfASimulatedDrive) {
+  const HbaResult result = optimize(HbaSettings());
+  const double before = ate(simulated().truth, simulated().initial);
+  const double after = ate(simulated().truth, result.poses);
+  EXPECT_LT(after, before / 5.0) << "before " << before << " after " << after;
+  ASSERT_EQ(result.poses.size(), simulated().initial.size());
+  // The gauge: the first pose is held.
+  EXPECT_LT((result.poses.front().t - simulated().initial.front().t).norm(), 1e-9);
+  EXPECT_GE(result.report.layers, 2);
+  EXPECT_FALSE(result.report.iterations.empty());
+  EXPECT_TRUE(result.report.warnings.empty());
+}
+
+TEST(HierarchicalBa, DirectAssignAlsoImproves) {
+  HbaSettings settings;
+  settings.top_down = TopDownMode::DirectAssign;
+  const HbaResult result = optimize(settings);
+  EXPECT_LT(ate(simulated().truth, result.poses), ate(simulated().truth, simulated().initial));
+}
+
+TEST(HierarchicalBa, SameResultWithOneAndTwoThreads) {
+  HbaSettings settings;
+  settings.outer_iterations = 1;
+  std::vector<Pose> one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = optimize(settings).poses;
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = optimize(settings).poses;
+  }
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].t, two[i].t) << "frame " << i;
+    EXPECT_EQ(one[i].q.coeffs(), two[i].q.coeffs()) << "frame " << i;
+  }
+}
+
+TEST(HierarchicalBa, FeaturelessScansLeavePosesUnchangedWithAWarning) {
+  // Points filling a volume (foliage-like): no voxel passes the plane test.
+  std::vector<PointCloud> scans(12);
+  std::vector<Pose> poses(12);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> coordinate(-4.0f, 4.0f);
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    poses[i].t = Vec3(0.2 * static_cast<double>(i), 0, 0);
+    for (int k = 0; k < 3000; ++k) scans[i].add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)));
+  }
+  const MemoryScanSource source(scans, 0.0);
+  const HbaResult result = runHierarchicalBa(source, poses, HbaSettings());
+  ASSERT_EQ(result.poses.size(), poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ(result.poses[i].t, poses[i].t);
+  }
+  ASSERT_FALSE(result.report.warnings.empty());
+  EXPECT_NE(result.report.warnings.back().find("no plane features"), std::string::npos);
+}
+
+TEST(HierarchicalBa, RejectsMismatchedInput) {
+  const MemoryScanSource source(std::vector<PointCloud>(3), 0.0);
+  EXPECT_THROW(runHierarchicalBa(source, std::vector<Pose>(4), HbaSettings()), Error);
+  const MemoryScanSource empty(std::vector<PointCloud>{}, 0.0);
+  EXPECT_THROW(runHierarchicalBa(empty, {}, HbaSettings()), Error);
+}
+
+}  // namespace
+}  // namespace hba::pyramid
