@@ -30,6 +30,8 @@ struct WindowBa {
   double sq_rms_after = 0.0;
   std::size_t planes = 0;
   std::size_t plane_points = 0;
+  int iterations = 0;
+  int rounds = 0;
 };
 
 WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window& window,
@@ -46,6 +48,8 @@ WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window&
   out.cost_after = result.final_cost;
   out.planes = result.num_planes;
   out.plane_points = result.num_plane_points;
+  out.iterations = result.iterations;
+  out.rounds = result.rounds;
   for (double r : result.plane_rms_initial) out.sq_rms_before += r * r;
   for (double r : result.plane_rms_final) out.sq_rms_after += r * r;
   return out;
@@ -156,6 +160,8 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource* source,
     WindowBa& r = results[w];
     report.planes += r.planes;
     report.plane_points += r.plane_points;
+    report.lm_iterations += static_cast<std::size_t>(r.iterations);
+    report.association_rounds += static_cast<std::size_t>(r.rounds);
     report.cost_before += r.cost_before;
     report.cost_after += r.cost_after;
     sq_before += r.sq_rms_before;

@@ -36,6 +36,8 @@ void logLayer(const LayerReport& r) {
   spdlog::info("  layer {}{}: {} frames, {} windows, {} planes, plane RMS {:.4f} -> {:.4f} m, {:.2f} s",
                r.layer, r.global ? " (global BA)" : "", r.frames, r.windows, r.planes, r.rms_before,
                r.rms_after, r.seconds);
+  spdlog::debug("  layer {}: {} points, {} association rounds, {} LM iterations", r.layer,
+                r.cloud_points, r.association_rounds, r.lm_iterations);
   if (r.windows_without_planes > 0) {
     spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer,
                  r.windows_without_planes, r.windows);

@@ -14,6 +14,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
                       {"planes", l.planes},
                       {"plane_points", l.plane_points},
                       {"cloud_points", l.cloud_points},
+                      {"lm_iterations", l.lm_iterations},
+                      {"association_rounds", l.association_rounds},
                       {"cost_before", l.cost_before},
                       {"cost_after", l.cost_after},
                       {"plane_rms_before_m", l.rms_before},

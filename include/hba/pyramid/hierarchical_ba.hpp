@@ -23,6 +23,8 @@ struct LayerReport {
   std::size_t planes = 0;        // summed over windows
   std::size_t plane_points = 0;  // summed over windows
   std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
+  std::size_t lm_iterations = 0;       // summed over windows
+  std::size_t association_rounds = 0;  // summed over windows
   double cost_before = 0.0;      // summed BA cost over windows
   double cost_after = 0.0;
   double rms_before = 0.0;       // point-to-plane RMS over all plane points (m)
