@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output_dir.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/merged_map.hpp"
@@ -22,17 +23,6 @@ struct MapArgs {
   eval::MapSettings settings;
 };
 
-bool sameFile(const fs::path& a, const fs::path& b) {
-  return fs::weakly_canonical(a) == fs::weakly_canonical(b);
-}
-
-// hba never writes into its input: not over the trajectory, not among the scans.
-void refuseInputPath(const fs::path& output, const io::Dataset& dataset) {
-  if (sameFile(output, dataset.posesFile()) || sameFile(output.parent_path(), dataset.scansDir())) {
-    failAt(output, "refusing to write the map into the dataset's input files");
-  }
-}
-
 void run(MapArgs& args) {
   const fs::path output = args.output;
   const std::string extension = output.extension().string();
@@ -40,7 +30,7 @@ void run(MapArgs& args) {
   args.settings.color = eval::mapColorFromString(args.color);
 
   const io::Dataset dataset = args.data.open();
-  refuseInputPath(output, dataset);
+  refuseOutputInsideInput(output, dataset);  // hba never writes into its input
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
   const PointCloud map = eval::buildMergedMap(dataset, {}, args.settings);
   if (extension == ".pcd") {

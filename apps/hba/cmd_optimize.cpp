@@ -1,7 +1,7 @@
 // `hba optimize DATA -o OUT`: the whole method on a dataset.
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
-#include <tbb/task_arena.h>
+#include <tbb/global_control.h>
 
 #include <filesystem>
 #include <optional>
@@ -91,15 +91,17 @@ void run(OptimizeArgs& args, const CLI::App& command) {
                             : args.pairs == "from-first" ? pyramid::FactorPairs::FromFirst
                                                          : pyramid::FactorPairs::Adjacent;
   }
-  settings.threads = tbb::this_task_arena::max_concurrency();
   pyramid::checkSettings(settings);
+  // The -j limit (a tbb::global_control), not the machine's core count.
+  const std::size_t threads =
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 
   const io::Dataset dataset = args.data.open();
   const fs::path out = prepareOutputDir(args.output, dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::info("settings: {}", pyramid::settingsToJson(settings).dump());
-  spdlog::info("threads: {}", settings.threads);
+  spdlog::info("threads: {}", threads);
 
   const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
   const pyramid::HbaResult result =
@@ -119,7 +121,7 @@ void run(OptimizeArgs& args, const CLI::App& command) {
                      {"pose_format", io::toString(dataset.poseFormat())},
                      {"scans", dataset.size()}};
   report["settings"] = pyramid::settingsToJson(settings);
-  report["threads"] = settings.threads;
+  report["threads"] = threads;
   report["peak_memory_mib"] = peakMemoryMiB();
   writeFileAtomically(out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; },
                       false);

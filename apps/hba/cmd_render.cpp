@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output_dir.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
@@ -34,6 +35,7 @@ void run(RenderArgs& args) {
   args.settings.side_view = !args.no_side;
 
   const io::Dataset dataset = args.data.open();
+  refuseOutputInsideInput(args.output, dataset);  // hba never writes into its input
   std::vector<Pose> gt;
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;

@@ -20,13 +20,17 @@ bool isInside(const fs::path& path, const fs::path& folder) {
 
 }  // namespace
 
-fs::path prepareOutputDir(const fs::path& output, const io::Dataset& dataset) {
-  for (const fs::path& input : {dataset.root(), dataset.scansDir()}) {
+void refuseOutputInsideInput(const fs::path& output, const io::Dataset& dataset) {
+  for (const fs::path& input : {dataset.root(), dataset.scansDir(), dataset.posesFile()}) {
     if (!input.empty() && isInside(output, input)) {
       failAt(output, "is inside the input folder " + input.string() +
-                         "; choose an output folder outside the dataset (hba never writes into its input)");
+                         "; choose an output outside the dataset (hba never writes into its input)");
     }
   }
+}
+
+fs::path prepareOutputDir(const fs::path& output, const io::Dataset& dataset) {
+  refuseOutputInsideInput(output, dataset);
   std::error_code ec;
   if (fs::exists(output, ec) && !fs::is_directory(output, ec)) {
     failAt(output, "exists and is not a folder");

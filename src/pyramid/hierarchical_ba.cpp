@@ -153,6 +153,12 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
   }
 
   result.poses = initial;
+  if (initial.size() == 1) {
+    report.warnings.push_back("a single scan: nothing to align it with, pose returned unchanged");
+    spdlog::warn("{}", report.warnings.back());
+    report.seconds_total = secondsSince(start);
+    return result;
+  }
   for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
     std::vector<Pose> updated = iterate(scans, result.poses, settings, report.layers, iteration, report);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "hba/pyramid/window_plan.hpp"
 
@@ -30,10 +29,8 @@ int maxLayerCount(std::size_t frames, int window, int stride) {
 }
 
 int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
-  const int threads = settings.threads > 0
-                          ? settings.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return paperLayerCount(frames, settings.window, settings.stride, threads);
+  constexpr int kPaperThreads = 8;  // Table I of the paper
+  return paperLayerCount(frames, settings.window, settings.stride, kPaperThreads);
 }
 
 }  // namespace hba::pyramid

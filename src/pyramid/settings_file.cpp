@@ -71,8 +71,12 @@ nlohmann::json baToJson(const ba::BaSettings& ba) {
 
 void checkBa(const ba::BaSettings& ba, const std::string& name) {
   auto fail = [&](const std::string& what) { throw Error("setting " + name + "." + what); };
-  if (!(ba.planes.voxel_size > 0)) fail("voxel_size must be > 0");
-  if (!(ba.final_voxel_size >= 0)) fail("final_voxel_size must be >= 0 (0 = off)");
+  if (!(ba.planes.voxel_size >= 0.01 && ba.planes.voxel_size <= 1000)) {
+    fail("voxel_size must be in [0.01, 1000] m");
+  }
+  if (!(ba.final_voxel_size == 0 || (ba.final_voxel_size >= 0.01 && ba.final_voxel_size <= 1000))) {
+    fail("final_voxel_size must be 0 (off) or in [0.01, 1000] m");
+  }
   if (!(ba.planes.eigen_ratio > 0 && ba.planes.eigen_ratio < 1)) fail("eigen_ratio must be in (0, 1)");
   if (ba.planes.max_depth < 0 || ba.planes.max_depth > 8) fail("max_depth must be in [0, 8]");
   if (ba.planes.min_points < 3) fail("min_points must be >= 3");
@@ -137,8 +141,12 @@ void checkSettings(const HbaSettings& s) {
   if (s.stride < 1 || s.stride >= s.window) throw Error("setting stride must be in [1, window - 1]");
   if (s.layers < 0) throw Error("setting layers must be >= 0 (0 = automatic)");
   if (s.outer_iterations < 1) throw Error("setting outer_iterations must be >= 1");
-  if (!(s.scan_voxel >= 0)) throw Error("setting scan_voxel must be >= 0");
-  if (!(s.keyframe_voxel >= 0)) throw Error("setting keyframe_voxel must be >= 0");
+  // Voxels below 1 mm only blow up hash keys; 0 switches downsampling off.
+  auto downsampling = [](double v) { return v == 0.0 || (v >= 1e-3 && v <= 100.0); };
+  if (!downsampling(s.scan_voxel)) throw Error("setting scan_voxel must be 0 (off) or in [0.001, 100] m");
+  if (!downsampling(s.keyframe_voxel)) {
+    throw Error("setting keyframe_voxel must be 0 (off) or in [0.001, 100] m");
+  }
   if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
   checkBa(s.local, "local");
   checkBa(s.global, "global");

@@ -65,9 +65,8 @@ TEST_F(InputUntouched, MapRefusesAnOutputAmongTheScans) {
   expectInputUnchanged();
 }
 
-// FAILS today: `hba map DATA -o DATA/map.pcd` writes into the dataset folder
-// (only the scans folder and the trajectory file are refused).
-TEST_F(InputUntouched, DISABLED_MapRefusesAnOutputInTheDatasetFolder) {
+// Not even beside the scans: the dataset folder is input too.
+TEST_F(InputUntouched, MapRefusesAnOutputInTheDatasetFolder) {
   const test::CommandResult run =
       test::runHba("map " + quoted(data()) + " -o " + quoted(data() / "map.pcd"));
   EXPECT_NE(run.exit_code, 0) << run.output;

@@ -23,7 +23,6 @@ struct HbaSettings {
   int window = 10;  // w: frames per local window
   int stride = 5;   // s: frames between window starts (s < w: windows overlap)
   int layers = 0;   // pyramid layers including layer 1; 0 = the default rule
-  int threads = 0;  // for the layer-count rule only (0 = hardware concurrency)
 
   double scan_voxel = 0.1;      // layer-1 scans are downsampled to this (m)
   double keyframe_voxel = 0.1;  // keyframe clouds are downsampled to this (m)
@@ -56,7 +55,9 @@ int paperLayerCount(std::size_t frames, int window, int stride, int threads);
 // worth of frames (the top layer then holds at least `window` frames, or the
 // whole sequence if it is shorter).
 int maxLayerCount(std::size_t frames, int window, int stride);
-// The layer count hba uses when settings.layers == 0 (see pyramid docs).
+// The layer count hba uses when settings.layers == 0: the paper's formula
+// with its own n = 8 threads, whatever this machine has, so that the same
+// command builds the same pyramid (and gives the same poses) everywhere.
 int defaultLayerCount(std::size_t frames, const HbaSettings& settings);
 
 }  // namespace hba::pyramid
