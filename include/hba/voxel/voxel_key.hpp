@@ -16,9 +16,16 @@ struct VoxelKey {
 
   // The cell of edge `size` that contains `p` (cells are half-open: [k*size, (k+1)*size)).
   static VoxelKey of(const Vec3& p, double size) {
-    return {static_cast<std::int64_t>(std::floor(p.x() / size)),
-            static_cast<std::int64_t>(std::floor(p.y() / size)),
-            static_cast<std::int64_t>(std::floor(p.z() / size))};
+    return {cell(p.x() / size), cell(p.y() / size), cell(p.z() / size)};
+  }
+
+  // floor(v) as an integer, clamped so that absurd coordinates (1e30 m, NaN)
+  // land in an edge cell instead of overflowing the conversion (undefined).
+  static std::int64_t cell(double v) {
+    constexpr double kLimit = 4.0e18;  // well inside int64
+    if (!(v > -kLimit)) return static_cast<std::int64_t>(-kLimit);
+    if (!(v < kLimit)) return static_cast<std::int64_t>(kLimit);
+    return static_cast<std::int64_t>(std::floor(v));
   }
 
   bool operator==(const VoxelKey& o) const { return x == o.x && y == o.y && z == o.z; }
