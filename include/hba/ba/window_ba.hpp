@@ -25,7 +25,9 @@ using PlaneSettings = voxel::PlaneSettings;
 struct BaSettings {
   PlaneSettings planes;
   int max_iterations = 10;         // LM iterations per association round
-  int association_rounds = 3;      // rebuild the voxel planes from updated poses
+  // Associations (voxel planes rebuilt from the updated poses) at the finest
+  // voxel size; coarse-to-fine rounds below come on top of these.
+  int association_rounds = 3;
   // Coarse to fine: the first association uses planes.voxel_size, each later
   // one halves it, down to this size (m); rounds stop only once it is reached
   // and the cost has settled (or association_rounds is spent beyond that).

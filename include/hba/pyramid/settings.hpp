@@ -35,7 +35,7 @@ struct HbaSettings {
   FactorPairs factor_pairs = FactorPairs::Adjacent;
   int graph_max_iterations = 100;
 
-  int outer_iterations = 2;          // bottom-up + top-down rounds at most
+  int outer_iterations = 1;          // bottom-up + top-down rounds at most
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
   double outer_tolerance_deg = 1e-3;
 
@@ -45,6 +45,11 @@ struct HbaSettings {
     // end at 1 m, see BENCHMARKS.md for why.
     local.final_voxel_size = 1.0;
     global.final_voxel_size = 1.0;
+    // One association at the finest size after the coarse ones (4, 2, 1 m):
+    // more rounds and a second outer iteration cost 2-4x the time for a few
+    // percent of accuracy (BENCHMARKS.md).
+    local.association_rounds = 1;
+    global.association_rounds = 1;
   }
 };
 
