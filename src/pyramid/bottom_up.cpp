@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <optional>
 
 #include "hba/graph/window_factors.hpp"
 #include "keyframe.hpp"
@@ -89,62 +88,57 @@ class StreamedClouds {
 
 }  // namespace
 
-LayerOutcome optimizeLayer(const Layer& layer, const ScanSource* source,
+LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
-                           const HbaSettings& settings, bool build_keyframes, StageTimes& times) {
+                           const HbaSettings& settings, const KeyframeStore* next,
+                           double keyframe_voxel, StageTimes& times) {
   LayerOutcome outcome;
   outcome.windows.resize(windows.size());
   std::vector<WindowBa> results(windows.size());
 
-  std::optional<StreamedClouds> streamed;
-  if (source) streamed.emplace(*source);
+  StreamedClouds streamed(clouds);
   const std::size_t concurrency = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
-  const std::size_t batch = source ? std::max<std::size_t>(4, 4 * concurrency) : windows.size();
+  // Layer-1 scans are small: batches of several windows per thread keep the
+  // threads busy. Keyframes grow with the layer: one window per thread.
+  const bool scans = layer.keyframes == nullptr;
+  const std::size_t batch = std::max<std::size_t>(scans ? 4 : 1, (scans ? 4 : 1) * concurrency);
 
   std::size_t cloud_points = 0;
-  if (!source) {
-    for (const auto& cloud : layer.clouds) cloud_points += cloud.size();
-  }
-  std::size_t counted_end = 0;  // layer-1 frames whose points are counted
+  std::size_t counted_end = 0;  // frames whose points are counted
   for (std::size_t b0 = 0; b0 < windows.size(); b0 += batch) {
     const std::size_t b1 = std::min(windows.size(), b0 + batch);
-    if (streamed) {
-      const auto start = Clock::now();
-      const std::size_t first = windows[b0].first;
-      const std::size_t end = windows[b1 - 1].first + windows[b1 - 1].count;
-      streamed->keepRange(first, end);
-      for (std::size_t i = std::max(first, counted_end); i < end; ++i) {
-        cloud_points += streamed->get(i)->size();
-      }
-      counted_end = end;
-      times.load += secondsSince(start);
+    auto start = Clock::now();
+    const std::size_t first = windows[b0].first;
+    const std::size_t end = windows[b1 - 1].first + windows[b1 - 1].count;
+    streamed.keepRange(first, end);
+    for (std::size_t i = std::max(first, counted_end); i < end; ++i) {
+      cloud_points += streamed.get(i)->size();
     }
+    counted_end = end;
+    times.load += secondsSince(start);
     auto cloudsOf = [&](const Window& window) {
-      std::vector<const PointCloud*> clouds(window.count);
-      for (std::size_t k = 0; k < window.count; ++k) {
-        clouds[k] = streamed ? streamed->get(window.first + k) : &layer.clouds[window.first + k];
-      }
-      return clouds;
+      std::vector<const PointCloud*> window_clouds(window.count);
+      for (std::size_t k = 0; k < window.count; ++k) window_clouds[k] = streamed.get(window.first + k);
+      return window_clouds;
     };
 
-    auto start = Clock::now();
+    start = Clock::now();
     std::vector<ba::BaResult> ba_results(b1 - b0);
     tbb::parallel_for(b0, b1, [&](std::size_t w) {
       const Window& window = windows[w];
-      const auto first = layer.poses.begin() + static_cast<long>(window.first);
-      const std::vector<Pose> initial(first, first + static_cast<long>(window.count));
+      const auto first_pose = layer.poses.begin() + static_cast<long>(window.first);
+      const std::vector<Pose> initial(first_pose, first_pose + static_cast<long>(window.count));
       ba_results[w - b0] = ba::optimizeWindow(cloudsOf(window), initial, ba_settings);
       results[w] = summarize(layer, ba_results[w - b0], window, settings);
     });
     times.ba += secondsSince(start);
 
-    if (build_keyframes) {
+    if (next) {
       start = Clock::now();
       tbb::parallel_for(b0, b1, [&](std::size_t w) {
         const ba::BaResult& result = ba_results[w - b0];
-        results[w].outcome.keyframe = buildKeyframe(cloudsOf(windows[w]), result.poses,
-                                                    result.plane_point_indices,
-                                                    settings.keyframe_voxel);
+        next->store(w, buildKeyframe(cloudsOf(windows[w]), result.poses,
+                                     result.plane_point_indices, keyframe_voxel));
       });
       times.keyframes += secondsSince(start);
     }
@@ -176,14 +170,14 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource* source,
   return outcome;
 }
 
-Layer buildUpperLayer(const Layer& lower, LayerOutcome& outcome, int stride) {
+Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int stride,
+                      std::unique_ptr<KeyframeStore> keyframes) {
   Layer upper;
   const std::size_t n = outcome.windows.size();
   upper.anchors.reserve(n);
   upper.poses.reserve(n);
-  upper.clouds.reserve(n);
   for (std::size_t j = 0; j < n; ++j) {
-    WindowOutcome& window = outcome.windows[j];
+    const WindowOutcome& window = outcome.windows[j];
     upper.anchors.push_back(lower.anchors[window.window.first]);
     if (j == 0) {
       upper.poses.push_back(window.optimized.front());
@@ -194,8 +188,8 @@ Layer buildUpperLayer(const Layer& lower, LayerOutcome& outcome, int stride) {
       upper.poses.push_back(upper.poses.back() *
                             relative(previous.optimized.front(), previous.optimized[s]));
     }
-    upper.clouds.push_back(std::move(window.keyframe));
   }
+  upper.keyframes = std::move(keyframes);
   return upper;
 }
 

@@ -12,17 +12,19 @@ struct StageTimes {
 };
 
 // Runs one BA per window of `layer` (in parallel) and turns each window's
-// Hessian into pose-graph factors. With `source` set, the layer is layer 1
-// and its clouds are streamed from it in batches, so memory stays bounded by
-// a few windows' worth of scans. With `build_keyframes`, each window's plane
-// points become the keyframe of the next layer.
-LayerOutcome optimizeLayer(const Layer& layer, const ScanSource* source,
+// Hessian into pose-graph factors. The layer's clouds are streamed from
+// `clouds` in batches, so memory stays bounded by a few windows' worth of
+// clouds. With `next` set, each window's plane points, downsampled to
+// `keyframe_voxel`, are stored there as keyframe j of the next layer.
+LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
-                           const HbaSettings& settings, bool build_keyframes, StageTimes& times);
+                           const HbaSettings& settings, const KeyframeStore* next,
+                           double keyframe_voxel, StageTimes& times);
 
 // Layer i+1 from layer i's windows: keyframe j is window j, anchored at its
 // first frame, posed by chaining the windows' optimized relative poses
 // (the paper's eq. 1), so local corrections reach the upper layer.
-Layer buildUpperLayer(const Layer& lower, LayerOutcome& outcome, int stride);
+Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int stride,
+                      std::unique_ptr<KeyframeStore> keyframes);
 
 }  // namespace hba::pyramid

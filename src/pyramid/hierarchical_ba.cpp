@@ -73,14 +73,16 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   for (int level = 1; level < layers; ++level) {
     const auto start = Clock::now();
     const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
-    LayerOutcome outcome = optimizeLayer(layer, level == 1 ? &scans : nullptr, windows,
-                                         settings.local, settings, true, times);
+    const ScanSource& clouds = level == 1 ? scans : *layer.keyframes;
+    auto keyframes = std::make_unique<KeyframeStore>(windows.size());
+    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, settings.local, settings,
+                                         keyframes.get(), keyframeVoxel(settings, level + 1), times);
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.seconds = secondsSince(start);
     logLayer(outcome.report);
     report.layer_reports.push_back(outcome.report);
-    Layer upper = buildUpperLayer(layer, outcome, settings.stride);
+    Layer upper = buildUpperLayer(layer, outcome, settings.stride, std::move(keyframes));
     local.push_back(std::move(outcome));
     layer = std::move(upper);
   }
@@ -88,8 +90,9 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   // The top layer: one global BA with its own, looser settings.
   const auto start = Clock::now();
   const std::vector<Window> all{Window{0, layer.poses.size()}};
-  LayerOutcome top = optimizeLayer(layer, layers == 1 ? &scans : nullptr, all, settings.global,
-                                   settings, false, times);
+  const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
+  LayerOutcome top =
+      optimizeLayer(layer, top_clouds, all, settings.global, settings, nullptr, 0.0, times);
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;

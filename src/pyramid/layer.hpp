@@ -9,15 +9,16 @@
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "keyframe_store.hpp"
 
 namespace hba::pyramid {
 
-// The frames of one layer. Layer 1 streams its clouds from a ScanSource;
-// upper layers hold their keyframe clouds in memory.
+// The frames of one layer. Every layer streams its clouds: layer 1 from the
+// input scans, upper layers from their keyframe store on disk.
 struct Layer {
   std::vector<std::size_t> anchors;  // layer-1 index of each frame
   std::vector<Pose> poses;           // current world poses of the frames
-  std::vector<PointCloud> clouds;    // keyframe clouds (empty for layer 1)
+  std::unique_ptr<KeyframeStore> keyframes;  // null for layer 1
 };
 
 // What the BA of one window left behind (its Hessian is turned into
@@ -26,7 +27,6 @@ struct WindowOutcome {
   Window window;
   std::vector<Pose> optimized;  // frame 0 keeps its input pose (gauge)
   std::vector<graph::RelativePoseFactor> factors;
-  PointCloud keyframe;  // plane points in the frame of the window's first frame
   bool has_planes = false;
 };
 

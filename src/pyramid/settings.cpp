@@ -7,6 +7,10 @@
 
 namespace hba::pyramid {
 
+double keyframeVoxel(const HbaSettings& settings, int layer) {
+  return settings.keyframe_voxel * std::pow(settings.keyframe_voxel_growth, std::max(0, layer - 2));
+}
+
 int paperLayerCount(std::size_t frames, int window, int stride, int threads) {
   const double n = std::max(threads, 1);
   const double N = static_cast<double>(frames);

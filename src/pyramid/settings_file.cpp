@@ -100,7 +100,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
   try {
     rejectUnknownKeys(root,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
-                       "keyframe_voxel", "top_down", "factor_pairs", "point_sigma", "local",
+                       "keyframe_voxel", "keyframe_voxel_growth", "top_down", "factor_pairs", "point_sigma", "local",
                        "global"},
                       "", source);
     read(root, "window", settings.window, source);
@@ -109,6 +109,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "outer_iterations", settings.outer_iterations, source);
     read(root, "scan_voxel", settings.scan_voxel, source);
     read(root, "keyframe_voxel", settings.keyframe_voxel, source);
+    read(root, "keyframe_voxel_growth", settings.keyframe_voxel_growth, source);
     read(root, "point_sigma", settings.information.point_sigma, source);
     std::string mode;
     read(root, "top_down", mode, source);
@@ -147,6 +148,9 @@ void checkSettings(const HbaSettings& s) {
   if (!downsampling(s.keyframe_voxel)) {
     throw Error("setting keyframe_voxel must be 0 (off) or in [0.001, 100] m");
   }
+  if (!(s.keyframe_voxel_growth >= 1.0 && s.keyframe_voxel_growth <= 10.0)) {
+    throw Error("setting keyframe_voxel_growth must be in [1, 10]");
+  }
   if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
   checkBa(s.local, "local");
   checkBa(s.global, "global");
@@ -159,6 +163,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"outer_iterations", s.outer_iterations},
           {"scan_voxel", s.scan_voxel},
           {"keyframe_voxel", s.keyframe_voxel},
+          {"keyframe_voxel_growth", s.keyframe_voxel_growth},
           {"top_down", s.top_down == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign"},
           {"factor_pairs", factorPairsName(s.factor_pairs)},
           {"point_sigma", s.information.point_sigma},

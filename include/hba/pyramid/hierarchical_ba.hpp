@@ -47,7 +47,7 @@ struct HbaReport {
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
-  double seconds_load = 0.0;      // reading + downsampling layer-1 scans
+  double seconds_load = 0.0;      // reading (+ downsampling) scans and stored keyframes
   double seconds_ba = 0.0;        // all BAs (voxelization, LM)
   double seconds_keyframes = 0.0; // building keyframe clouds
   double seconds_graph = 0.0;     // pose graph solves

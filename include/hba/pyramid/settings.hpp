@@ -25,7 +25,12 @@ struct HbaSettings {
   int layers = 0;   // pyramid layers including layer 1; 0 = the default rule
 
   double scan_voxel = 0.1;      // layer-1 scans are downsampled to this (m)
-  double keyframe_voxel = 0.1;  // keyframe clouds are downsampled to this (m)
+  double keyframe_voxel = 0.1;  // layer-2 keyframes are downsampled to this (m)
+  // Each layer above multiplies the keyframe voxel by this: a keyframe of
+  // layer i+1 covers `stride` times the path of one of layer i, so without
+  // growth its point count (and memory, and BA time) would grow geometrically
+  // with the layer. 1 = the same voxel on every layer.
+  double keyframe_voxel_growth = 1.0;
 
   ba::BaSettings local;   // theta 0.05, V 4 m
   ba::BaSettings global;  // theta 0.1,  V 4 m (looser: finds large divergences)
@@ -52,6 +57,9 @@ struct HbaSettings {
     global.association_rounds = 1;
   }
 };
+
+// The voxel (m) that keyframes of `layer` (>= 2) are downsampled to.
+double keyframeVoxel(const HbaSettings& settings, int layer);
 
 // The paper's optimal layer count l* = floor(1/2 log_s(3 N^2 (s^3 - s) n / w^3)),
 // clamped to [1, the number of layers the sequence can hold].

@@ -4,7 +4,7 @@
 //
 // YAML keys (all optional; unknown keys are an error, so typos never pass
 // silently):
-//   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel,
+//   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel, keyframe_voxel_growth,
 //   top_down: pose_graph | direct_assign, factor_pairs: adjacent | all | from_first,
 //   point_sigma,
 //   local:  { voxel_size, final_voxel_size, eigen_ratio, max_depth, min_points, max_iterations,
