@@ -5,21 +5,15 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 
 #include "hba/graph/window_factors.hpp"
 #include "keyframe.hpp"
+#include "stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 struct WindowBa {
   WindowOutcome outcome;
@@ -54,7 +48,7 @@ WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window&
   return out;
 }
 
-// Layer-1 scans for a range of frames, loaded in parallel and dropped once
+// The clouds (scans or keyframes) of a range of frames, loaded in parallel and dropped once
 // no later window needs them.
 class StreamedClouds {
  public:
@@ -75,11 +69,6 @@ class StreamedClouds {
   }
 
   const PointCloud* get(std::size_t i) const { return &cache_.at(i); }
-  std::size_t points() const {
-    std::size_t n = 0;
-    for (const auto& [index, cloud] : cache_) n += cloud.size();
-    return n;
-  }
 
  private:
   const ScanSource& source_;

@@ -3,10 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "bottom_up.hpp"
+#include "stopwatch.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
@@ -14,12 +14,6 @@
 
 namespace hba::pyramid {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 void validate(const ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
   if (initial.size() != scans.size()) {
