@@ -61,8 +61,8 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
                            gt ? &gt->poses : nullptr, png);
 }
 
-void run(OptimizeArgs& args, const CLI::App& command) {
-  // Settings: defaults, then the YAML file, then flags given on the command line.
+// Defaults, then the YAML file, then the flags given on the command line.
+pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& command) {
   pyramid::HbaSettings settings;
   if (!args.config.empty()) pyramid::applySettingsFile(args.config, settings);
   auto given = [&](const char* flag) { return command.count(flag) > 0; };
@@ -92,6 +92,26 @@ void run(OptimizeArgs& args, const CLI::App& command) {
                                                          : pyramid::FactorPairs::Adjacent;
   }
   pyramid::checkSettings(settings);
+  return settings;
+}
+
+void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io::Dataset& dataset,
+                 const pyramid::HbaSettings& settings, std::size_t threads) {
+  nlohmann::json report = pyramid::reportToJson(result.report);
+  report["input"] = {{"dataset", fs::absolute(dataset.root()).string()},
+                     {"layout", dataset.layout()},
+                     {"poses", fs::absolute(dataset.posesFile()).string()},
+                     {"pose_format", io::toString(dataset.poseFormat())},
+                     {"scans", dataset.size()}};
+  report["settings"] = pyramid::settingsToJson(settings);
+  report["threads"] = threads;
+  report["peak_memory_mib"] = peakMemoryMiB();
+  writeFileAtomically(out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; },
+                      false);
+}
+
+void run(const OptimizeArgs& args, const CLI::App& command) {
+  const pyramid::HbaSettings settings = mergeSettings(args, command);
   // The -j limit (a tbb::global_control), not the machine's core count.
   const std::size_t threads =
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
@@ -114,17 +134,7 @@ void run(OptimizeArgs& args, const CLI::App& command) {
   io::writePoses(out / "poses_kitti.txt", optimized, io::PoseFormat::Kitti);
   io::writePoses(out / "poses_tum.txt", optimized, io::PoseFormat::Tum);
 
-  nlohmann::json report = pyramid::reportToJson(result.report);
-  report["input"] = {{"dataset", fs::absolute(dataset.root()).string()},
-                     {"layout", dataset.layout()},
-                     {"poses", fs::absolute(dataset.posesFile()).string()},
-                     {"pose_format", io::toString(dataset.poseFormat())},
-                     {"scans", dataset.size()}};
-  report["settings"] = pyramid::settingsToJson(settings);
-  report["threads"] = threads;
-  report["peak_memory_mib"] = peakMemoryMiB();
-  writeFileAtomically(out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; },
-                      false);
+  writeReport(out, result, dataset, settings, threads);
 
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), out.string());
