@@ -115,3 +115,35 @@ TEST_F(OptimizeSimulated, SettingsFileAndFlagsCombine) {
 
 }  // namespace
 }  // namespace hba
+
+namespace hba {
+namespace {
+
+// "MME -2.972112 (...)" -> -2.972112
+double mmeOf(const std::string& dataset, const std::string& poses) {
+  const test::CommandResult result =
+      test::runCommand(hba() + " -q mme " + dataset + (poses.empty() ? "" : " --poses " + poses));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  const auto at = result.output.rfind("MME ");
+  if (at == std::string::npos) {
+    ADD_FAILURE() << result.output;
+    return 0.0;
+  }
+  return std::stod(result.output.substr(at + 4));
+}
+
+// The real Livox sequence: the optimized map must be crisper (lower mean map
+// entropy) than the odometry's, never less consistent.
+TEST(OptimizeReal, Hku1MapGetsCrisper) {
+  const fs::path data = test::sharedDataDir() / "hku1";
+  if (!fs::exists(data)) GTEST_SKIP() << data << " not present";
+  test::TempDir dir;
+  run(hba() + " -q optimize " + data.string() + " -o " + (dir / "out").string() + " --no-render");
+  const double before = mmeOf(data.string(), "");
+  const double after = mmeOf(data.string(), (dir / "out" / "poses_kitti.txt").string());
+  EXPECT_NEAR(before, -2.972, 0.005);
+  EXPECT_LT(after, before - 0.01) << "before " << before << ", after " << after;
+}
+
+}  // namespace
+}  // namespace hba
