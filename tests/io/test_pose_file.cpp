@@ -2,6 +2,7 @@
 // and an error naming file and line for every kind of bad line.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -130,6 +131,8 @@ struct BadPoseFile {
   std::string content;
   std::vector<std::string> mentions;
 };
+// Printed (and so in ctest's test names) by name, not as raw bytes.
+void PrintTo(const BadPoseFile& bad, std::ostream* os) { *os << bad.name; }
 
 class BadPoseFileTest : public ::testing::TestWithParam<BadPoseFile> {};
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ struct SavedInput {
   fuzz::Harness feed = nullptr;
   fs::path file;
 };
+
+// Printed by gtest (and so in ctest's test names) as the file, not as the
+// struct's raw bytes, which hold pointers and change from build to build.
+void PrintTo(const SavedInput& input, std::ostream* os) { *os << input.file.filename().string(); }
 
 std::vector<SavedInput> savedInputs(const fs::path& root) {
   std::vector<SavedInput> inputs;
