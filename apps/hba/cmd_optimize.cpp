@@ -82,15 +82,9 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
   if (given("--reject")) settings.local.reject_ratio = settings.global.reject_ratio = flags.local.reject_ratio;
   if (given("--ba-iterations")) settings.local.max_iterations = settings.global.max_iterations = flags.local.max_iterations;
   if (given("--point-sigma")) settings.information.point_sigma = flags.information.point_sigma;
-  if (given("--top-down")) {
-    settings.top_down = args.top_down == "direct-assign" ? pyramid::TopDownMode::DirectAssign
-                                                         : pyramid::TopDownMode::PoseGraph;
-  }
-  if (given("--pairs")) {
-    settings.factor_pairs = args.pairs == "all"          ? pyramid::FactorPairs::AllPairs
-                            : args.pairs == "from-first" ? pyramid::FactorPairs::FromFirst
-                                                         : pyramid::FactorPairs::Adjacent;
-  }
+  // CLI11 has checked the names already.
+  if (given("--top-down")) settings.top_down = *pyramid::topDownModeFromString(args.top_down);
+  if (given("--pairs")) settings.factor_pairs = *pyramid::factorPairsFromString(args.pairs);
   pyramid::checkSettings(settings);
   return settings;
 }

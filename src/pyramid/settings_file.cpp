@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -52,15 +53,6 @@ void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
   read(node, "reject_ratio", ba.reject_ratio, source);
 }
 
-const char* factorPairsName(FactorPairs pairs) {
-  switch (pairs) {
-    case FactorPairs::Adjacent: return "adjacent";
-    case FactorPairs::AllPairs: return "all";
-    case FactorPairs::FromFirst: return "from_first";
-  }
-  return "adjacent";
-}
-
 nlohmann::json baToJson(const ba::BaSettings& ba) {
   return {{"voxel_size", ba.planes.voxel_size},     {"final_voxel_size", ba.final_voxel_size},
           {"eigen_ratio", ba.planes.eigen_ratio},
@@ -86,6 +78,34 @@ void checkBa(const ba::BaSettings& ba, const std::string& name) {
 }
 
 }  // namespace
+
+std::string toString(TopDownMode mode) {
+  return mode == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign";
+}
+
+std::string toString(FactorPairs pairs) {
+  switch (pairs) {
+    case FactorPairs::Adjacent: return "adjacent";
+    case FactorPairs::AllPairs: return "all";
+    case FactorPairs::FromFirst: return "from_first";
+  }
+  return "adjacent";
+}
+
+std::optional<TopDownMode> topDownModeFromString(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  if (name == "pose_graph") return TopDownMode::PoseGraph;
+  if (name == "direct_assign") return TopDownMode::DirectAssign;
+  return std::nullopt;
+}
+
+std::optional<FactorPairs> factorPairsFromString(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  if (name == "adjacent") return FactorPairs::Adjacent;
+  if (name == "all") return FactorPairs::AllPairs;
+  if (name == "from_first") return FactorPairs::FromFirst;
+  return std::nullopt;
+}
 
 void applySettingsYaml(const std::string& yaml_text, const std::string& source,
                        HbaSettings& settings) {
@@ -113,15 +133,18 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "point_sigma", settings.information.point_sigma, source);
     std::string mode;
     read(root, "top_down", mode, source);
-    if (mode == "pose_graph") settings.top_down = TopDownMode::PoseGraph;
-    else if (mode == "direct_assign") settings.top_down = TopDownMode::DirectAssign;
-    else if (!mode.empty()) bad(source, "top_down must be pose_graph or direct_assign");
+    if (!mode.empty()) {
+      const auto parsed = topDownModeFromString(mode);
+      if (!parsed) bad(source, "top_down must be pose_graph or direct_assign");
+      settings.top_down = *parsed;
+    }
     std::string pairs;
     read(root, "factor_pairs", pairs, source);
-    if (pairs == "adjacent") settings.factor_pairs = FactorPairs::Adjacent;
-    else if (pairs == "all") settings.factor_pairs = FactorPairs::AllPairs;
-    else if (pairs == "from_first") settings.factor_pairs = FactorPairs::FromFirst;
-    else if (!pairs.empty()) bad(source, "factor_pairs must be adjacent, all or from_first");
+    if (!pairs.empty()) {
+      const auto parsed = factorPairsFromString(pairs);
+      if (!parsed) bad(source, "factor_pairs must be adjacent, all or from_first");
+      settings.factor_pairs = *parsed;
+    }
     readBa(root["local"], "local", settings.local, source);
     readBa(root["global"], "global", settings.global, source);
   } catch (const YAML::Exception& e) {
@@ -164,8 +187,8 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"scan_voxel", s.scan_voxel},
           {"keyframe_voxel", s.keyframe_voxel},
           {"keyframe_voxel_growth", s.keyframe_voxel_growth},
-          {"top_down", s.top_down == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign"},
-          {"factor_pairs", factorPairsName(s.factor_pairs)},
+          {"top_down", toString(s.top_down)},
+          {"factor_pairs", toString(s.factor_pairs)},
           {"point_sigma", s.information.point_sigma},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

@@ -11,6 +11,7 @@
 //             association_rounds, reject_ratio }
 //   global: { same keys as local }
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +19,14 @@
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
+
+// Names of the modes, as in YAML ("pose_graph", "from_first"); the parsers
+// also take the command line's dashes ("pose-graph", "from-first"). They
+// return nothing for an unknown name.
+std::string toString(TopDownMode mode);
+std::string toString(FactorPairs pairs);
+std::optional<TopDownMode> topDownModeFromString(std::string name);
+std::optional<FactorPairs> factorPairsFromString(std::string name);
 
 // Applies the keys present in `yaml_text` on top of `settings`. Throws
 // hba::Error naming `source` (a file name, for messages) and the bad key.
