@@ -24,6 +24,7 @@ struct SimulateArgs {
   double drift_rotation = sim::DriftConfig{}.rotation_deg_per_m;
   double drift_z = sim::DriftConfig{}.vertical;
   bool loop_closed = false;
+  bool poses_only = false;
   double downsample = 0.0;
   bool force = false;
   std::size_t progress_every = 100;
@@ -68,6 +69,7 @@ void run(const SimulateArgs& args) {
                simulation.config.sensor.raysPerFrame());
   sim::WriteOptions options;
   options.force = args.force;
+  options.poses_only = args.poses_only;
   options.progress_every = args.progress_every;
   options.progress = [start](std::size_t done, std::size_t total) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -115,6 +117,9 @@ void registerSimulateCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--loop-closed", args->loop_closed,
                     "Initial poses = truth + small independent noise (no drift)");
+  command->add_flag("--poses-only", args->poses_only,
+                    "Write pose.json, gt.txt and sim.yaml but no scans (same bytes as a full "
+                    "run; pair with optimize --poses to reuse another run's scans)");
   command->add_option("--downsample", args->downsample,
                       "Voxel size in m to thin each scan (0 = keep every return)")
       ->capture_default_str();

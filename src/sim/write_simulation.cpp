@@ -13,12 +13,10 @@
 namespace hba::sim {
 namespace fs = std::filesystem;
 
-void writeSimulation(const Simulation& simulation, const fs::path& output,
-                     const WriteOptions& options) {
-  StagingFolder staging(output, options.force);
-  const fs::path scans = staging.path() / "pcd";
-  fs::create_directory(scans);
+namespace {
 
+void writeScans(const Simulation& simulation, const fs::path& scans, const WriteOptions& options) {
+  fs::create_directory(scans);
   const std::size_t frames = simulation.truth.size();
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
@@ -41,15 +39,26 @@ void writeSimulation(const Simulation& simulation, const fs::path& output,
   if (options.progress && (options.progress_every == 0 || frames % options.progress_every != 0)) {
     options.progress(frames, frames);
   }
+}
 
-  // The small files last: even inside the staging folder, a dataset without
-  // pose.json does not look complete.
-  io::writePoses(staging.path() / "gt.txt", simulation.truth, io::PoseFormat::Tum);
-  writeSimulationYaml(simulation, staging.path() / "sim.yaml");
+// The small files last: even inside the staging folder, a dataset without
+// pose.json does not look complete.
+void writePoseFiles(const Simulation& simulation, const fs::path& dir) {
+  io::writePoses(dir / "gt.txt", simulation.truth, io::PoseFormat::Tum);
+  writeSimulationYaml(simulation, dir / "sim.yaml");
   Trajectory initial;
   initial.poses = simulation.initial;
   initial.stamps = simulation.truth.stamps;
-  io::writePoses(staging.path() / "pose.json", initial, io::PoseFormat::Hba);
+  io::writePoses(dir / "pose.json", initial, io::PoseFormat::Hba);
+}
+
+}  // namespace
+
+void writeSimulation(const Simulation& simulation, const fs::path& output,
+                     const WriteOptions& options) {
+  StagingFolder staging(output, options.force);
+  if (!options.poses_only) writeScans(simulation, staging.path() / "pcd", options);
+  writePoseFiles(simulation, staging.path());
   staging.commit();
 }
 

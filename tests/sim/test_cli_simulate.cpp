@@ -1,5 +1,6 @@
 // `hba simulate` run as a user would: the dataset it writes is readable by
-// `hba info`, and the thread count never changes a byte.
+// `hba info`, the thread count never changes a byte, and --poses-only writes
+// the pose files of a full run.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -45,6 +46,21 @@ TEST(CliSimulate, OneAndTwoThreadsWriteTheSameBytes) {
   const auto a = snapshot(dir / "a");
   EXPECT_EQ(a.size(), 28u);
   EXPECT_TRUE(a == snapshot(dir / "b"));
+}
+
+TEST(CliSimulate, PosesOnlyWritesAFullRunsPoseFilesWithoutScans) {
+  hba::test::TempDir dir;
+  const std::string flags = simulate("") + " --loop-closed -o ";
+  ASSERT_EQ(runCommand(flags + (dir / "full").string()).exit_code, 0);
+  const auto made = runCommand(flags + (dir / "poses").string() + " --poses-only");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
+  const auto full = snapshot(dir / "full");
+  const auto poses = snapshot(dir / "poses");
+  ASSERT_EQ(poses.size(), 3u);
+  for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {
+    EXPECT_EQ(poses.at(name), full.at(name)) << name;
+  }
 }
 
 TEST(CliSimulate, RefusesToOverwriteAndRejectsBadFlags) {

@@ -95,6 +95,43 @@ TEST(SimOutput, SameSeedSameBytesWithOneOrTwoThreads) {
   EXPECT_NE(snapshot(dir / "other").at("pcd/000003.pcd"), one.at("pcd/000003.pcd"));
 }
 
+Simulation tinyLoopClosedSimulation() {
+  SimulationConfig config = tinySimulation().config;
+  config.drift.loop_closed = true;
+  return prepareSimulation(config);
+}
+
+TEST(SimOutput, ScansDoNotDependOnTheDriftModel) {
+  hba::test::TempDir dir;
+  writeSimulation(tinySimulation(), dir / "drift", WriteOptions{});
+  writeSimulation(tinyLoopClosedSimulation(), dir / "loop", WriteOptions{});
+  const auto drift = snapshot(dir / "drift");
+  const auto loop = snapshot(dir / "loop");
+  ASSERT_EQ(drift.size(), loop.size());
+  EXPECT_NE(drift.at("pose.json"), loop.at("pose.json"));
+  for (const auto& [name, bytes] : drift) {
+    if (name.rfind("pcd/", 0) == 0) {
+      EXPECT_EQ(bytes, loop.at(name)) << name;
+    }
+  }
+}
+
+TEST(SimOutput, PosesOnlyWritesTheSamePoseFilesAndNoScans) {
+  hba::test::TempDir dir;
+  writeSimulation(tinyLoopClosedSimulation(), dir / "full", WriteOptions{});
+  WriteOptions poses_only;
+  poses_only.poses_only = true;
+  writeSimulation(tinyLoopClosedSimulation(), dir / "poses", poses_only);
+
+  const auto full = snapshot(dir / "full");
+  const auto poses = snapshot(dir / "poses");
+  EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
+  ASSERT_EQ(poses.size(), 3u);
+  for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {
+    EXPECT_EQ(poses.at(name), full.at(name)) << name;
+  }
+}
+
 TEST(SimOutput, RefusesANonEmptyFolderUnlessForced) {
   hba::test::TempDir dir;
   fs::create_directory(dir / "data");

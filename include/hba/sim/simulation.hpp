@@ -53,11 +53,14 @@ using ProgressCallback = std::function<void(std::size_t, std::size_t)>;
 
 struct WriteOptions {
   bool force = false;  // replace a non-empty output folder
+  // pose.json, gt.txt and sim.yaml only, no pcd/: the scans depend on neither
+  // the drift model nor its rates, so one set of scans serves several.
+  bool poses_only = false;
   std::size_t progress_every = 100;
   ProgressCallback progress;
 };
 
-// Writes the dataset into `output`. Refuses a non-empty existing folder
+// Writes the dataset into `output` (without pcd/ if `poses_only`). Refuses a non-empty existing folder
 // unless `force`. Everything is written into a hidden staging folder beside
 // `output` that is renamed into place only when complete, so a killed run
 // never leaves a dataset that looks finished. Throws hba::Error.
