@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages hba needs to build, test and benchmark.
 # Idempotent: apt-get skips what is already installed. Needs root (or sudo).
+# --bench adds what scripts/benchmark.sh needs: python3 and gnuplot (the plot).
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,11 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev libnanoflann-dev liblzf-dev
 )
+case "${1:-}" in
+  "") ;;
+  --bench) packages+=(python3 gnuplot-nox) ;;
+  *) echo "usage: $0 [--bench]" >&2; exit 2 ;;
+esac
 
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi

@@ -1,0 +1,64 @@
+"""The commands the benchmark runs: hba (simulate, optimize, eval, mme) and io_floor."""
+import json
+import re
+import shlex
+
+import process
+
+MME_LINE = re.compile(r"^MME (\S+)", re.MULTILINE)
+
+
+class Tools:
+    """Builds and runs the command lines; remembers each distinct one it ran, in order."""
+
+    def __init__(self, hba, io_floor, jobs):
+        self.hba = str(hba)
+        self.io_floor_path = str(io_floor)
+        self.jobs = jobs
+        self.history = []
+
+    def _hba(self, *args):
+        return [self.hba, "-q", "-j", str(self.jobs), *map(str, args)]
+
+    def _run(self, argv):
+        line = shlex.join(argv)
+        if line not in self.history:
+            self.history.append(line)
+        return process.run(argv)
+
+    def simulate_argv(self, flags, output):
+        return self._hba("simulate", *flags, "-o", output, "--force")
+
+    def simulate(self, flags, output):
+        self._run(self.simulate_argv(flags, output))
+
+    def optimize(self, dataset, pose_args, output):
+        """Returns (Usage of the optimize process, its report.json)."""
+        _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, "--no-render"))
+        with open(output / "report.json", encoding="utf-8") as report:
+            return usage, json.load(report)
+
+    def eval(self, ground_truth, estimate, json_path):
+        """ATE and RPE (RMSE) of estimate against ground_truth."""
+        self._run(self._hba("eval", "--gt", ground_truth, "--est", estimate, "--json", json_path))
+        with open(json_path, encoding="utf-8") as file:
+            result = json.load(file)
+        return {
+            "ate_translation_m": result["ate"]["translation_m"]["rmse"],
+            "ate_rotation_deg": result["ate"]["rotation_deg"]["rmse"],
+            "rpe_translation_m": result["rpe"]["translation_m"]["rmse"],
+            "rpe_rotation_deg": result["rpe"]["rotation_deg"]["rmse"],
+        }
+
+    def mme(self, dataset, pose_args):
+        """Mean map entropy of the dataset's map with the given poses (lower = crisper)."""
+        stdout, _ = self._run(self._hba("mme", dataset, *pose_args))
+        match = MME_LINE.search(stdout)
+        if not match:
+            raise process.CommandFailed([self.hba, "mme", str(dataset)], "no 'MME <value>' line", stdout)
+        return float(match.group(1))
+
+    def io_floor(self, dataset, voxel):
+        argv = [self.io_floor_path, str(dataset), "--voxel", str(voxel), "-j", str(self.jobs)]
+        stdout, _ = self._run(argv)
+        return json.loads(stdout)
