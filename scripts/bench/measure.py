@@ -1,5 +1,6 @@
 """Measures one scenario: the I/O floor, accuracy before, K optimize runs, accuracy after."""
 import datetime
+import os
 import shutil
 
 SCAN_VOXEL_M = 0.1  # optimize's default --scan-voxel: the floor reads what optimize reads
@@ -12,7 +13,9 @@ def measure_scenario(scenario, inputs, tools, runs, work_dir, log):
     """Returns the raw record of one scenario (every number the report uses)."""
     tools.history.clear()
     record = {**scenario.describe(), "runs": [],
-              "measured_at": datetime.datetime.now().astimezone().isoformat(timespec="minutes")}
+              "measured_at": datetime.datetime.now().astimezone().isoformat(timespec="minutes"),
+              # Other work on the machine slows every figure: the report shows it.
+              "load_average_1min": os.getloadavg()[0]}
     log("I/O floor")
     record["io_floor"] = tools.io_floor(inputs.dataset, SCAN_VOXEL_M)
     out = work_dir / scenario.name

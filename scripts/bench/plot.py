@@ -30,15 +30,15 @@ def _script(records, summaries, png):
         style = f"with linespoints lw {width} pt 7 lc '{colour}' title '{title}'"
         time_plots.append(f"${variant} using 1:2 {style}")
         memory_plots.append(f"${variant} using 1:3 {style}")
-        if variant == "drift":
-            time_plots.append("$drift using 1:4 with linespoints dt 2 pt 6 lc 'gray40' "
-                              "title 'I/O floor (read + downsample)'")
+    if _series_rows(records, summaries, "drift"):  # the floor is drawn for the drift datasets
+        time_plots.append("$drift using 1:4 with linespoints dt 2 pt 6 lc 'gray40' "
+                          "title 'I/O floor (read + downsample)'")
     budget = analysis.TIME_BUDGET_FRACTION / FRAME_RATE_HZ
     time_plots.append(f"{budget} * x with lines dt 3 lc 'black' title 'target: 5 % of duration'")
     memory_plots.append(f"{analysis.MEMORY_TARGET_MIB / 1024} with lines dt 3 lc 'black' title 'target: 4 GiB'")
     return "\n".join([
         *blocks,
-        f"set terminal png size 1200,480 font ',10'",
+        "set terminal png size 1200,480 font ',10'",
         f"set output '{png}'",
         "set multiplot layout 1,2 title 'hba optimize on simulated HDL-32 sequences (10 Hz)'",
         "set grid", "set key top left", "set xlabel 'frames N'", "set xrange [0:*]", "set yrange [0:*]",

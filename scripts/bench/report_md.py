@@ -64,13 +64,16 @@ def _time_and_memory(context):
         rows.append((f"`{name}`", record["frames"], len(record["runs"]), seconds(s["wall_s"]),
                      seconds(s["cpu_s"]), f"{s['cpu_s'] / s['wall_s']:.2f}",
                      f"{s['peak_rss_mib']:.0f}", f"{s['per_frame_ms']:.1f}",
-                     seconds(s["floor_s"]), f"{s['floor_ratio']:.1f}x", record["measured_at"]))
+                     seconds(s["floor_s"]), f"{s['floor_ratio']:.1f}x",
+                     f"{record['load_average_1min']:.1f}", record["measured_at"]))
     return ("### Time and memory of `hba optimize`\n\n"
             "Medians over the runs counted in `runs`; wall, CPU (user + system) and peak RSS of the"
             " optimize process (`wait4`). I/O floor: `io_floor`, reading and downsampling every"
-            " scan once (0.1 m, as optimize) with the same threads.\n\n"
+            " scan once (0.1 m, as optimize) with the same threads. Load: the 1-minute load average"
+            " as the scenario started (the harness's previous step included); figures taken at a"
+            " load above the core count are pessimistic.\n\n"
             + table(("scenario", "frames", "runs", "wall (s)", "CPU (s)", "CPU / wall",
-                     "peak RSS (MiB)", "ms / frame", "I/O floor (s)", "total / floor",
+                     "peak RSS (MiB)", "ms / frame", "I/O floor (s)", "total / floor", "load",
                      "measured"), rows))
 
 
