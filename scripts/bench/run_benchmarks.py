@@ -29,27 +29,32 @@ REPEATED_MAX_FRAMES = 1000
 
 
 def parse_args(argv):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].replace("\n", " "))
     parser.add_argument("--quick", action="store_true",
                         help="tiny scenarios (HDL-32 100/200 frames, Livox 100, hku1), one run each")
-    parser.add_argument("--only", help="comma-separated scenario names to run (others keep their "
-                                       "previous results)")
+    parser.add_argument("--only", help="comma-separated scenario names to run, e.g. "
+                                       "sim-hdl32-1000-drift,hku1 (the others keep their previous "
+                                       "results)")
     parser.add_argument("--runs", type=int, help="optimize runs per scenario (default: 3 up to "
                                                  f"{REPEATED_MAX_FRAMES} frames, else 1; --quick: 1)")
     parser.add_argument("--data-dir", type=Path,
                         default=Path(os.environ.get("HBA_BENCH_DATA", "/work/hba-bench-data")),
                         help="simulated data and run outputs (default: $HBA_BENCH_DATA or "
                              "/work/hba-bench-data)")
-    parser.add_argument("--hba", type=Path, default=REPO / "build/bin/hba")
-    parser.add_argument("--io-floor", type=Path, default=REPO / "build/bin/io_floor")
+    parser.add_argument("--hba", type=Path, default=REPO / "build/bin/hba", help="the hba tool")
+    parser.add_argument("--io-floor", type=Path, default=REPO / "build/bin/io_floor",
+                        help="the io_floor tool (bench/io)")
     parser.add_argument("--hku1", type=Path, default=REPO.parent / "shared/data/hku1",
                         help="the real hku1 sequence (skipped when absent)")
-    parser.add_argument("--output", type=Path, default=REPO / "BENCHMARKS.md")
-    parser.add_argument("--results-dir", type=Path, default=REPO / "bench/results")
+    parser.add_argument("--output", type=Path, default=REPO / "BENCHMARKS.md",
+                        help="the Markdown file whose generated section is rewritten")
+    parser.add_argument("--results-dir", type=Path, default=REPO / "bench/results",
+                        help="where results.json and scaling.png go")
     parser.add_argument("--jobs", type=int, default=2, help="threads (-j) of every command")
     args = parser.parse_args(argv)
     if args.runs is not None and args.runs < 1:
         parser.error("--runs must be at least 1")
+    args.data_dir = args.data_dir.resolve()  # commands name it in full; the report shortens it
     return args
 
 
@@ -114,35 +119,40 @@ def measure_all(args, scenarios, records, log):
     return failures
 
 
+def draw_plot(args, records, summaries, log):
+    """Returns the plot's path, or None when gnuplot is missing."""
+    png = args.results_dir / "scaling.png"
+    if plot.draw(records, summaries, png):
+        return png
+    png.unlink(missing_ok=True)  # an older picture would no longer match the tables
+    log("no plot: gnuplot is not installed (bash scripts/install_deps.sh --bench)")
+    return None
+
+
 def write_outputs(args, scenarios, records, failures, log):
     """results.json, the plot and BENCHMARKS.md; returns the accuracy regressions."""
     summaries = {name: analysis.summarize(record) for name, record in records.items()}
-    regressions = [message for name, record in records.items()
-                   for message in analysis.accuracy_regressions(name, record)]
     description = machine.describe(args.hba.resolve().parents[1], REPO)
     args.results_dir.mkdir(parents=True, exist_ok=True)
     report_md.write_atomically(args.results_dir / "results.json", json.dumps(
         {"machine": description, "quick": args.quick, "jobs": args.jobs, "records": records,
          "failures": failures}, indent=2) + "\n")
-
-    png = args.results_dir / "scaling.png"
-    drawn = plot.draw(records, summaries, png)
-    if not drawn:
-        log("no plot: gnuplot is not installed (bash scripts/install_deps.sh --bench)")
+    png = draw_plot(args, records, summaries, log)
+    regressions = {name: analysis.accuracy_regressions(name, record)
+                   for name, record in records.items()}
     data_dir, repo = str(args.data_dir), str(REPO) + "/"
     context = {
         "machine": description, "jobs": args.jobs, "quick": args.quick, "records": records,
         "summaries": summaries, "failures": failures,
-        "regressed": {name for name, record in records.items()
-                      if analysis.accuracy_regressions(name, record)},
+        "regressed": {name for name, messages in regressions.items() if messages},
         "missing": [s.name for s in scenarios if s.name not in records and s.name not in failures],
-        "plot": os.path.relpath(png, args.output.resolve().parent) if drawn else None,
+        "plot": os.path.relpath(png, args.output.resolve().parent) if png else None,
         "shorten": lambda line: line.replace(data_dir, "$DATA").replace(repo, ""),
     }
     document = args.output.read_text(encoding="utf-8") if args.output.exists() else ""
     report_md.write_atomically(args.output, report_md.splice(document, report_md.render(context)))
     log(f"wrote {args.output}, {args.results_dir / 'results.json'}")
-    return regressions
+    return [message for messages in regressions.values() for message in messages]
 
 
 def main(argv):
