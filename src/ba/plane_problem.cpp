@@ -17,6 +17,11 @@ PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num
         throw Error("plane problem: plane " + std::to_string(p) + " names frame " +
                     std::to_string(clusters[a].frame) + " of " + std::to_string(num_frames_));
       }
+      // linearize() relies on this order to build only half the Hessian.
+      if (a > 0 && clusters[a].frame <= clusters[a - 1].frame) {
+        throw Error("plane problem: plane " + std::to_string(p) +
+                    " lists its frames out of order or twice");
+      }
       uses_[clusters[a].frame].emplace_back(p, a);
     }
   }
@@ -51,6 +56,8 @@ Linearization PlaneProblem::linearize(const std::vector<Pose>& poses) const {
   // Block row i gathers, in plane order, every plane that sees frame i; only
   // the pairs of frames that share a plane are touched. Rows are disjoint, so
   // threads never write the same entry and the sums have a fixed order.
+  // Clusters come in ascending frame order, so b >= a gives the blocks on and
+  // right of the diagonal; the rest is their mirror image (half the work).
   tbb::parallel_for(std::size_t{0}, num_frames_, [&](std::size_t i) {
     for (const auto& [p, a] : uses_[i]) {
       const PlaneLinearization& lin = per_plane[p];
@@ -59,12 +66,13 @@ Linearization PlaneProblem::linearize(const std::vector<Pose>& poses) const {
       out.hessian.block<6, 6>(6 * i, 6 * i) += lin.diagonal[a];
       const Eigen::Matrix<double, 6, 3> left =
           lin.Z.middleCols<6>(6 * a).transpose() * lin.weights.asDiagonal();
-      for (std::size_t b = 0; b < clusters.size(); ++b) {
+      for (std::size_t b = a; b < clusters.size(); ++b) {
         const std::size_t j = clusters[b].frame;
         out.hessian.block<6, 6>(6 * i, 6 * j).noalias() += left * lin.Z.middleCols<6>(6 * b);
       }
     }
   });
+  out.hessian.triangularView<Eigen::StrictlyLower>() = out.hessian.transpose();
   return out;
 }
 

@@ -69,13 +69,19 @@ std::vector<double> planeRms(const PlaneProblem& problem, const std::vector<Pose
 }
 
 std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
-    const std::vector<voxel::PlaneFeature>& features, std::size_t num_frames) {
-  std::vector<std::vector<std::uint32_t>> indices(num_frames);
+    const std::vector<voxel::PlaneFeature>& features, const std::vector<const PointCloud*>& scans) {
+  // Marks instead of sorting: linear in the points, and keyframes hold millions.
+  std::vector<std::vector<bool>> used(scans.size());
+  for (std::size_t f = 0; f < scans.size(); ++f) used[f].assign(scans[f]->size(), false);
   for (const voxel::PlaneFeature& feature : features) {
-    for (const voxel::PointRef& ref : feature.points) indices[ref.frame].push_back(ref.index);
+    for (const voxel::PointRef& ref : feature.points) used[ref.frame][ref.index] = true;
   }
-  // Voxels are disjoint, so no point is listed twice.
-  for (auto& list : indices) std::sort(list.begin(), list.end());
+  std::vector<std::vector<std::uint32_t>> indices(scans.size());
+  for (std::size_t f = 0; f < scans.size(); ++f) {
+    for (std::size_t i = 0; i < used[f].size(); ++i) {
+      if (used[f][i]) indices[f].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
   return indices;
 }
 
@@ -119,7 +125,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
   }
   result.plane_rms_initial = planeRms(last.problem, initial);
   result.plane_rms_final = planeRms(last.problem, result.poses);
-  result.plane_point_indices = pointIndicesPerFrame(last.features, initial.size());
+  result.plane_point_indices = pointIndicesPerFrame(last.features, scans);
   return result;
 }
 

@@ -1,13 +1,15 @@
 #include "hba/voxel/plane_map.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
-#include <unordered_map>
 
 #include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "cell_assignment.hpp"
 #include "hba/core/error.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
@@ -47,26 +49,35 @@ WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans,
   return world;
 }
 
+// A run of point ids, ascending, inside one cell.
+struct IdSpan {
+  std::uint32_t* begin;
+  std::uint32_t* end;
+  std::size_t size() const { return static_cast<std::size_t>(end - begin); }
+};
+
 // Eigenvalues (ascending) of the covariance of the points `ids`.
-Vec3 covarianceEigenvalues(const WorldPoints& world, const std::vector<std::uint32_t>& ids) {
+Vec3 covarianceEigenvalues(const WorldPoints& world, IdSpan ids) {
   Vec3 mean = Vec3::Zero();
-  for (std::uint32_t id : ids) mean += world.position[id].cast<double>();
+  for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
+    mean += world.position[*id].cast<double>();
+  }
   mean /= static_cast<double>(ids.size());
   Mat3 cov = Mat3::Zero();
-  for (std::uint32_t id : ids) {
-    const Vec3 d = world.position[id].cast<double>() - mean;
+  for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
+    const Vec3 d = world.position[*id].cast<double>() - mean;
     cov.noalias() += d * d.transpose();
   }
   cov /= static_cast<double>(ids.size());
   return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
-int countFrames(const WorldPoints& world, const std::vector<std::uint32_t>& ids) {
+int countFrames(const WorldPoints& world, IdSpan ids) {
   int frames = 0;
   std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
-  for (std::uint32_t id : ids) {  // ids are sorted, so frames come in runs
-    if (world.frame[id] != last) ++frames;
-    last = world.frame[id];
+  for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {  // frames come in runs
+    if (world.frame[*id] != last) ++frames;
+    last = world.frame[*id];
   }
   return frames;
 }
@@ -77,7 +88,9 @@ class OctreeSplitter {
       : world_(world), settings_(settings) {}
 
   // Tests the cell [corner, corner + edge)^3 holding `ids`; appends its planes.
-  void visit(const std::vector<std::uint32_t>& ids, const Vec3& corner, double edge, int depth,
+  // Splitting reorders `ids` in place (stable, so each octant stays ascending);
+  // `scratch` must hold at least ids.size() entries.
+  void visit(IdSpan ids, const Vec3& corner, double edge, int depth, std::uint32_t* scratch,
              std::vector<PlaneFeature>& out) const {
     if (static_cast<int>(ids.size()) < settings_.min_points) return;
     if (passesPlaneTest(covarianceEigenvalues(world_, ids), settings_)) {
@@ -87,28 +100,34 @@ class OctreeSplitter {
     if (depth >= settings_.max_depth) return;
     const double half = 0.5 * edge;
     const Vec3 center = corner + Vec3::Constant(half);
-    std::vector<std::uint32_t> octants[8];
-    for (std::uint32_t id : ids) {
+    const auto octantOf = [&](std::uint32_t id) {
       const Vec3f& p = world_.position[id];
-      const int octant = (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) |
-                         (p.z() >= center.z() ? 4 : 0);
-      octants[octant].push_back(id);
-    }
+      return (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) |
+             (p.z() >= center.z() ? 4 : 0);
+    };
+    std::array<std::size_t, 9> start{};
+    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) ++start[octantOf(*id) + 1];
+    for (int o = 0; o < 8; ++o) start[o + 1] += start[o];
+    std::array<std::size_t, 8> fill{};
+    std::copy(start.begin(), start.end() - 1, fill.begin());
+    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) scratch[fill[octantOf(*id)]++] = *id;
+    std::copy(scratch, scratch + ids.size(), ids.begin);
     for (int o = 0; o < 8; ++o) {
       const Vec3 child_corner = corner + half * Vec3((o & 1) ? 1 : 0, (o & 2) ? 1 : 0,
                                                      (o & 4) ? 1 : 0);
-      visit(octants[o], child_corner, half, depth + 1, out);
+      visit({ids.begin + start[o], ids.begin + start[o + 1]}, child_corner, half, depth + 1,
+            scratch, out);
     }
   }
 
  private:
-  PlaneFeature toFeature(const std::vector<std::uint32_t>& ids, int depth) const {
+  PlaneFeature toFeature(IdSpan ids, int depth) const {
     PlaneFeature feature;
     feature.depth = depth;
     feature.points.reserve(ids.size());
-    for (std::uint32_t id : ids) {
-      const std::uint32_t f = world_.frame[id];
-      feature.points.push_back({f, static_cast<std::uint32_t>(id - world_.first[f])});
+    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
+      const std::uint32_t f = world_.frame[*id];
+      feature.points.push_back({f, static_cast<std::uint32_t>(*id - world_.first[f])});
     }
     return feature;
   }
@@ -149,18 +168,13 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
   validate(scans, poses, settings);
   const WorldPoints world = placeInWorld(scans, poses);
 
-  // Root voxels; each id list stays sorted because ids are visited in order.
-  std::unordered_map<VoxelKey, std::size_t, VoxelKeyHash> voxel_of_key;
-  std::vector<VoxelKey> keys;
-  std::vector<std::vector<std::uint32_t>> members;
-  for (std::size_t id = 0; id < world.position.size(); ++id) {
-    const VoxelKey key = VoxelKey::of(world.position[id].cast<double>(), settings.voxel_size);
-    const auto [it, inserted] = voxel_of_key.try_emplace(key, keys.size());
-    if (inserted) {
-      keys.push_back(key);
-      members.emplace_back();
-    }
-    members[it->second].push_back(static_cast<std::uint32_t>(id));
+  // Root voxels, their ids ascending (counting sort by cell).
+  const CellAssignment cells = assignCells(world.position, settings.voxel_size);
+  CellMembers members = membersOf(cells);
+  std::vector<VoxelKey> keys(cells.cells());
+  for (std::size_t c = 0; c < keys.size(); ++c) {
+    keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(),
+                           settings.voxel_size);
   }
 
   // Visit voxels in key order so the output never depends on the hash.
@@ -171,12 +185,20 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
 
   const OctreeSplitter splitter(world, settings);
   std::vector<std::vector<PlaneFeature>> per_voxel(order.size());
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t i) {
-    const VoxelKey& key = keys[order[i]];
-    const Vec3 corner = settings.voxel_size * Vec3(static_cast<double>(key.x),
-                                                   static_cast<double>(key.y),
-                                                   static_cast<double>(key.z));
-    splitter.visit(members[order[i]], corner, settings.voxel_size, 0, per_voxel[i]);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    std::vector<std::uint32_t> scratch;
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const std::size_t cell = order[i];
+      const VoxelKey& key = keys[cell];
+      const Vec3 corner = settings.voxel_size * Vec3(static_cast<double>(key.x),
+                                                     static_cast<double>(key.y),
+                                                     static_cast<double>(key.z));
+      const IdSpan ids{members.ids.data() + members.begin[cell],
+                       members.ids.data() + members.begin[cell + 1]};
+      if (scratch.size() < ids.size()) scratch.resize(ids.size());
+      splitter.visit(ids, corner, settings.voxel_size, 0, scratch.data(), per_voxel[i]);
+    }
   });
 
   std::vector<PlaneFeature> planes;

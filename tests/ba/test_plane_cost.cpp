@@ -5,6 +5,7 @@
 
 #include "hba/ba/plane_cost.hpp"
 #include "hba/ba/plane_problem.hpp"
+#include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "pointwise_plane_cost.hpp"
 #include "random_planes.hpp"
@@ -115,6 +116,19 @@ TEST(PlaneProblem, AssembledDerivativesMatchFiniteDifferences) {
   EXPECT_LT(relativeError(lin.gradient, numericGradient(cost, poses, 1e-6)), 1e-5);
   EXPECT_LT(relativeError(lin.hessian, numericHessian(cost, poses, 1e-4)), 1e-5);
   EXPECT_LT((lin.hessian - lin.hessian.transpose()).norm(), 1e-12 * lin.hessian.norm());
+}
+
+// linearize() builds half the Hessian from the frame order, so a plane whose
+// clusters are out of order (or repeat a frame) must be refused, not summed wrong.
+TEST(PlaneProblem, RefusesClustersOutOfFrameOrder) {
+  std::mt19937 rng(5);
+  const std::vector<Pose> poses = randomPoses(rng, 3, 4.0);
+  PlaneObservation plane = randomPlane(rng, poses, {0, 2}, 25, 0.04).observation;
+  EXPECT_NO_THROW(PlaneProblem({plane}, 3));
+  std::swap(plane.clusters[0], plane.clusters[1]);
+  EXPECT_THROW(PlaneProblem({plane}, 3), Error);
+  plane.clusters[0].frame = plane.clusters[1].frame;
+  EXPECT_THROW(PlaneProblem({plane}, 3), Error);
 }
 
 TEST(PlaneProblem, CostIsInvariantToARigidMotionOfAllFrames) {

@@ -22,7 +22,8 @@ struct Linearization {
 
 class PlaneProblem {
  public:
-  // Throws hba::Error if a plane names a frame >= num_frames.
+  // Throws hba::Error if a plane names a frame >= num_frames, or lists its
+  // clusters other than in strictly ascending frame order.
   PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames);
 
   std::size_t numFrames() const { return num_frames_; }

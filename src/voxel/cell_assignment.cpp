@@ -1,0 +1,165 @@
+#include "cell_assignment.hpp"
+
+#include <limits>
+
+#include "hba/voxel/voxel_key.hpp"
+
+namespace hba::voxel {
+namespace {
+
+// Cell keys packed into one 64-bit word when the cloud spans fewer than 2^21
+// cells per axis (200 km at 0.1 m), relative to its lowest cell so that
+// far-from-origin (UTM) coordinates pack too. Anything else uses full keys.
+constexpr int kPackedBits = 21;
+constexpr std::int64_t kPackedSpan = std::int64_t{1} << kPackedBits;
+
+std::uint64_t mix(std::uint64_t h) {
+  // Finalizer of MurmurHash3: spreads every input bit over the low bits the
+  // power-of-two table uses.
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdULL;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ULL;
+  return h ^ (h >> 33);
+}
+
+std::uint64_t hashOf(std::uint64_t packed) { return mix(packed); }
+std::uint64_t hashOf(const VoxelKey& key) {
+  return mix(static_cast<std::uint64_t>(key.x) ^ mix(static_cast<std::uint64_t>(key.y) ^
+                                                     mix(static_cast<std::uint64_t>(key.z))));
+}
+
+// Open-addressing table from cell key to cell number. It starts small and
+// doubles at half load: clouds range from one cell per point (fine scan
+// voxels) to thousands of points per cell (4 m plane voxels), and a table
+// sized for the worst case would spend its time on page faults.
+template <typename Key>
+class CellTable {
+ public:
+  // Room for points / 4 cells before the first doubling: scans downsampled
+  // at 0.1 m keep about that share, plane voxels far fewer.
+  explicit CellTable(std::size_t points) {
+    std::size_t capacity = kMinCapacity;
+    while (capacity < points / 2) capacity *= 2;
+    slots_.resize(capacity);
+  }
+
+  // Starts loading the slot of a key needed soon: a large table misses the
+  // caches, and hiding that miss is most of the speed.
+  void prefetch(const Key& key) const { __builtin_prefetch(&slots_[slotOf(key)]); }
+
+  // The cell number of `key`, or `next` (recorded) if the key is new.
+  std::uint32_t find(const Key& key, std::uint32_t next) {
+    Slot& slot = probe(key);
+    if (slot.cell != kEmpty) return slot.cell;
+    slot = {key, next};
+    if (2 * ++used_ > slots_.size()) grow();
+    return next;
+  }
+
+ private:
+  static constexpr std::uint32_t kEmpty = std::numeric_limits<std::uint32_t>::max();
+  static constexpr std::size_t kMinCapacity = 1024;
+  struct Slot {  // key and cell side by side: one cache line per probe
+    Key key{};
+    std::uint32_t cell = kEmpty;
+  };
+
+  std::size_t slotOf(const Key& key) const { return hashOf(key) & (slots_.size() - 1); }
+
+  // The slot holding `key`, or the empty slot where it belongs.
+  Slot& probe(const Key& key) {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t i = slotOf(key);; i = (i + 1) & mask) {
+      Slot& slot = slots_[i];
+      if (slot.cell == kEmpty || slot.key == key) return slot;
+    }
+  }
+
+  void grow() {
+    std::vector<Slot> old(2 * slots_.size());
+    old.swap(slots_);
+    for (const Slot& slot : old) {
+      if (slot.cell != kEmpty) probe(slot.key) = slot;
+    }
+  }
+
+  std::vector<Slot> slots_;
+  std::size_t used_ = 0;
+};
+
+template <typename Key>
+CellAssignment assignKeys(const std::vector<Key>& keys) {
+  constexpr std::size_t kLookahead = 16;  // points between a prefetch and its use
+  const std::size_t n = keys.size();
+  CellTable<Key> table(n);
+  CellAssignment out;
+  out.cell_of_point.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + kLookahead < n) table.prefetch(keys[i + kLookahead]);
+    const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+    const std::uint32_t cell = table.find(keys[i], next);
+    if (cell == next) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
+    out.cell_of_point[i] = cell;
+  }
+  return out;
+}
+
+// The lowest cell of a cloud and whether all its cells pack into 64 bits.
+struct CellBounds {
+  VoxelKey low;
+  bool packable = false;
+};
+
+CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
+  Vec3f low = Vec3f::Constant(std::numeric_limits<float>::max());
+  Vec3f high = Vec3f::Constant(std::numeric_limits<float>::lowest());
+  bool finite = true;
+  for (const Vec3f& p : points) {
+    finite = finite && p.allFinite();
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  CellBounds bounds;
+  if (!finite || points.empty()) return bounds;
+  bounds.low = VoxelKey::of(low.cast<double>(), size);
+  const VoxelKey top = VoxelKey::of(high.cast<double>(), size);
+  bounds.packable = top.x - bounds.low.x < kPackedSpan && top.y - bounds.low.y < kPackedSpan &&
+                    top.z - bounds.low.z < kPackedSpan;
+  return bounds;
+}
+
+}  // namespace
+
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size) {
+  const auto keyOf = [&](std::size_t i) { return VoxelKey::of(points[i].cast<double>(), size); };
+  const CellBounds bounds = boundsOf(points, size);
+  if (!bounds.packable) {
+    std::vector<VoxelKey> keys(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) keys[i] = keyOf(i);
+    return assignKeys(keys);
+  }
+  std::vector<std::uint64_t> keys(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const VoxelKey key = keyOf(i);
+    keys[i] = static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
+              static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
+              static_cast<std::uint64_t>(key.z - bounds.low.z);
+  }
+  return assignKeys(keys);
+}
+
+CellMembers membersOf(const CellAssignment& assignment) {
+  CellMembers out;
+  out.begin.assign(assignment.cells() + 1, 0);
+  for (std::uint32_t cell : assignment.cell_of_point) ++out.begin[cell + 1];
+  for (std::size_t c = 0; c < assignment.cells(); ++c) out.begin[c + 1] += out.begin[c];
+  std::vector<std::uint32_t> fill(out.begin.begin(), out.begin.end() - 1);
+  out.ids.resize(assignment.cell_of_point.size());
+  for (std::size_t i = 0; i < assignment.cell_of_point.size(); ++i) {
+    out.ids[fill[assignment.cell_of_point[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  return out;
+}
+
+}  // namespace hba::voxel

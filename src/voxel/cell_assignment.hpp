@@ -1,0 +1,29 @@
+#pragma once
+// Which grid cell each point of a cloud falls in, numbered in the order the
+// cells are first hit. Shared by downsampling and plane extraction, which
+// both group every point of a large cloud by cell.
+#include <cstdint>
+#include <vector>
+
+#include "hba/core/types.hpp"
+
+namespace hba::voxel {
+
+struct CellAssignment {
+  std::vector<std::uint32_t> cell_of_point;       // one per point
+  std::vector<std::uint32_t> first_point_of_cell;  // one per cell, ascending
+  std::size_t cells() const { return first_point_of_cell.size(); }
+};
+
+// Cells of edge `size` (half-open [k*size, (k+1)*size), as VoxelKey::of).
+// Non-finite points land in the edge cells VoxelKey gives them.
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size);
+
+// Point ids grouped by cell (counting sort: ids ascend within each cell).
+struct CellMembers {
+  std::vector<std::uint32_t> begin;  // cells + 1 offsets into ids
+  std::vector<std::uint32_t> ids;
+};
+CellMembers membersOf(const CellAssignment& assignment);
+
+}  // namespace hba::voxel
