@@ -39,16 +39,21 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                   const LmSettings& settings) {
   LmSummary summary;
-  Linearization lin = problem.linearize(poses);
   // Costs are compared through cost() only, so rounding differences between
   // the two eigen solvers can never make an accepted step look uphill.
-  lin.cost = problem.cost(poses);
-  summary.initial_cost = lin.cost;
+  double cost = problem.cost(poses);
+  summary.initial_cost = cost;
+  Linearization lin;
+  bool stale = true;  // lin is not at `poses`: linearize only when it is used
   const Eigen::Index free = 6 * static_cast<Eigen::Index>(poses.size()) - 6;  // frame 0 fixed
   double mu = settings.initial_damping;
   double nu = 2.0;
 
-  while (free > 0 && summary.iterations < settings.max_iterations && lin.cost > 0.0) {
+  while (free > 0 && summary.iterations < settings.max_iterations && cost > 0.0) {
+    if (stale) {
+      lin = problem.linearize(poses);
+      stale = false;
+    }
     const Eigen::MatrixXd H = lin.hessian.bottomRightCorner(free, free);
     const Eigen::VectorXd g = lin.gradient.tail(free);
     if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
@@ -69,15 +74,15 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
       delta.tail(free) = step;
       std::vector<Pose> trial = applyUpdate(poses, delta);
       const double trial_cost = problem.cost(trial);
-      if (trial_cost < lin.cost) {  // never accept a step that raises the cost
-        const double gain = lin.cost - trial_cost;
+      if (trial_cost < cost) {  // never accept a step that raises the cost
+        const double gain = cost - trial_cost;
         const double rho = gain / predicted;
         mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));  // Nielsen
         nu = 2.0;
         poses = std::move(trial);
-        const double previous = lin.cost;
-        lin = problem.linearize(poses);
-        lin.cost = trial_cost;
+        const double previous = cost;
+        cost = trial_cost;
+        stale = true;
         ++summary.accepted_steps;
         accepted = true;
         if (gain <= settings.relative_cost_tolerance * previous) break;  // settled
@@ -89,8 +94,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
       if (mu > kMaxDamping) break;  // no descent found even with tiny steps
     }
   }
-  summary.final_cost = lin.cost;
-  summary.final_linearization = std::move(lin);
+  summary.final_cost = cost;
   return summary;
 }
 

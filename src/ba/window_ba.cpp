@@ -95,7 +95,6 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
   const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
 
   Association last;
-  Linearization final_lin;
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
   const double finest = settings.final_voxel_size > 0.0
@@ -112,12 +111,11 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     result.rounds = round + 1;
     if (round == 0) result.initial_cost = summary.initial_cost;
     result.final_cost = summary.final_cost;
-    final_lin = summary.final_linearization;
     const double gain = summary.initial_cost - summary.final_cost;
     if (at_finest && !(gain > settings.relative_cost_tolerance * summary.initial_cost)) break;  // settled
   }
 
-  result.hessian = std::move(final_lin.hessian);
+  result.hessian = last.problem.linearize(result.poses).hessian;
   result.last_association_initial_cost = last.problem.cost(initial);
   result.num_planes = last.problem.numPlanes();
   for (const PlaneObservation& plane : last.problem.planes()) {

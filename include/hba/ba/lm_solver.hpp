@@ -20,7 +20,8 @@ struct LmSummary {
   double final_cost = 0.0;
   int iterations = 0;
   int accepted_steps = 0;
-  Linearization final_linearization;  // at the returned poses
+  // No linearization is returned: the caller linearizes once at the poses it
+  // finally keeps, instead of the solver after every round.
 };
 
 // Applies the update of window_ba.hpp: R <- Exp(dphi) R, t <- t + dt, with
