@@ -1,6 +1,7 @@
 #include "hba/ba/window_ba.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -11,6 +12,12 @@
 
 namespace hba::ba {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsBetween(Clock::time_point start, Clock::time_point end) {
+  return std::chrono::duration<double>(end - start).count();
+}
 
 void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
               const BaSettings& settings) {
@@ -105,8 +112,12 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
   for (int round = 0; round < settings.association_rounds + halvings; ++round) {
     round_settings.planes.voxel_size = std::max(finest, coarsest / std::pow(2.0, round));
     const bool at_finest = round >= halvings;
+    const auto start = Clock::now();
     last = associate(scans, result.poses, round_settings);
+    const auto associated = Clock::now();
     const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm);
+    result.seconds_associate += secondsBetween(start, associated);
+    result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
     result.rounds = round + 1;
     if (round == 0) result.initial_cost = summary.initial_cost;

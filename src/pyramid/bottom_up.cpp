@@ -92,6 +92,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
   const bool scans = layer.keyframes == nullptr;
   const std::size_t batch = std::max<std::size_t>(scans ? 4 : 1, (scans ? 4 : 1) * concurrency);
 
+  const LoadSeconds loaded_before = clouds.loadSeconds();
   std::size_t cloud_points = 0;
   std::size_t counted_end = 0;  // frames whose points are counted
   for (std::size_t b0 = 0; b0 < windows.size(); b0 += batch) {
@@ -121,6 +122,10 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
       results[w] = summarize(layer, ba_results[w - b0], window, settings);
     });
     times.ba += secondsSince(start);
+    for (const ba::BaResult& result : ba_results) {
+      times.associate += result.seconds_associate;
+      times.solve += result.seconds_solve;
+    }
 
     if (next) {
       start = Clock::now();
@@ -132,6 +137,10 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
       times.keyframes += secondsSince(start);
     }
   }
+
+  const LoadSeconds loaded_after = clouds.loadSeconds();
+  times.load_parts.read += loaded_after.read - loaded_before.read;
+  times.load_parts.downsample += loaded_after.downsample - loaded_before.downsample;
 
   LayerReport& report = outcome.report;
   report.frames = layer.poses.size();

@@ -5,10 +5,15 @@
 
 namespace hba::pyramid {
 
+// Wall time of the phases, and thread time of their parts: the report
+// splits each phase's wall time between its parts in proportion.
 struct StageTimes {
-  double load = 0.0;
-  double ba = 0.0;
+  double load = 0.0;  // wall: reading (+ downsampling) clouds
+  double ba = 0.0;    // wall: window BAs
   double keyframes = 0.0;
+  LoadSeconds load_parts;  // thread time
+  double associate = 0.0;  // thread time of the BAs: finding planes ...
+  double solve = 0.0;      // ... and LM
 };
 
 // Runs one BA per window of `layer` (in parallel) and turns each window's

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "bottom_up.hpp"
 #include "stopwatch.hpp"
@@ -36,6 +37,24 @@ void logLayer(const LayerReport& r) {
     spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer,
                  r.windows_without_planes, r.windows);
   }
+}
+
+// `wall` split between two parts in proportion to their thread times.
+std::pair<double, double> splitWall(double wall, double first, double second) {
+  const double sum = first + second;
+  if (!(sum > 0.0)) return {wall, 0.0};
+  return {wall * first / sum, wall * second / sum};
+}
+
+void addStageTimes(const StageTimes& times, HbaReport& report) {
+  const auto [read, downsample] =
+      splitWall(times.load, times.load_parts.read, times.load_parts.downsample);
+  const auto [voxelize, solve] = splitWall(times.ba, times.associate, times.solve);
+  report.seconds_read += read;
+  report.seconds_downsample += downsample;
+  report.seconds_voxelize += voxelize;
+  report.seconds_solve += solve;
+  report.seconds_keyframes += times.keyframes;
 }
 
 struct Update {
@@ -93,9 +112,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   top.report.seconds = secondsSince(start);
   logLayer(top.report);
   report.layer_reports.push_back(top.report);
-  report.seconds_load += times.load;
-  report.seconds_ba += times.ba;
-  report.seconds_keyframes += times.keyframes;
+  addStageTimes(times, report);
 
   std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized, settings.stride);
   IterationReport iteration_report;

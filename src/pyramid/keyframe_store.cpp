@@ -15,6 +15,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
+#include "stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace fs = std::filesystem;
@@ -81,6 +82,11 @@ void KeyframeStore::store(std::size_t i, const PointCloud& cloud) const {
   if (!out) failAt(pathOf(i), "cannot write a keyframe (is the temporary folder's disk full?)");
 }
 
-PointCloud KeyframeStore::load(std::size_t i) const { return io::readKittiBin(pathOf(i)); }
+PointCloud KeyframeStore::load(std::size_t i) const {
+  const auto start = Clock::now();
+  PointCloud cloud = io::readKittiBin(pathOf(i));
+  read_.add(secondsSince(start));
+  return cloud;
+}
 
 }  // namespace hba::pyramid

@@ -22,6 +22,7 @@ class KeyframeStore : public ScanSource {
   std::size_t size() const override { return count_; }
   const std::filesystem::path& folder() const { return folder_; }
   PointCloud load(std::size_t i) const override;
+  LoadSeconds loadSeconds() const override { return {read_.total(), 0.0}; }
   // Thread-safe for distinct i. Throws hba::Error (e.g. a full disk).
   void store(std::size_t i, const PointCloud& cloud) const;
 
@@ -30,6 +31,7 @@ class KeyframeStore : public ScanSource {
 
   std::size_t count_ = 0;
   std::filesystem::path folder_;
+  mutable ThreadSeconds read_;
 };
 
 }  // namespace hba::pyramid

@@ -2,6 +2,7 @@
 
 #include "hba/io/dataset.hpp"
 #include "hba/voxel/downsample.hpp"
+#include "stopwatch.hpp"
 
 namespace hba::pyramid {
 
@@ -11,7 +12,13 @@ DatasetScanSource::DatasetScanSource(const io::Dataset& dataset, double voxel)
 std::size_t DatasetScanSource::size() const { return dataset_.size(); }
 
 PointCloud DatasetScanSource::load(std::size_t i) const {
-  return voxel::downsample(dataset_.loadScan(i), voxel_);
+  const auto start = Clock::now();
+  const PointCloud scan = dataset_.loadScan(i);
+  const auto read = Clock::now();
+  PointCloud kept = voxel::downsample(scan, voxel_);
+  read_.add(std::chrono::duration<double>(read - start).count());
+  downsample_.add(secondsSince(read));
+  return kept;
 }
 
 MemoryScanSource::MemoryScanSource(std::vector<PointCloud> scans, double voxel)

@@ -61,6 +61,10 @@ struct BaResult {
   // belong to plane features in the last round, sorted. Keyframes are built
   // from these.
   std::vector<std::vector<std::uint32_t>> plane_point_indices;
+  // Thread time of this call: finding planes (voxelization, clusters) and
+  // solving (LM), for the stage times of a report.
+  double seconds_associate = 0.0;
+  double seconds_solve = 0.0;
 };
 
 // Optimizes the poses of `scans` (sensor frame, already downsampled) starting

@@ -47,9 +47,14 @@ struct HbaReport {
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
-  double seconds_load = 0.0;      // reading (+ downsampling) scans and stored keyframes
-  double seconds_ba = 0.0;        // all BAs (voxelization, LM)
-  double seconds_keyframes = 0.0; // building keyframe clouds
+  // Wall time by stage. Reading and downsampling run together in parallel,
+  // as do voxelization and LM; their wall time is split in proportion to
+  // the thread time each part took.
+  double seconds_read = 0.0;       // reading scans and stored keyframes
+  double seconds_downsample = 0.0; // downsampling layer-1 scans
+  double seconds_voxelize = 0.0;   // plane extraction and point clusters, all BAs
+  double seconds_solve = 0.0;      // LM of all BAs
+  double seconds_keyframes = 0.0;  // building keyframe clouds
   double seconds_graph = 0.0;     // pose graph solves
   double seconds_total = 0.0;
   bool converged = false;  // the last outer iteration moved no pose beyond tolerance
