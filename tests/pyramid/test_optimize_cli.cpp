@@ -66,6 +66,17 @@ TEST_F(OptimizeSimulated, DriftingSequenceGetsFiveTimesMoreAccurate) {
             first.at("pose_graph_cost_before").get<double>());
   EXPECT_GT(report.at("peak_memory_mib").get<double>(), 0.0);
   EXPECT_EQ(report.at("settings").at("window"), 10);
+
+  // Stage times: each measured, and together within the total (they are
+  // sequential phases of one run; what is left is setup and bookkeeping).
+  const auto& seconds = report.at("seconds");
+  double stages = 0.0;
+  for (const char* stage : {"read", "downsample", "voxelize", "solve", "keyframes", "pose_graph"}) {
+    EXPECT_GT(seconds.at(stage).get<double>(), 0.0) << stage;
+    stages += seconds.at(stage).get<double>();
+  }
+  EXPECT_LE(stages, seconds.at("total").get<double>());
+  EXPECT_GT(stages, 0.5 * seconds.at("total").get<double>());
 }
 
 TEST_F(OptimizeSimulated, LoopClosedInputIsNotMadeWorse) {
