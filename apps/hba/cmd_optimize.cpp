@@ -73,7 +73,10 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
   if (given("--iterations")) settings.outer_iterations = flags.outer_iterations;
   if (given("--scan-voxel")) settings.scan_voxel = flags.scan_voxel;
   if (given("--keyframe-voxel")) settings.keyframe_voxel = flags.keyframe_voxel;
-  if (given("--voxel")) settings.local.planes.voxel_size = settings.global.planes.voxel_size = args.voxel;
+  if (given("--voxel")) {
+    settings.scan_window_voxel = settings.local.planes.voxel_size = settings.global.planes.voxel_size = args.voxel;
+  }
+  if (given("--voxel-scans")) settings.scan_window_voxel = flags.scan_window_voxel;
   if (given("--voxel-local")) settings.local.planes.voxel_size = flags.local.planes.voxel_size;
   if (given("--voxel-global")) settings.global.planes.voxel_size = flags.global.planes.voxel_size;
   if (given("--final-voxel")) settings.local.final_voxel_size = settings.global.final_voxel_size = flags.local.final_voxel_size;
@@ -162,8 +165,12 @@ void registerOptimizeCommand(CLI::App& app) {
       ->default_val(s.scan_voxel);
   command->add_option("--keyframe-voxel", s.keyframe_voxel, "Downsample keyframes to this voxel (m)")
       ->default_val(s.keyframe_voxel);
-  command->add_option("--voxel", args->voxel, "Root voxel size V of local and global BA (m)");
-  command->add_option("--voxel-local", s.local.planes.voxel_size, "Root voxel size of local BA (m)")
+  command->add_option("--voxel", args->voxel, "Root voxel size V of every BA (m)");
+  command->add_option("--voxel-scans", s.scan_window_voxel,
+                      "Root voxel size of the layer-1 (scan) windows (m; 0 = --voxel-local)")
+      ->default_val(s.scan_window_voxel);
+  command->add_option("--voxel-local", s.local.planes.voxel_size,
+                      "Root voxel size of the keyframe windows, layers 2 and up (m)")
       ->default_val(s.local.planes.voxel_size);
   command->add_option("--voxel-global", s.global.planes.voxel_size, "Root voxel size of global BA (m)")
       ->default_val(s.global.planes.voxel_size);

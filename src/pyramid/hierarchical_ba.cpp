@@ -39,6 +39,15 @@ void logLayer(const LayerReport& r) {
   }
 }
 
+// The BA settings of the windows of layer `level` (below the top).
+ba::BaSettings windowSettings(const HbaSettings& settings, int level) {
+  ba::BaSettings window = settings.local;
+  if (level == 1 && settings.scan_window_voxel > 0.0) {
+    window.planes.voxel_size = settings.scan_window_voxel;
+  }
+  return window;
+}
+
 // `wall` split between two parts in proportion to their thread times.
 std::pair<double, double> splitWall(double wall, double first, double second) {
   const double sum = first + second;
@@ -88,7 +97,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
     const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
     const ScanSource& clouds = level == 1 ? scans : *layer.keyframes;
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
-    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, settings.local, settings,
+    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
                                          keyframes.get(), keyframeVoxel(settings, level + 1), times);
     outcome.report.iteration = iteration;
     outcome.report.layer = level;

@@ -120,7 +120,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
   try {
     rejectUnknownKeys(root,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
-                       "keyframe_voxel", "keyframe_voxel_growth", "top_down", "factor_pairs", "point_sigma", "local",
+                       "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
                        "global"},
                       "", source);
     read(root, "window", settings.window, source);
@@ -130,6 +130,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "scan_voxel", settings.scan_voxel, source);
     read(root, "keyframe_voxel", settings.keyframe_voxel, source);
     read(root, "keyframe_voxel_growth", settings.keyframe_voxel_growth, source);
+    read(root, "scan_window_voxel", settings.scan_window_voxel, source);
     read(root, "point_sigma", settings.information.point_sigma, source);
     std::string mode;
     read(root, "top_down", mode, source);
@@ -174,6 +175,9 @@ void checkSettings(const HbaSettings& s) {
   if (!(s.keyframe_voxel_growth >= 1.0 && s.keyframe_voxel_growth <= 10.0)) {
     throw Error("setting keyframe_voxel_growth must be in [1, 10]");
   }
+  if (!(s.scan_window_voxel == 0.0 || (s.scan_window_voxel >= 0.01 && s.scan_window_voxel <= 100.0))) {
+    throw Error("setting scan_window_voxel must be 0 (= local voxel_size) or in [0.01, 100] m");
+  }
   if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
   checkBa(s.local, "local");
   checkBa(s.global, "global");
@@ -187,6 +191,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"scan_voxel", s.scan_voxel},
           {"keyframe_voxel", s.keyframe_voxel},
           {"keyframe_voxel_growth", s.keyframe_voxel_growth},
+          {"scan_window_voxel", s.scan_window_voxel},
           {"top_down", toString(s.top_down)},
           {"factor_pairs", toString(s.factor_pairs)},
           {"point_sigma", s.information.point_sigma},

@@ -14,6 +14,7 @@ TEST(SettingsFile, DefaultsAreThePapers) {
   EXPECT_DOUBLE_EQ(s.global.planes.eigen_ratio, 0.1);
   EXPECT_DOUBLE_EQ(s.local.planes.voxel_size, 4.0);
   EXPECT_DOUBLE_EQ(s.global.planes.voxel_size, 4.0);
+  EXPECT_DOUBLE_EQ(s.scan_window_voxel, 2.0);  // ours, not the paper's (docs/pyramid.md)
   EXPECT_NO_THROW(checkSettings(s));
 }
 
@@ -26,6 +27,8 @@ TEST(SettingsFile, AppliesOnlyTheKeysGiven) {
   EXPECT_DOUBLE_EQ(s.global.planes.eigen_ratio, 0.2);
   EXPECT_DOUBLE_EQ(s.local.planes.eigen_ratio, 0.05);
   EXPECT_EQ(s.top_down, TopDownMode::DirectAssign);
+  applySettingsYaml("scan_window_voxel: 0\n", "test.yaml", s);
+  EXPECT_DOUBLE_EQ(s.scan_window_voxel, 0.0);
 }
 
 TEST(SettingsFile, EmptyFileChangesNothing) {
@@ -65,11 +68,15 @@ TEST(SettingsFile, RangeChecks) {
   s = HbaSettings();
   s.global.planes.eigen_ratio = 1.5;
   EXPECT_THROW(checkSettings(s), Error);
+  s = HbaSettings();
+  s.scan_window_voxel = -2.0;
+  EXPECT_THROW(checkSettings(s), Error);
 }
 
 TEST(SettingsFile, JsonHasEverySetting) {
   const auto json = settingsToJson(HbaSettings());
   EXPECT_EQ(json.at("window"), 10);
+  EXPECT_EQ(json.at("scan_window_voxel"), 2.0);
   EXPECT_EQ(json.at("local").at("voxel_size"), 4.0);
   EXPECT_EQ(json.at("global").at("eigen_ratio"), 0.1);
 }

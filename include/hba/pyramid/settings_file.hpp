@@ -6,7 +6,7 @@
 // silently):
 //   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel, keyframe_voxel_growth,
 //   top_down: pose_graph | direct_assign, factor_pairs: adjacent | all | from_first,
-//   point_sigma,
+//   scan_window_voxel, point_sigma,
 //   local:  { voxel_size, final_voxel_size, eigen_ratio, max_depth, min_points, max_iterations,
 //             association_rounds, reject_ratio }
 //   global: { same keys as local }
