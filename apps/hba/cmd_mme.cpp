@@ -2,12 +2,12 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <string>
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/stopwatch.hpp"
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
@@ -27,9 +27,6 @@ struct MmeArgs {
   bool sample = false;
 };
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void run(MmeArgs& args) {
   args.map.rule = args.first_point ? eval::VoxelRule::FirstPoint : eval::VoxelRule::Centroid;
@@ -37,7 +34,7 @@ void run(MmeArgs& args) {
   args.entropy.count_query = !args.exclude_self;
   args.entropy.sample_covariance = args.sample;
 
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   PointCloud map;
   if (!args.map_file.empty()) {
     if (!args.data.dir.empty()) throw Error("give either a dataset folder or --map, not both");

@@ -1,11 +1,11 @@
 // `hba simulate`: writes a synthetic LiDAR sequence with ground truth.
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <memory>
 
 #include "commands.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/stopwatch.hpp"
 #include "hba/sim/simulation.hpp"
 
 namespace hba::cli {
@@ -58,7 +58,6 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
 }
 
 void run(const SimulateArgs& args) {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const sim::Simulation simulation = sim::prepareSimulation(configFrom(args));
   spdlog::info("world: {} triangles, {} spheres; path {:.0f} m over {} frames; sensor {} "
@@ -72,11 +71,11 @@ void run(const SimulateArgs& args) {
   options.poses_only = args.poses_only;
   options.progress_every = args.progress_every;
   options.progress = [start](std::size_t done, std::size_t total) {
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double seconds = secondsSince(start);
     spdlog::info("simulated {}/{} frames ({:.1f} s)", done, total, seconds);
   };
   sim::writeSimulation(simulation, args.output, options);
-  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  const double seconds = secondsSince(start);
   spdlog::info("wrote {} ({} frames in {:.1f} s, {:.1f} frames/s)", args.output,
                simulation.truth.size(), seconds, simulation.truth.size() / seconds);
 }

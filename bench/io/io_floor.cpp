@@ -8,22 +8,19 @@
 #include <tbb/parallel_for.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "hba/core/error.hpp"
+#include "hba/core/stopwatch.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/voxel/downsample.hpp"
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+using hba::Clock;
+using hba::secondsSince;
 
 struct FloorTotals {
   std::size_t scans = 0;

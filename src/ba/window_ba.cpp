@@ -1,7 +1,6 @@
 #include "hba/ba/window_ba.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -9,15 +8,10 @@
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/stopwatch.hpp"
 
 namespace hba::ba {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsBetween(Clock::time_point start, Clock::time_point end) {
-  return std::chrono::duration<double>(end - start).count();
-}
 
 void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
               const BaSettings& settings) {

@@ -10,7 +10,7 @@
 
 #include "hba/graph/window_factors.hpp"
 #include "keyframe.hpp"
-#include "stopwatch.hpp"
+#include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace {

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "bottom_up.hpp"
-#include "stopwatch.hpp"
+#include "hba/core/stopwatch.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"

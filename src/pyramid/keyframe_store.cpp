@@ -15,7 +15,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
-#include "stopwatch.hpp"
+#include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace fs = std::filesystem;

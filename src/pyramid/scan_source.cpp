@@ -2,7 +2,7 @@
 
 #include "hba/io/dataset.hpp"
 #include "hba/voxel/downsample.hpp"
-#include "stopwatch.hpp"
+#include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
 
@@ -16,7 +16,7 @@ PointCloud DatasetScanSource::load(std::size_t i) const {
   const PointCloud scan = dataset_.loadScan(i);
   const auto read = Clock::now();
   PointCloud kept = voxel::downsample(scan, voxel_);
-  read_.add(std::chrono::duration<double>(read - start).count());
+  read_.add(secondsBetween(start, read));
   downsample_.add(secondsSince(read));
   return kept;
 }
