@@ -37,6 +37,16 @@ void writeRoom(const fs::path& dir, std::size_t count) {
   test::writeSceneDataset(dir, test::roomScene(), truth, test::perturbed(truth, 0.03, 0.3, 7));
 }
 
+// Rewrites every `step`-th point of a scan with `bad(i)`: a corrupt scan
+// as a broken driver or converter would write it.
+template <typename BadPoint>
+void corruptPoints(const fs::path& scan, std::size_t step, BadPoint bad,
+                   io::PcdEncoding encoding = io::PcdEncoding::Binary) {
+  PointCloud cloud = io::readPcd(scan);
+  for (std::size_t i = 0; i < cloud.size(); i += step) cloud.points[i] = bad(i);
+  io::writePcd(scan, cloud, encoding);
+}
+
 TEST(DegenerateData, RoomBaselineImprovesAndStaysFinite) {
   TempDir tmp;
   writeRoom(tmp / "data", 12);
@@ -83,12 +93,10 @@ TEST(DegenerateData, NanAndInfPointsAreDroppedNotPropagated) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
   for (const char* name : {"2.pcd", "7.pcd"}) {
-    const fs::path scan = tmp / "data" / "pcd" / name;
-    PointCloud cloud = io::readPcd(scan);
-    for (std::size_t i = 0; i < cloud.size(); i += 10) {
-      cloud.points[i] = (i % 20 == 0) ? Vec3f(nan, 0, 1) : Vec3f(inf, -inf, 0);
-    }
-    io::writePcd(scan, cloud, io::PcdEncoding::BinaryCompressed);
+    corruptPoints(
+        tmp / "data" / "pcd" / name, 10,
+        [&](std::size_t i) { return (i % 20 == 0) ? Vec3f(nan, 0, 1) : Vec3f(inf, -inf, 0); },
+        io::PcdEncoding::BinaryCompressed);
   }
   const test::CommandResult run = test::runOptimize(tmp / "data", tmp / "out");
   ASSERT_EQ(run.exit_code, 0) << run.output;
@@ -101,10 +109,8 @@ TEST(DegenerateData, NanAndInfPointsAreDroppedNotPropagated) {
 TEST(DegenerateData, FarAwayPointsDoNotBreakTheRun) {
   TempDir tmp;
   writeRoom(tmp / "data", 12);
-  const fs::path scan = tmp / "data" / "pcd" / "4.pcd";
-  PointCloud cloud = io::readPcd(scan);
-  for (std::size_t i = 0; i < cloud.size(); i += 50) cloud.points[i] = Vec3f(1e30f, -3e38f, 1e25f);
-  io::writePcd(scan, cloud);
+  corruptPoints(tmp / "data" / "pcd" / "4.pcd", 50,
+                [](std::size_t) { return Vec3f(1e30f, -3e38f, 1e25f); });
   const test::CommandResult run = test::runOptimize(tmp / "data", tmp / "out");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   test::expectFiniteOptimizeOutputs(tmp / "out", 12);

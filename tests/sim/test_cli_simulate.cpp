@@ -3,27 +3,12 @@
 // the pose files of a full run.
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <iterator>
-#include <map>
-
 #include "test_support.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 using hba::test::cliPath;
 using hba::test::runCommand;
-
-std::map<std::string, std::string> snapshot(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (!entry.is_regular_file()) continue;
-    std::ifstream in(entry.path(), std::ios::binary);
-    files[fs::relative(entry.path(), root).string()] =
-        std::string(std::istreambuf_iterator<char>(in), {});
-  }
-  return files;
-}
 
 std::string simulate(const std::string& extra) {
   return cliPath().string() + " " + extra + " simulate --frames 25 --sensor livox --seed 4";
@@ -43,9 +28,9 @@ TEST(CliSimulate, OneAndTwoThreadsWriteTheSameBytes) {
   hba::test::TempDir dir;
   ASSERT_EQ(runCommand(simulate("-j 1") + " -o " + (dir / "a").string()).exit_code, 0);
   ASSERT_EQ(runCommand(simulate("-j 2") + " -o " + (dir / "b").string()).exit_code, 0);
-  const auto a = snapshot(dir / "a");
+  const auto a = hba::test::fileContents(dir / "a");
   EXPECT_EQ(a.size(), 28u);
-  EXPECT_TRUE(a == snapshot(dir / "b"));
+  EXPECT_TRUE(a == hba::test::fileContents(dir / "b"));
 }
 
 TEST(CliSimulate, PosesOnlyWritesAFullRunsPoseFilesWithoutScans) {
@@ -55,8 +40,8 @@ TEST(CliSimulate, PosesOnlyWritesAFullRunsPoseFilesWithoutScans) {
   const auto made = runCommand(flags + (dir / "poses").string() + " --poses-only");
   ASSERT_EQ(made.exit_code, 0) << made.output;
   EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
-  const auto full = snapshot(dir / "full");
-  const auto poses = snapshot(dir / "poses");
+  const auto full = hba::test::fileContents(dir / "full");
+  const auto poses = hba::test::fileContents(dir / "poses");
   ASSERT_EQ(poses.size(), 3u);
   for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {
     EXPECT_EQ(poses.at(name), full.at(name)) << name;

@@ -3,9 +3,6 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-#include <fstream>
-#include <iterator>
-#include <map>
 
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
@@ -24,22 +21,6 @@ Simulation tinySimulation(std::uint64_t seed = 1) {
   config.trajectory.frames = 12;
   config.sensor.columns = 360;
   return prepareSimulation(config);
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-// Relative path -> content of every file under `root`.
-std::map<std::string, std::string> snapshot(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root)) {
-    if (entry.is_regular_file()) {
-      files[fs::relative(entry.path(), root).string()] = bytesOf(entry.path());
-    }
-  }
-  return files;
 }
 
 TEST(SimOutput, WritesAnHbaFolderWithGroundTruth) {
@@ -65,7 +46,7 @@ TEST(SimOutput, WritesAnHbaFolderWithGroundTruth) {
   EXPECT_LT((truth.poses[7].t - simulation.truth.poses[7].t).norm(), 1e-9);
   EXPECT_LT((initial.poses[7].t - simulation.initial[7].t).norm(), 1e-9);
 
-  const std::string yaml = bytesOf(seq / "sim.yaml");
+  const std::string yaml = hba::test::readText(seq / "sim.yaml");
   EXPECT_NE(yaml.find("seed: 1"), std::string::npos);
   EXPECT_NE(yaml.find("version:"), std::string::npos);
   EXPECT_NE(yaml.find("range_noise_m: 0.02"), std::string::npos);
@@ -86,13 +67,13 @@ TEST(SimOutput, SameSeedSameBytesWithOneOrTwoThreads) {
     const tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
     writeSimulation(tinySimulation(5), dir / "two", WriteOptions{});
   }
-  const auto one = snapshot(dir / "one");
-  const auto two = snapshot(dir / "two");
+  const auto one = hba::test::fileContents(dir / "one");
+  const auto two = hba::test::fileContents(dir / "two");
   ASSERT_EQ(one.size(), 15u);  // 12 scans + pose.json + gt.txt + sim.yaml
   EXPECT_TRUE(one == two) << "outputs differ between 1 and 2 threads";
 
   writeSimulation(tinySimulation(6), dir / "other", WriteOptions{});
-  EXPECT_NE(snapshot(dir / "other").at("pcd/000003.pcd"), one.at("pcd/000003.pcd"));
+  EXPECT_NE(hba::test::fileContents(dir / "other").at("pcd/000003.pcd"), one.at("pcd/000003.pcd"));
 }
 
 Simulation tinyLoopClosedSimulation() {
@@ -105,8 +86,8 @@ TEST(SimOutput, ScansDoNotDependOnTheDriftModel) {
   hba::test::TempDir dir;
   writeSimulation(tinySimulation(), dir / "drift", WriteOptions{});
   writeSimulation(tinyLoopClosedSimulation(), dir / "loop", WriteOptions{});
-  const auto drift = snapshot(dir / "drift");
-  const auto loop = snapshot(dir / "loop");
+  const auto drift = hba::test::fileContents(dir / "drift");
+  const auto loop = hba::test::fileContents(dir / "loop");
   ASSERT_EQ(drift.size(), loop.size());
   EXPECT_NE(drift.at("pose.json"), loop.at("pose.json"));
   for (const auto& [name, bytes] : drift) {
@@ -123,8 +104,8 @@ TEST(SimOutput, PosesOnlyWritesTheSamePoseFilesAndNoScans) {
   poses_only.poses_only = true;
   writeSimulation(tinyLoopClosedSimulation(), dir / "poses", poses_only);
 
-  const auto full = snapshot(dir / "full");
-  const auto poses = snapshot(dir / "poses");
+  const auto full = hba::test::fileContents(dir / "full");
+  const auto poses = hba::test::fileContents(dir / "poses");
   EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
   ASSERT_EQ(poses.size(), 3u);
   for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {

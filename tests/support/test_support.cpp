@@ -55,4 +55,12 @@ std::string readText(const fs::path& path) {
   return ss.str();
 }
 
+std::map<std::string, std::string> fileContents(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.is_regular_file()) files[fs::relative(entry.path(), root).string()] = readText(entry.path());
+  }
+  return files;
+}
+
 }  // namespace hba::test

@@ -1,6 +1,7 @@
 #pragma once
 // Paths and small helpers shared by the tests.
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace hba::test {
@@ -36,5 +37,7 @@ CommandResult runCommand(const std::string& command);
 // Writes `content` to `path` verbatim (for hand-made corrupt inputs).
 void writeText(const std::filesystem::path& path, const std::string& content);
 std::string readText(const std::filesystem::path& path);
+// Relative path -> bytes of every regular file under `root`.
+std::map<std::string, std::string> fileContents(const std::filesystem::path& root);
 
 }  // namespace hba::test
