@@ -85,6 +85,9 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
   if (given("--reject")) settings.local.reject_ratio = settings.global.reject_ratio = flags.local.reject_ratio;
   if (given("--ba-iterations")) settings.local.max_iterations = settings.global.max_iterations = flags.local.max_iterations;
   if (given("--point-sigma")) settings.information.point_sigma = flags.information.point_sigma;
+  if (given("--no-refine")) settings.refine = false;
+  if (given("--refine-voxel")) settings.refinement.planes.voxel_size = flags.refinement.planes.voxel_size;
+  if (given("--no-motion-prior")) settings.setMotionPrior(false);
   // CLI11 has checked the names already.
   if (given("--top-down")) settings.top_down = *pyramid::topDownModeFromString(args.top_down);
   if (given("--pairs")) settings.factor_pairs = *pyramid::factorPairsFromString(args.pairs);
@@ -188,6 +191,12 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_option("--point-sigma", s.information.point_sigma,
                       "Point-to-plane noise for the pose-graph weights (m)")
       ->default_val(s.information.point_sigma);
+  command->add_flag("--no-refine", "Skip the final sparse BA over every scan (the hierarchy alone)");
+  command->add_option("--refine-voxel", s.refinement.planes.voxel_size,
+                      "Root voxel of the final sparse BA over every scan (m)")
+      ->default_val(s.refinement.planes.voxel_size);
+  command->add_flag("--no-motion-prior",
+                    "No weak prior holding neighbouring frames at their input relative pose");
   command->add_option("--top-down", args->top_down, "pose-graph (the paper) or direct-assign (ablation)")
       ->check(CLI::IsMember({"pose-graph", "direct-assign"}));
   command->add_option("--pairs", args->pairs, "Window frame pairs that become factors")

@@ -6,6 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "hba/ba/plane_problem.hpp"
+
 namespace hba::ba {
 namespace {
 
@@ -63,6 +65,28 @@ std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual,
   order.resize(order.size() - drop);
   std::sort(order.begin(), order.end());
   return order;
+}
+
+Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                      const voxel::PlaneSettings& planes, double reject_ratio) {
+  std::vector<voxel::PlaneFeature> features = voxel::extractPlanes(scans, poses, planes);
+  std::vector<PlaneObservation> observations = buildObservations(features, scans);
+
+  // Outlier filter on the mean squared distance (not the sum), so that large
+  // planes are not dropped merely for having many points.
+  const FrameTransforms frames(poses);
+  std::vector<double> residual(observations.size());
+  for (std::size_t p = 0; p < observations.size(); ++p) {
+    residual[p] = planeCost(observations[p], frames) / observations[p].pointCount();
+  }
+  Association out;
+  std::vector<PlaneObservation> kept;
+  for (std::size_t p : keepBestPlanes(residual, reject_ratio)) {
+    out.features.push_back(std::move(features[p]));
+    kept.push_back(std::move(observations[p]));
+  }
+  out.problem = PlaneProblem(std::move(kept), poses.size());
+  return out;
 }
 
 }  // namespace hba::ba

@@ -37,11 +37,12 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 }
 
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                  const LmSettings& settings) {
+                                  const LmSettings& settings, const MotionPrior& prior) {
+  auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
   LmSummary summary;
   // Costs are compared through cost() only, so rounding differences between
   // the two eigen solvers can never make an accepted step look uphill.
-  double cost = problem.cost(poses);
+  double cost = objective(poses);
   summary.initial_cost = cost;
   Linearization lin;
   bool stale = true;  // lin is not at `poses`: linearize only when it is used
@@ -52,6 +53,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
   while (free > 0 && summary.iterations < settings.max_iterations && cost > 0.0) {
     if (stale) {
       lin = problem.linearize(poses);
+      prior.addTo(lin, poses);
       stale = false;
     }
     const Eigen::MatrixXd H = lin.hessian.bottomRightCorner(free, free);
@@ -73,7 +75,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
       Eigen::VectorXd delta = Eigen::VectorXd::Zero(free + 6);
       delta.tail(free) = step;
       std::vector<Pose> trial = applyUpdate(poses, delta);
-      const double trial_cost = problem.cost(trial);
+      const double trial_cost = objective(trial);
       if (trial_cost < cost) {  // never accept a step that raises the cost
         const double gain = cost - trial_cost;
         const double rho = gain / predicted;

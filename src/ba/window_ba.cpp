@@ -33,34 +33,6 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
   }
 }
 
-// One association: the plane features at `poses`, minus the worst planes.
-struct Association {
-  std::vector<voxel::PlaneFeature> features;
-  PlaneProblem problem{{}, 0};
-};
-
-Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
-                      const BaSettings& settings) {
-  std::vector<voxel::PlaneFeature> features = voxel::extractPlanes(scans, poses, settings.planes);
-  std::vector<PlaneObservation> observations = buildObservations(features, scans);
-
-  // Outlier filter on the mean squared distance (not the sum), so that large
-  // planes are not dropped merely for having many points.
-  const FrameTransforms frames(poses);
-  std::vector<double> residual(observations.size());
-  for (std::size_t p = 0; p < observations.size(); ++p) {
-    residual[p] = planeCost(observations[p], frames) / observations[p].pointCount();
-  }
-  Association out;
-  std::vector<PlaneObservation> kept;
-  for (std::size_t p : keepBestPlanes(residual, settings.reject_ratio)) {
-    out.features.push_back(std::move(features[p]));
-    kept.push_back(std::move(observations[p]));
-  }
-  out.problem = PlaneProblem(std::move(kept), poses.size());
-  return out;
-}
-
 std::vector<double> planeRms(const PlaneProblem& problem, const std::vector<Pose>& poses) {
   std::vector<double> rms = problem.planeCosts(poses);
   for (std::size_t p = 0; p < rms.size(); ++p) {
@@ -89,8 +61,11 @@ std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
 }  // namespace
 
 BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
-                        const std::vector<Pose>& initial, const BaSettings& settings) {
+                        const std::vector<Pose>& initial, const BaSettings& settings,
+                        const std::vector<double>& path_m) {
   validate(scans, initial, settings);
+  const MotionPrior full_prior = neighbourPrior(initial, path_m, settings.motion_prior);
+  const MotionPrior no_prior;
   BaResult result;
   result.poses = initial;
   const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
@@ -107,20 +82,37 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     round_settings.planes.voxel_size = std::max(finest, coarsest / std::pow(2.0, round));
     const bool at_finest = round >= halvings;
     const auto start = Clock::now();
-    last = associate(scans, result.poses, round_settings);
+    last = associate(scans, result.poses, round_settings.planes, settings.reject_ratio);
+    // Without planes there is nothing to weigh the prior against.
+    const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
     const auto associated = Clock::now();
-    const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm);
+    const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm, prior);
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
     result.rounds = round + 1;
     if (round == 0) result.initial_cost = summary.initial_cost;
-    result.final_cost = summary.final_cost;
     const double gain = summary.initial_cost - summary.final_cost;
     if (at_finest && !(gain > settings.relative_cost_tolerance * summary.initial_cost)) break;  // settled
   }
 
-  result.hessian = last.problem.linearize(result.poses).hessian;
+  if (settings.check_fixed_map) {
+    round_settings.planes.voxel_size = finest;
+    Association fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
+    result.fixed_map_cost_initial = fixed.problem.cost(initial);
+    result.fixed_map_cost_final = fixed.problem.cost(result.poses);
+    if (result.fixed_map_cost_final > result.fixed_map_cost_initial) {
+      result.trusted = false;
+      result.poses = initial;
+      last = std::move(fixed);
+    }
+  }
+  const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
+  result.final_cost = last.problem.cost(result.poses);
+  Linearization final_lin = last.problem.linearize(result.poses);
+  prior.addTo(final_lin, result.poses);
+  result.hessian = std::move(final_lin.hessian);
+  result.final_prior_cost = prior.cost(result.poses);
   result.last_association_initial_cost = last.problem.cost(initial);
   result.num_planes = last.problem.numPlanes();
   for (const PlaneObservation& plane : last.problem.planes()) {

@@ -6,7 +6,7 @@
 #include "anchored_covariance.hpp"
 #include "clamped_inverse.hpp"
 #include "hba/core/error.hpp"
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 
 namespace hba::graph {
 namespace {

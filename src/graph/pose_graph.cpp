@@ -12,7 +12,7 @@
 
 #include "gauge_anchors.hpp"
 #include "hba/core/error.hpp"
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 #include "pose_block.hpp"
 #include "relative_pose_cost.hpp"
 #include "world_pose_manifold.hpp"

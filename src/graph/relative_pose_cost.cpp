@@ -6,7 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "hba/core/error.hpp"
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 #include "pose_block.hpp"
 #include "world_pose_manifold.hpp"
 

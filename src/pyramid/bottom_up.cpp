@@ -25,6 +25,7 @@ struct WindowBa {
   std::size_t plane_points = 0;
   int iterations = 0;
   int rounds = 0;
+  bool trusted = true;
 };
 
 WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window& window,
@@ -43,6 +44,7 @@ WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window&
   out.plane_points = result.num_plane_points;
   out.iterations = result.iterations;
   out.rounds = result.rounds;
+  out.trusted = result.trusted;
   for (double r : result.plane_rms_initial) out.sq_rms_before += r * r;
   for (double r : result.plane_rms_final) out.sq_rms_after += r * r;
   return out;
@@ -74,6 +76,15 @@ class StreamedClouds {
   const ScanSource& source_;
   std::map<std::size_t, PointCloud> cache_;
 };
+
+// Path (m) between neighbouring frames of a window.
+std::vector<double> pathBetweenFrames(const Layer& layer, const Window& window) {
+  std::vector<double> path;
+  for (std::size_t k = window.first; k + 1 < window.first + window.count; ++k) {
+    path.push_back(layer.distance_m[k + 1] - layer.distance_m[k]);
+  }
+  return path;
+}
 
 }  // namespace
 
@@ -118,7 +129,8 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
       const Window& window = windows[w];
       const auto first_pose = layer.poses.begin() + static_cast<long>(window.first);
       const std::vector<Pose> initial(first_pose, first_pose + static_cast<long>(window.count));
-      ba_results[w - b0] = ba::optimizeWindow(cloudsOf(window), initial, ba_settings);
+      ba_results[w - b0] =
+          ba::optimizeWindow(cloudsOf(window), initial, ba_settings, pathBetweenFrames(layer, window));
       results[w] = summarize(layer, ba_results[w - b0], window, settings);
     });
     times.ba += secondsSince(start);
@@ -159,6 +171,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
     sq_before += r.sq_rms_before;
     sq_after += r.sq_rms_after;
     if (!r.outcome.has_planes) ++report.windows_without_planes;
+    if (!r.trusted) ++report.windows_untrusted;
     outcome.windows[w] = std::move(r.outcome);
   }
   if (report.planes > 0) {
@@ -174,9 +187,11 @@ Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int strid
   const std::size_t n = outcome.windows.size();
   upper.anchors.reserve(n);
   upper.poses.reserve(n);
+  upper.distance_m.reserve(n);
   for (std::size_t j = 0; j < n; ++j) {
     const WindowOutcome& window = outcome.windows[j];
     upper.anchors.push_back(lower.anchors[window.window.first]);
+    upper.distance_m.push_back(lower.distance_m[window.window.first]);
     if (j == 0) {
       upper.poses.push_back(window.optimized.front());
     } else {

@@ -1,6 +1,7 @@
 #include "hba/pyramid/hierarchical_ba.hpp"
 
 #include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
+#include "consistency.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
@@ -33,6 +35,10 @@ void logLayer(const LayerReport& r) {
                r.rms_after, r.seconds);
   spdlog::debug("  layer {}: {} points, {} association rounds, {} LM iterations", r.layer,
                 r.cloud_points, r.association_rounds, r.lm_iterations);
+  if (r.windows_untrusted > 0) {
+    spdlog::warn("  layer {}: {} of {} windows made the map blurrier and keep their input poses",
+                 r.layer, r.windows_untrusted, r.windows);
+  }
   if (r.windows_without_planes > 0) {
     spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer,
                  r.windows_without_planes, r.windows);
@@ -42,6 +48,7 @@ void logLayer(const LayerReport& r) {
 // The BA settings of the windows of layer `level` (below the top).
 ba::BaSettings windowSettings(const HbaSettings& settings, int level) {
   ba::BaSettings window = settings.local;
+  window.motion_prior.point_sigma = settings.information.point_sigma;
   if (level == 1 && settings.scan_window_voxel > 0.0) {
     window.planes.voxel_size = settings.scan_window_voxel;
   }
@@ -90,6 +97,10 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   layer.poses = poses;
   layer.anchors.resize(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) layer.anchors[i] = i;
+  layer.distance_m.assign(poses.size(), 0.0);
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    layer.distance_m[i] = layer.distance_m[i - 1] + (poses[i].t - poses[i - 1].t).norm();
+  }
 
   std::vector<LayerOutcome> local;  // layers 1 .. layers-1
   for (int level = 1; level < layers; ++level) {
@@ -113,8 +124,9 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   const auto start = Clock::now();
   const std::vector<Window> all{Window{0, layer.poses.size()}};
   const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
-  LayerOutcome top =
-      optimizeLayer(layer, top_clouds, all, settings.global, settings, nullptr, 0.0, times);
+  ba::BaSettings global = settings.global;
+  global.motion_prior.point_sigma = settings.information.point_sigma;
+  LayerOutcome top = optimizeLayer(layer, top_clouds, all, global, settings, nullptr, 0.0, times);
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;
@@ -153,6 +165,97 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
                iteration_report.seconds_graph);
   report.iterations.push_back(iteration_report);
   return solved.poses;
+}
+
+// Path (m) between consecutive poses.
+std::vector<double> stepLengths(const std::vector<Pose>& poses) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < poses.size(); ++i) steps.push_back((poses[i].t - poses[i - 1].t).norm());
+  return steps;
+}
+
+// Regions of the per-region self-check: about 100 frames each, 4 to 20.
+std::size_t regionCount(std::size_t frames) {
+  return std::clamp<std::size_t>(frames / 100, 4, 20);
+}
+
+void warn(HbaReport& report, std::string message) {
+  spdlog::warn("{}", message);
+  report.warnings.push_back(std::move(message));
+}
+
+// Checks the hierarchy's poses against the input on a fixed plane map, runs
+// the sparse plane BA over every layer-1 frame (from the input where the
+// hierarchy made the map blurrier) and checks the result the same way.
+std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
+                                 const std::vector<Pose>& hierarchy, const HbaSettings& settings,
+                                 HbaReport& report) {
+  const auto start = Clock::now();
+  std::vector<PointCloud> clouds(scans.size());
+  tbb::parallel_for(std::size_t{0}, scans.size(), [&](std::size_t i) { clouds[i] = scans.load(i); });
+  std::vector<const PointCloud*> pointers(clouds.size());
+  for (std::size_t i = 0; i < clouds.size(); ++i) pointers[i] = &clouds[i];
+
+  ba::RefinementSettings rs = settings.refinement;
+  rs.motion_prior.point_sigma = settings.information.point_sigma;
+  const FixedPlaneMap fixed(pointers, initial, rs.planes, rs.reject_ratio, regionCount(initial.size()));
+  ConsistencyReport& c = report.consistency;
+  c.planes = fixed.planes();
+  c.input_rms = fixed.rms(initial);
+  c.hierarchy_rms = fixed.rms(hierarchy);
+  std::vector<Pose> start_poses = hierarchy;
+  if (c.hierarchy_rms > c.input_rms) {
+    c.hierarchy_rejected = true;
+    start_poses = initial;
+    warn(report, fmt::format("the hierarchy made the map less consistent than the input (plane RMS "
+                             "{:.4f} -> {:.4f} m on the input's planes): refining from the input",
+                             c.input_rms, c.hierarchy_rms));
+  }
+
+  std::vector<Pose> result = start_poses;
+  if (settings.refine && report.layers > 1) {  // one layer is one global BA already
+    const ba::RefinementResult refined =
+        ba::refineGlobally(pointers, start_poses, rs, stepLengths(initial));
+    RefinementReport& r = report.refinement;
+    r.ran = true;
+    r.planes = refined.planes;
+    r.observations = refined.observations;
+    r.plane_points = refined.plane_points;
+    r.rms_before = refined.rms_before;
+    r.rms_after = refined.rms_after;
+    r.iterations = refined.iterations;
+    report.seconds_voxelize += refined.seconds_associate;
+    report.seconds_solve += refined.seconds_solve;
+    spdlog::info("refinement: {} frames, {} planes, {} observations, plane RMS {:.4f} -> {:.4f} m, "
+                 "{} LM iterations",
+                 initial.size(), r.planes, r.observations, r.rms_before, r.rms_after, r.iterations);
+    result = refined.poses;
+  }
+
+  c.final_rms = fixed.rms(result);
+  if (c.final_rms > c.input_rms) {
+    c.final_rejected = true;
+    result = initial;
+    warn(report, fmt::format("the result is less consistent than the input (plane RMS {:.4f} -> "
+                             "{:.4f} m on the input's planes): returning the input poses",
+                             c.input_rms, c.final_rms));
+    c.final_rms = c.input_rms;
+  }
+  c.region_first_frame = fixed.regionStarts();
+  c.region_input_rms = fixed.regionRms(initial);
+  c.region_final_rms = fixed.regionRms(result);
+  for (std::size_t k = 0; k < c.region_first_frame.size(); ++k) {
+    if (c.region_final_rms[k] > c.region_input_rms[k] * 1.01) {
+      warn(report, fmt::format("frames from {}: less consistent than the input (plane RMS {:.4f} -> "
+                               "{:.4f} m)",
+                               c.region_first_frame[k], c.region_input_rms[k], c.region_final_rms[k]));
+    }
+  }
+  report.refinement.seconds = secondsSince(start);
+  spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
+               "{:.4f} m, final {:.4f} m",
+               c.planes, c.input_rms, c.hierarchy_rms, c.final_rms);
+  return result;
 }
 
 }  // namespace
@@ -195,6 +298,8 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
       break;
     }
   }
+
+  result.poses = refineAndCheck(scans, initial, result.poses, settings, report);
 
   std::size_t planes = 0;
   for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;

@@ -18,6 +18,9 @@ namespace hba::pyramid {
 struct Layer {
   std::vector<std::size_t> anchors;  // layer-1 index of each frame
   std::vector<Pose> poses;           // current world poses of the frames
+  // Path length (m) along the layer-1 poses from the first frame to each
+  // frame: how far apart two frames are, for the motion prior.
+  std::vector<double> distance_m;
   std::unique_ptr<KeyframeStore> keyframes;  // null for layer 1
 };
 

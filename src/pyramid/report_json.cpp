@@ -11,6 +11,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
                       {"frames", l.frames},
                       {"windows", l.windows},
                       {"windows_without_planes", l.windows_without_planes},
+                      {"windows_untrusted", l.windows_untrusted},
                       {"planes", l.planes},
                       {"plane_points", l.plane_points},
                       {"cloud_points", l.cloud_points},
@@ -32,7 +33,30 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"max_rotation_update_deg", it.max_rotation_update},
                           {"seconds_pose_graph", it.seconds_graph}});
   }
+  const RefinementReport& f = r.refinement;
+  const ConsistencyReport& c = r.consistency;
+  nlohmann::json regions = nlohmann::json::array();
+  for (std::size_t k = 0; k < c.region_first_frame.size(); ++k) {
+    regions.push_back({{"first_frame", c.region_first_frame[k]},
+                       {"input_rms_m", c.region_input_rms[k]},
+                       {"final_rms_m", c.region_final_rms[k]}});
+  }
   return {{"frames", r.frames},
+          {"refinement", {{"ran", f.ran},
+                          {"planes", f.planes},
+                          {"observations", f.observations},
+                          {"plane_points", f.plane_points},
+                          {"plane_rms_before_m", f.rms_before},
+                          {"plane_rms_after_m", f.rms_after},
+                          {"lm_iterations", f.iterations},
+                          {"seconds", f.seconds}}},
+          {"consistency", {{"planes", c.planes},
+                           {"input_rms_m", c.input_rms},
+                           {"hierarchy_rms_m", c.hierarchy_rms},
+                           {"final_rms_m", c.final_rms},
+                           {"hierarchy_rejected", c.hierarchy_rejected},
+                           {"final_rejected", c.final_rejected},
+                           {"regions", regions}}},
           {"layers", r.layers},
           {"converged", r.converged},
           {"layer_reports", layers},

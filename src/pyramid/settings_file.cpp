@@ -121,7 +121,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     rejectUnknownKeys(root,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
-                       "global"},
+                       "global", "refine", "refine_voxel", "motion_prior"},
                       "", source);
     read(root, "window", settings.window, source);
     read(root, "stride", settings.stride, source);
@@ -132,6 +132,11 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "keyframe_voxel_growth", settings.keyframe_voxel_growth, source);
     read(root, "scan_window_voxel", settings.scan_window_voxel, source);
     read(root, "point_sigma", settings.information.point_sigma, source);
+    read(root, "refine", settings.refine, source);
+    read(root, "refine_voxel", settings.refinement.planes.voxel_size, source);
+    bool motion_prior = settings.motionPrior();
+    read(root, "motion_prior", motion_prior, source);
+    settings.setMotionPrior(motion_prior);
     std::string mode;
     read(root, "top_down", mode, source);
     if (!mode.empty()) {
@@ -179,6 +184,9 @@ void checkSettings(const HbaSettings& s) {
     throw Error("setting scan_window_voxel must be 0 (= local voxel_size) or in [0.01, 100] m");
   }
   if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
+  if (!(s.refinement.planes.voxel_size >= 0.05 && s.refinement.planes.voxel_size <= 100.0)) {
+    throw Error("setting refine_voxel must be in [0.05, 100] m");
+  }
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -195,6 +203,9 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"top_down", toString(s.top_down)},
           {"factor_pairs", toString(s.factor_pairs)},
           {"point_sigma", s.information.point_sigma},
+          {"refine", s.refine},
+          {"refine_voxel", s.refinement.planes.voxel_size},
+          {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};
 }

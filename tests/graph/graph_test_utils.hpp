@@ -8,7 +8,7 @@
 
 #include "hba/core/lie.hpp"
 #include "hba/core/pose.hpp"
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 
 namespace hba::graph::test {
 

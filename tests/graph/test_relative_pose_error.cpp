@@ -4,7 +4,7 @@
 
 #include "graph_test_utils.hpp"
 #include "hba/core/lie.hpp"
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 
 namespace hba::graph {
 namespace {

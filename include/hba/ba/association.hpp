@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hba/ba/plane_cost.hpp"
+#include "hba/ba/plane_problem.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/voxel/plane_map.hpp"
 
@@ -19,5 +20,16 @@ std::vector<PlaneObservation> buildObservations(const std::vector<voxel::PlaneFe
 // fraction by `residual` is dropped (ties broken by index, so the choice is
 // deterministic). reject_ratio <= 0 keeps all.
 std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, double reject_ratio);
+
+// One association: the plane features of `scans` at `poses` and their
+// observations, minus the worst `reject_ratio` of planes by mean squared
+// distance (not the sum, so large planes are not dropped for their size).
+struct Association {
+  std::vector<voxel::PlaneFeature> features;
+  PlaneProblem problem{{}, 0};
+};
+
+Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                      const voxel::PlaneSettings& planes, double reject_ratio);
 
 }  // namespace hba::ba

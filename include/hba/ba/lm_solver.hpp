@@ -4,6 +4,7 @@
 // (LLT) on the 6(K-1) system; an accepted step always lowers the cost.
 #include <vector>
 
+#include "hba/ba/motion_prior.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/pose.hpp"
 
@@ -28,8 +29,8 @@ struct LmSummary {
 // delta holding (dt, dphi) of each frame in order.
 std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::VectorXd& delta);
 
-// Optimizes `poses` in place.
+// Optimizes `poses` in place, on the plane cost plus `prior` (may be empty).
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                  const LmSettings& settings);
+                                  const LmSettings& settings, const MotionPrior& prior = {});
 
 }  // namespace hba::ba

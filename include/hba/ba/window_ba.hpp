@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "hba/ba/motion_prior.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/voxel/plane_map.hpp"
@@ -37,18 +38,31 @@ struct BaSettings {
   double final_voxel_size = 0.0;
   double reject_ratio = 0.05;      // drop this fraction of planes, worst residuals first
   double relative_cost_tolerance = 1e-4;  // stop when the cost settles
+  // Neighbouring frames are held weakly at their input relative pose.
+  MotionPriorSettings motion_prior;
+  // Trust check: the planes found at the input poses (finest voxel) must not
+  // get blurrier at the result; a result that fails keeps the input poses.
+  bool check_fixed_map = true;
 };
 
 struct BaResult {
   std::vector<Pose> poses;  // optimized, same count and order as the input
-  // Hessian of the cost at the solution, 6K x 6K in the convention above
+  // Hessian of the cost (planes and motion prior) at the solution, 6K x 6K in the convention above
   // (not gauge-fixed: the caller chooses which frame to fix).
   Eigen::MatrixXd hessian;
+  // Plane costs (the motion prior's is apart).
   double initial_cost = 0.0;  // at the initial poses and first association
   double final_cost = 0.0;    // at the solution and last association
+  double final_prior_cost = 0.0;  // the motion prior at the solution
   // The last association's cost at the initial poses: compare with
   // final_cost for a like-for-like improvement (same planes, same points).
   double last_association_initial_cost = 0.0;
+  // The trust check: cost of the planes found at the input poses, at the
+  // input and at the solution; `trusted` is false when the solution made
+  // them blurrier, and then `poses` are the input poses.
+  double fixed_map_cost_initial = 0.0;
+  double fixed_map_cost_final = 0.0;
+  bool trusted = true;
   int rounds = 0;                   // association rounds run
   std::size_t num_planes = 0;       // plane features used in the last round
   std::size_t num_plane_points = 0;
@@ -68,9 +82,11 @@ struct BaResult {
 };
 
 // Optimizes the poses of `scans` (sensor frame, already downsampled) starting
-// from `initial`. Frame 0 is held fixed (gauge). Thread-safe and
-// deterministic for any thread count. Scans are only read.
+// from `initial`. Frame 0 is held fixed (gauge). `path_m[k]` is the path (m)
+// between frames k and k+1 for the motion prior (empty: straight distances).
+// Thread-safe and deterministic for any thread count. Scans are only read.
 BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
-                        const std::vector<Pose>& initial, const BaSettings& settings);
+                        const std::vector<Pose>& initial, const BaSettings& settings,
+                        const std::vector<double>& path_m = {});
 
 }  // namespace hba::ba

@@ -29,7 +29,7 @@ struct InformationSettings {
 // convention of hba/ba/window_ba.hpp (R <- Exp(dphi) R, t <- t + dt, rows
 // (dt, dphi) per frame), not gauge-fixed. Returns the information matrix of
 // the relative pose between window frames a and b, in the tangent of the
-// residual of hba/graph/relative_pose_error.hpp: the gauge is fixed by
+// residual of hba/core/relative_pose_error.hpp: the gauge is fixed by
 // holding the window's first frame (as the BA does; the relative pose is
 // gauge-invariant, so any frame gives the same covariance), the covariance of
 // frames a and b is propagated through the residual's Jacobians, and the

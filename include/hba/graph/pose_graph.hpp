@@ -12,7 +12,7 @@ namespace hba::graph {
 
 // A measured relative pose T_from^-1 * T_to with its 6x6 information matrix.
 // The information is expressed in the tangent of the residual of
-// hba/graph/relative_pose_error.hpp (translation first, then rotation); it
+// hba/core/relative_pose_error.hpp (translation first, then rotation); it
 // must be symmetric positive semi-definite.
 struct RelativePoseFactor {
   std::size_t from = 0;

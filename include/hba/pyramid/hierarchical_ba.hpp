@@ -20,6 +20,9 @@ struct LayerReport {
   std::size_t frames = 0;
   std::size_t windows = 0;
   std::size_t windows_without_planes = 0;
+  // Windows whose BA made the planes found at their input poses blurrier:
+  // they keep their input poses (trust check, docs/pyramid.md).
+  std::size_t windows_untrusted = 0;
   std::size_t planes = 0;        // summed over windows
   std::size_t plane_points = 0;  // summed over windows
   std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
@@ -42,11 +45,41 @@ struct IterationReport {
   double seconds_graph = 0.0;
 };
 
+// The final refinement over every layer-1 frame.
+struct RefinementReport {
+  bool ran = false;
+  std::size_t planes = 0;
+  std::size_t observations = 0;
+  std::size_t plane_points = 0;
+  double rms_before = 0.0;  // m, on the refinement's planes
+  double rms_after = 0.0;
+  int iterations = 0;
+  double seconds = 0.0;
+};
+
+// The self-check: RMS point-to-plane distance (m) on one fixed set of
+// planes found at the input poses (finest voxel), for the input, the
+// hierarchy's and the final poses; per region (stretches of the sequence)
+// too. Lower is crisper.
+struct ConsistencyReport {
+  std::size_t planes = 0;
+  double input_rms = 0.0;
+  double hierarchy_rms = 0.0;
+  double final_rms = 0.0;
+  bool hierarchy_rejected = false;  // less consistent than the input: refined from the input
+  bool final_rejected = false;      // less consistent than the input: input poses returned
+  std::vector<std::size_t> region_first_frame;
+  std::vector<double> region_input_rms;
+  std::vector<double> region_final_rms;
+};
+
 struct HbaReport {
   int layers = 0;
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
+  RefinementReport refinement;
+  ConsistencyReport consistency;
   // Wall time by stage. Reading and downsampling run together in parallel,
   // as do voxelization and LM; their wall time is split in proportion to
   // the thread time each part took.

@@ -3,6 +3,7 @@
 // graph, iterations. Defaults are the paper's Table I where it gives one.
 #include <cstddef>
 
+#include "hba/ba/global_refinement.hpp"
 #include "hba/ba/window_ba.hpp"
 #include "hba/graph/information.hpp"
 #include "hba/graph/window_factors.hpp"
@@ -53,9 +54,20 @@ struct HbaSettings {
   FactorPairs factor_pairs = FactorPairs::Adjacent;
   int graph_max_iterations = 100;
 
+  // The last stage: one sparse plane BA over every layer-1 frame at the
+  // finest voxel, from the hierarchy's poses (docs/pyramid.md).
+  bool refine = true;
+  ba::RefinementSettings refinement;
+
   int outer_iterations = 1;          // bottom-up + top-down rounds at most
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
   double outer_tolerance_deg = 1e-3;
+
+  // The motion prior of every BA (windows, top, refinement) on or off.
+  bool motionPrior() const { return local.motion_prior.enabled; }
+  void setMotionPrior(bool on) {
+    local.motion_prior.enabled = global.motion_prior.enabled = refinement.motion_prior.enabled = on;
+  }
 
   HbaSettings() {
     global.planes.eigen_ratio = 0.1;

@@ -14,7 +14,7 @@
 #include "hba/core/pose.hpp"
 #include "hba/core/types.hpp"
 
-namespace hba::graph {
+namespace hba {
 
 Vec6 relativePoseError(const Pose& measurement, const Pose& from, const Pose& to);
 
@@ -27,4 +27,4 @@ struct RelativePoseErrorJacobians {
 RelativePoseErrorJacobians relativePoseErrorJacobians(const Pose& measurement, const Pose& from,
                                                       const Pose& to);
 
-}  // namespace hba::graph
+}  // namespace hba

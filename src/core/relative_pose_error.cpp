@@ -1,8 +1,8 @@
-#include "hba/graph/relative_pose_error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 
 #include "hba/core/lie.hpp"
 
-namespace hba::graph {
+namespace hba {
 
 Vec6 relativePoseError(const Pose& measurement, const Pose& from, const Pose& to) {
   const Pose error_pose = measurement.inverse() * from.inverse() * to;
@@ -38,4 +38,4 @@ RelativePoseErrorJacobians relativePoseErrorJacobians(const Pose& measurement, c
   return out;
 }
 
-}  // namespace hba::graph
+}  // namespace hba

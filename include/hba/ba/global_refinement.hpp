@@ -1,0 +1,51 @@
+#pragma once
+// The last stage of hba optimize: one plane BA over every layer-1 frame at
+// the finest voxel, started from the hierarchy's poses (already within
+// centimetres), solved by the sparse LM of sparse_lm.hpp. The pyramid finds
+// the large corrections cheaply; this stage recovers what the pyramid's
+// windows cannot see (planes shared by frames of different windows).
+#include <vector>
+
+#include "hba/ba/motion_prior.hpp"
+#include "hba/ba/sparse_lm.hpp"
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/voxel/plane_map.hpp"
+
+namespace hba::ba {
+
+struct RefinementSettings {
+  voxel::PlaneSettings planes;  // voxel 1 m, theta 0.05: the local windows' final planes
+  double reject_ratio = 0.05;
+  int association_rounds = 1;
+  SparseLmSettings lm;
+  MotionPriorSettings motion_prior;
+  RefinementSettings() { planes.voxel_size = 1.0; }
+};
+
+struct RefinementResult {
+  std::vector<Pose> poses;
+  // Plane cost (sum of squared point-to-plane distances, m^2) of the first
+  // association, at the start and at the end: the same planes and points,
+  // so a like-for-like measure of how much crisper the map got.
+  double cost_before = 0.0;
+  double cost_after = 0.0;
+  double rms_before = 0.0;  // sqrt(cost / plane points), m
+  double rms_after = 0.0;
+  std::size_t planes = 0;
+  std::size_t observations = 0;  // (frame, plane) clusters
+  std::size_t plane_points = 0;
+  int iterations = 0;
+  int rounds = 0;
+  double seconds_associate = 0.0;
+  double seconds_solve = 0.0;
+};
+
+// `path_m[k]`: path between frames k and k+1 for the motion prior (empty:
+// straight distances). Scans are only read.
+RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
+                                const std::vector<Pose>& initial,
+                                const RefinementSettings& settings,
+                                const std::vector<double>& path_m = {});
+
+}  // namespace hba::ba

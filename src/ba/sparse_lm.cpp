@@ -1,0 +1,231 @@
+#include "hba/ba/sparse_lm.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include <Eigen/Cholesky>
+#include <tbb/parallel_for.h>
+
+#include "hba/core/relative_pose_error.hpp"
+
+namespace hba::ba {
+namespace {
+
+using Mat6List = std::vector<Mat6, Eigen::aligned_allocator<Mat6>>;
+
+// A prior term's Gauss-Newton blocks between frames a and b.
+struct PriorBlock {
+  std::size_t a = 0;
+  std::size_t b = 0;
+  Mat6 ab = Mat6::Zero();
+};
+
+// The linearized objective at one set of poses, kept factored.
+class FactoredSystem {
+ public:
+  FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior,
+                 const std::vector<std::vector<std::pair<std::size_t, std::size_t>>>& uses,
+                 const std::vector<Pose>& poses)
+      : problem_(problem), uses_(uses), frames_(poses.size()) {
+    const FrameTransforms transforms(poses);
+    planes_.resize(problem.numPlanes());
+    tbb::parallel_for(std::size_t{0}, planes_.size(), [&](std::size_t p) {
+      planes_[p] = linearizePlane(problem.planes()[p], transforms);
+    });
+    gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
+    diagonal_.assign(frames_, Mat6::Zero());
+    // Per frame, in plane order: fixed summation order, disjoint writes.
+    tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
+      for (const auto& [p, a] : uses_[i]) {
+        const PlaneLinearization& lin = planes_[p];
+        gradient_.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
+        const Eigen::Matrix<double, 3, 6> Za = lin.Z.middleCols<6>(6 * a);
+        diagonal_[i] += lin.diagonal[a] + Za.transpose() * lin.weights.asDiagonal() * Za;
+      }
+    });
+    for (PlaneLinearization& lin : planes_) {
+      cost_ += lin.cost;
+      lin.diagonal.clear();  // summed above: only Z and the weights are needed now
+      lin.diagonal.shrink_to_fit();
+    }
+    for (const RelativePosePrior& term : prior.terms()) {
+      const RelativePoseErrorJacobians J =
+          relativePoseErrorJacobians(term.measurement, poses[term.from], poses[term.to]);
+      cost_ += J.error.dot(term.weight * J.error);
+      gradient_.segment<6>(6 * term.from) += 2.0 * J.d_from.transpose() * term.weight * J.error;
+      gradient_.segment<6>(6 * term.to) += 2.0 * J.d_to.transpose() * term.weight * J.error;
+      diagonal_[term.from] += 2.0 * J.d_from.transpose() * term.weight * J.d_from;
+      diagonal_[term.to] += 2.0 * J.d_to.transpose() * term.weight * J.d_to;
+      prior_.push_back({term.from, term.to, 2.0 * J.d_from.transpose() * term.weight * J.d_to});
+    }
+  }
+
+  double cost() const { return cost_; }
+  const Eigen::VectorXd& gradient() const { return gradient_; }
+  const Mat6List& diagonal() const { return diagonal_; }
+
+  // y = H x, without the blocks on the diagonal's own planes counted twice.
+  Eigen::VectorXd multiply(const Eigen::VectorXd& x) const {
+    std::vector<Vec3> wz(planes_.size());
+    tbb::parallel_for(std::size_t{0}, planes_.size(), [&](std::size_t p) {
+      const auto& clusters = problem_.planes()[p].clusters;
+      Vec3 z = Vec3::Zero();
+      for (std::size_t a = 0; a < clusters.size(); ++a) {
+        z.noalias() += planes_[p].Z.middleCols<6>(6 * a) * x.segment<6>(6 * clusters[a].frame);
+      }
+      wz[p] = planes_[p].weights.cwiseProduct(z);
+    });
+    Eigen::VectorXd y(x.size());
+    tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
+      // The diagonal blocks hold Z_a^T W Z_a already: subtract it from the
+      // plane sum instead of treating a == own frame separately.
+      Vec6 sum = diagonal_[i] * x.segment<6>(6 * i);
+      for (const auto& [p, a] : uses_[i]) {
+        const Eigen::Matrix<double, 3, 6> Za = planes_[p].Z.middleCols<6>(6 * a);
+        sum.noalias() += Za.transpose() * (wz[p] - planes_[p].weights.cwiseProduct(
+                                                       Za * x.segment<6>(6 * i)));
+      }
+      y.segment<6>(6 * i) = sum;
+    });
+    for (const PriorBlock& block : prior_) {
+      y.segment<6>(6 * block.a) += block.ab * x.segment<6>(6 * block.b);
+      y.segment<6>(6 * block.b) += block.ab.transpose() * x.segment<6>(6 * block.a);
+    }
+    return y;
+  }
+
+ private:
+  const PlaneProblem& problem_;
+  const std::vector<std::vector<std::pair<std::size_t, std::size_t>>>& uses_;
+  std::size_t frames_ = 0;
+  std::vector<PlaneLinearization> planes_;
+  std::vector<PriorBlock> prior_;
+  Eigen::VectorXd gradient_;
+  Mat6List diagonal_;
+  double cost_ = 0.0;
+};
+
+// Marquardt scale of each unknown (its own curvature, with a floor).
+Eigen::VectorXd dampingScale(const Mat6List& diagonal) {
+  Eigen::VectorXd d(6 * static_cast<Eigen::Index>(diagonal.size()));
+  for (std::size_t i = 0; i < diagonal.size(); ++i) d.segment<6>(6 * i) = diagonal[i].diagonal();
+  d = d.cwiseMax(0.0);
+  const double floor = std::max(1e-9 * d.maxCoeff(), 1e-12);
+  return d.cwiseMax(floor);
+}
+
+// Solves (H + mu D) x = -g for every frame but frame 0 by preconditioned
+// conjugate gradients; stops early at negative curvature (far from the
+// optimum the exact Hessian can be indefinite) with the last good iterate.
+Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd& scale, double mu,
+                            const SparseLmSettings& settings) {
+  const Eigen::Index n = system.gradient().size();
+  const std::size_t frames = system.diagonal().size();
+  auto gauge = [](Eigen::VectorXd& v) { v.head<6>().setZero(); };
+  auto apply = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out = system.multiply(v) + mu * scale.cwiseProduct(v);
+    gauge(out);
+    return out;
+  };
+  // Block-Jacobi preconditioner: the damped 6x6 blocks, inverted.
+  Mat6List inverse(frames);
+  for (std::size_t i = 0; i < frames; ++i) {
+    Mat6 block = system.diagonal()[i];
+    block.diagonal() += mu * scale.segment<6>(6 * i);
+    const Eigen::LDLT<Mat6> ldlt(block);
+    if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+      inverse[i] = ldlt.solve(Mat6::Identity());
+    } else {
+      inverse[i] = block.diagonal().cwiseMax(1e-12).cwiseInverse().asDiagonal();
+    }
+  }
+  auto precondition = [&](const Eigen::VectorXd& r) {
+    Eigen::VectorXd z(n);
+    for (std::size_t i = 0; i < frames; ++i) z.segment<6>(6 * i) = inverse[i] * r.segment<6>(6 * i);
+    gauge(z);
+    return z;
+  };
+
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd r = -system.gradient();
+  gauge(r);
+  Eigen::VectorXd z = precondition(r);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  const double r0 = r.norm();
+  for (int k = 0; k < settings.cg_max_iterations && r.norm() > settings.cg_relative_tolerance * r0;
+       ++k) {
+    const Eigen::VectorXd Ap = apply(p);
+    const double curvature = p.dot(Ap);
+    if (!(curvature > 0.0)) {
+      if (k == 0) x = z;  // at least the preconditioned steepest descent
+      break;
+    }
+    const double alpha = rz / curvature;
+    x += alpha * p;
+    r -= alpha * Ap;
+    z = precondition(r);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return x;
+}
+
+}  // namespace
+
+LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
+                                        const SparseLmSettings& settings,
+                                        const MotionPrior& prior) {
+  auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> uses(poses.size());
+  for (std::size_t p = 0; p < problem.numPlanes(); ++p) {
+    const auto& clusters = problem.planes()[p].clusters;
+    for (std::size_t a = 0; a < clusters.size(); ++a) uses[clusters[a].frame].emplace_back(p, a);
+  }
+
+  LmSummary summary;
+  double cost = objective(poses);
+  summary.initial_cost = cost;
+  double mu = settings.initial_damping;
+  double nu = 2.0;
+  std::unique_ptr<FactoredSystem> system;
+  while (poses.size() > 1 && summary.iterations < settings.max_iterations && cost > 0.0) {
+    if (!system) system = std::make_unique<FactoredSystem>(problem, prior, uses, poses);
+    Eigen::VectorXd g = system->gradient();
+    g.head<6>().setZero();
+    if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
+    ++summary.iterations;
+
+    const Eigen::VectorXd scale = dampingScale(system->diagonal());
+    const Eigen::VectorXd step = solveDamped(*system, scale, mu, settings);
+    const double predicted = -(g.dot(step) + 0.5 * step.dot(system->multiply(step)));
+    bool accepted = false;
+    if (step.allFinite() && predicted > 0.0) {
+      std::vector<Pose> trial = applyUpdate(poses, step);
+      const double trial_cost = objective(trial);
+      if (trial_cost < cost) {
+        const double gain = cost - trial_cost;
+        mu *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * gain / predicted - 1.0, 3));
+        nu = 2.0;
+        poses = std::move(trial);
+        const double previous = cost;
+        cost = trial_cost;
+        system.reset();
+        ++summary.accepted_steps;
+        accepted = true;
+        if (gain <= settings.relative_cost_tolerance * previous) break;
+      }
+    }
+    if (!accepted) {
+      mu *= nu;
+      nu *= 2.0;
+      if (mu > 1e12) break;
+    }
+  }
+  summary.final_cost = cost;
+  return summary;
+}
+
+}  // namespace hba::ba

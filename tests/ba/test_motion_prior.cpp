@@ -1,0 +1,167 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "hba/ba/association.hpp"
+#include "hba/ba/lm_solver.hpp"
+#include "hba/ba/motion_prior.hpp"
+#include "hba/ba/sparse_lm.hpp"
+#include "hba/ba/window_ba.hpp"
+#include "hba/core/error.hpp"
+#include "hba/core/lie.hpp"
+#include "synthetic_window.hpp"
+
+namespace hba::ba {
+namespace {
+
+using test::makeSyntheticWindow;
+using test::relativePoseError;
+using test::SyntheticWindowSpec;
+
+std::vector<Pose> randomPoses(std::size_t n, std::mt19937& rng) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<Pose> poses;
+  for (std::size_t i = 0; i < n; ++i) {
+    poses.emplace_back(Quat(so3Exp(Vec3(g(rng), g(rng), g(rng)) * 0.5)),
+                       Vec3(g(rng), g(rng), g(rng)) * 3.0);
+  }
+  return poses;
+}
+
+// The update of window_ba.hpp applied to coordinate k of frame i.
+std::vector<Pose> nudge(const std::vector<Pose>& poses, std::size_t i, int k, double h) {
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(6 * static_cast<Eigen::Index>(poses.size()));
+  delta(static_cast<Eigen::Index>(6 * i) + k) = h;
+  return applyUpdate(poses, delta);
+}
+
+TEST(MotionPrior, VanishesAtTheInputAndGrowsAwayFromIt) {
+  std::mt19937 rng(3);
+  const std::vector<Pose> input = randomPoses(4, rng);
+  const MotionPrior prior = neighbourPrior(input, {}, MotionPriorSettings{});
+  ASSERT_EQ(prior.terms().size(), 3u);
+  EXPECT_LT(prior.cost(input), 1e-20);
+  EXPECT_GT(prior.cost(nudge(input, 2, 0, 0.1)), 0.0);
+}
+
+TEST(MotionPrior, GradientAndHessianMatchFiniteDifferences) {
+  std::mt19937 rng(5);
+  const std::vector<Pose> input = randomPoses(4, rng);
+  const MotionPrior prior = neighbourPrior(input, {1.0, 2.0, 3.0}, MotionPriorSettings{});
+  // Away from the input, where the residuals are not zero.
+  std::vector<Pose> poses = input;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    for (int k = 0; k < 6; ++k) poses = nudge(poses, i, k, 0.03 * (k + 1) * (i % 2 ? 1 : -1));
+  }
+  Linearization lin;
+  lin.gradient.setZero(24);
+  lin.hessian.setZero(24, 24);
+  prior.addTo(lin, poses);
+  EXPECT_NEAR(lin.cost, prior.cost(poses), 1e-12);
+  const double h = 1e-6;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    for (int k = 0; k < 6; ++k) {
+      const double numeric = (prior.cost(nudge(poses, i, k, h)) - prior.cost(nudge(poses, i, k, -h))) / (2 * h);
+      EXPECT_NEAR(lin.gradient(static_cast<Eigen::Index>(6 * i) + k), numeric,
+                  1e-5 * std::max(1.0, std::abs(numeric)));
+    }
+  }
+  // Gauss-Newton Hessian: equals the exact one at zero residual.
+  const MotionPrior at_input = neighbourPrior(input, {1.0, 2.0, 3.0}, MotionPriorSettings{});
+  Linearization zero;
+  zero.gradient.setZero(24);
+  zero.hessian.setZero(24, 24);
+  at_input.addTo(zero, input);
+  const double hh = 1e-4;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    for (int k = 0; k < 6; ++k) {
+      Linearization plus, minus;
+      plus.gradient.setZero(24);
+      plus.hessian.setZero(24, 24);
+      minus = plus;
+      at_input.addTo(plus, nudge(input, i, k, hh));
+      at_input.addTo(minus, nudge(input, i, k, -hh));
+      const Eigen::VectorXd column = (plus.gradient - minus.gradient) / (2 * hh);
+      const Eigen::VectorXd analytic = zero.hessian.col(static_cast<Eigen::Index>(6 * i) + k);
+      EXPECT_LT((column - analytic).norm(), 1e-5 * std::max(1.0, analytic.norm()));
+    }
+  }
+}
+
+TEST(MotionPrior, LooserWithThePathBetweenFrames) {
+  std::mt19937 rng(7);
+  const std::vector<Pose> input = randomPoses(2, rng);
+  const MotionPrior near = neighbourPrior(input, {1.0}, MotionPriorSettings{});
+  const MotionPrior far = neighbourPrior(input, {100.0}, MotionPriorSettings{});
+  EXPECT_GT(near.terms()[0].weight(0, 0), 50.0 * far.terms()[0].weight(0, 0));
+  EXPECT_GT(near.terms()[0].weight(3, 3), 10.0 * far.terms()[0].weight(3, 3));
+}
+
+TEST(MotionPrior, RejectsBadSettingsAndSizes) {
+  std::mt19937 rng(9);
+  const std::vector<Pose> input = randomPoses(3, rng);
+  MotionPriorSettings bad;
+  bad.translation_sigma = 0.0;
+  EXPECT_THROW(neighbourPrior(input, {}, bad), Error);
+  EXPECT_THROW(neighbourPrior(input, {1.0}, MotionPriorSettings{}), Error);
+  MotionPriorSettings off;
+  off.enabled = false;
+  EXPECT_TRUE(neighbourPrior(input, {}, off).empty());
+}
+
+// A noisy window: the prior's pull towards a wrong input is far below the
+// noise, because thousands of plane points outweigh it.
+TEST(MotionPrior, BarelyMovesAWellConstrainedWindow) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.02;
+  const auto window = makeSyntheticWindow(spec);
+  BaSettings settings;
+  settings.planes.voxel_size = 8.0;
+  BaSettings without = settings;
+  without.motion_prior.enabled = false;
+  const BaResult with_prior = optimizeWindow(window.scanPointers(), window.initial, settings);
+  const BaResult no_prior = optimizeWindow(window.scanPointers(), window.initial, without);
+  const auto gap = relativePoseError(with_prior.poses, no_prior.poses);
+  const auto error = relativePoseError(no_prior.poses, window.truth);
+  EXPECT_LT(gap.max_translation, 0.5 * error.max_translation + 1e-4);
+  EXPECT_LT(relativePoseError(with_prior.poses, window.truth).max_translation, 0.01);
+}
+
+// The sparse solver reaches the same optimum as the dense one.
+TEST(SparseLm, MatchesTheDenseSolver) {
+  SyntheticWindowSpec spec;
+  spec.frames = 8;
+  spec.noise_sigma = 0.01;
+  const auto window = makeSyntheticWindow(spec);
+  BaSettings settings;
+  settings.planes.voxel_size = 8.0;
+  settings.association_rounds = 1;
+  settings.max_iterations = 0;  // only the association
+  const BaResult associated = optimizeWindow(window.scanPointers(), window.initial, settings);
+  ASSERT_GT(associated.num_planes, 4u);
+
+  const Association association =
+      associate(window.scanPointers(), window.initial, settings.planes, 0.0);
+  const MotionPrior prior = neighbourPrior(window.initial, {}, MotionPriorSettings{});
+  std::vector<Pose> dense = window.initial;
+  std::vector<Pose> sparse = window.initial;
+  LmSettings dense_settings;
+  dense_settings.max_iterations = 50;
+  dense_settings.relative_cost_tolerance = 1e-14;
+  SparseLmSettings sparse_settings;
+  sparse_settings.max_iterations = 50;
+  sparse_settings.relative_cost_tolerance = 1e-14;
+  sparse_settings.cg_max_iterations = 500;
+  sparse_settings.cg_relative_tolerance = 1e-12;
+  const LmSummary d = solveLevenbergMarquardt(association.problem, dense, dense_settings, prior);
+  const LmSummary s = solveSparseLevenbergMarquardt(association.problem, sparse, sparse_settings, prior);
+  EXPECT_LT(s.final_cost, 0.05 * s.initial_cost);
+  EXPECT_NEAR(s.final_cost, d.final_cost, 1e-6 * d.initial_cost);
+  const auto gap = relativePoseError(sparse, dense);
+  EXPECT_LT(gap.max_translation, 1e-4);
+  EXPECT_LT(gap.max_angle_deg, 1e-3);
+  EXPECT_EQ(sparse[0].t, window.initial[0].t);  // gauge
+}
+
+}  // namespace
+}  // namespace hba::ba
