@@ -121,7 +121,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     rejectUnknownKeys(root,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
-                       "global", "refine", "refine_voxel", "motion_prior"},
+                       "global", "refine", "refine_voxel", "refine_scan_voxel", "motion_prior"},
                       "", source);
     read(root, "window", settings.window, source);
     read(root, "stride", settings.stride, source);
@@ -134,6 +134,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "point_sigma", settings.information.point_sigma, source);
     read(root, "refine", settings.refine, source);
     read(root, "refine_voxel", settings.refinement.planes.voxel_size, source);
+    read(root, "refine_scan_voxel", settings.refine_scan_voxel, source);
     bool motion_prior = settings.motionPrior();
     read(root, "motion_prior", motion_prior, source);
     settings.setMotionPrior(motion_prior);
@@ -187,6 +188,9 @@ void checkSettings(const HbaSettings& s) {
   if (!(s.refinement.planes.voxel_size >= 0.05 && s.refinement.planes.voxel_size <= 100.0)) {
     throw Error("setting refine_voxel must be in [0.05, 100] m");
   }
+  if (!(s.refine_scan_voxel == 0.0 || (s.refine_scan_voxel >= 1e-3 && s.refine_scan_voxel <= 100.0))) {
+    throw Error("setting refine_scan_voxel must be 0 (= scan_voxel) or in [0.001, 100] m");
+  }
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -205,6 +209,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"point_sigma", s.information.point_sigma},
           {"refine", s.refine},
           {"refine_voxel", s.refinement.planes.voxel_size},
+          {"refine_scan_voxel", s.refine_scan_voxel},
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

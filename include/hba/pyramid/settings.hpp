@@ -58,6 +58,9 @@ struct HbaSettings {
   // finest voxel, from the hierarchy's poses (docs/pyramid.md).
   bool refine = true;
   ba::RefinementSettings refinement;
+  // The refinement and the self-check hold every scan at once, downsampled
+  // to this (m; 0 = as the windows' scans).
+  double refine_scan_voxel = 0.2;
 
   int outer_iterations = 1;          // bottom-up + top-down rounds at most
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
