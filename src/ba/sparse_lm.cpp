@@ -21,7 +21,15 @@ struct PriorBlock {
   Mat6 ab = Mat6::Zero();
 };
 
-// The linearized objective at one set of poses, kept factored.
+// One plane's share of H x: its frames and Z (3 x 6F, single precision:
+// it only feeds the conjugate-gradient products) and weights.
+struct PlaneFactor {
+  Eigen::Matrix<float, 3, Eigen::Dynamic> Z;
+  Vec3 weights = Vec3::Zero();
+};
+
+// The linearized objective at one set of poses, kept factored: per frame
+// the gradient and the 6x6 diagonal block, per plane its rank-3 factor.
 class FactoredSystem {
  public:
   FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior,
@@ -29,25 +37,33 @@ class FactoredSystem {
                  const std::vector<Pose>& poses)
       : problem_(problem), uses_(uses), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
-    planes_.resize(problem.numPlanes());
-    tbb::parallel_for(std::size_t{0}, planes_.size(), [&](std::size_t p) {
-      planes_[p] = linearizePlane(problem.planes()[p], transforms);
-    });
+    factors_.resize(problem.numPlanes());
     gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
     diagonal_.assign(frames_, Mat6::Zero());
-    // Per frame, in plane order: fixed summation order, disjoint writes.
-    tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
-      for (const auto& [p, a] : uses_[i]) {
-        const PlaneLinearization& lin = planes_[p];
-        gradient_.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
-        const Eigen::Matrix<double, 3, 6> Za = lin.Z.middleCols<6>(6 * a);
-        diagonal_[i] += lin.diagonal[a] + Za.transpose() * lin.weights.asDiagonal() * Za;
+    // Planes in chunks, so that the full linearizations (gradient and
+    // diagonal blocks per observation) of only one chunk are alive at once;
+    // their sums go to the frames in plane order (deterministic).
+    constexpr std::size_t kChunk = 2048;
+    std::vector<PlaneLinearization> chunk;
+    for (std::size_t c0 = 0; c0 < factors_.size(); c0 += kChunk) {
+      const std::size_t c1 = std::min(factors_.size(), c0 + kChunk);
+      chunk.assign(c1 - c0, PlaneLinearization{});
+      tbb::parallel_for(c0, c1, [&](std::size_t p) {
+        chunk[p - c0] = linearizePlane(problem.planes()[p], transforms);
+        factors_[p].Z = chunk[p - c0].Z.cast<float>();
+        factors_[p].weights = chunk[p - c0].weights;
+      });
+      for (std::size_t p = c0; p < c1; ++p) {
+        const PlaneLinearization& lin = chunk[p - c0];
+        const auto& clusters = problem.planes()[p].clusters;
+        cost_ += lin.cost;
+        for (std::size_t a = 0; a < clusters.size(); ++a) {
+          const std::size_t i = clusters[a].frame;
+          gradient_.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
+          const Eigen::Matrix<double, 3, 6> Za = lin.Z.middleCols<6>(6 * a);
+          diagonal_[i] += lin.diagonal[a] + Za.transpose() * lin.weights.asDiagonal() * Za;
+        }
       }
-    });
-    for (PlaneLinearization& lin : planes_) {
-      cost_ += lin.cost;
-      lin.diagonal.clear();  // summed above: only Z and the weights are needed now
-      lin.diagonal.shrink_to_fit();
     }
     for (const RelativePosePrior& term : prior.terms()) {
       const RelativePoseErrorJacobians J =
@@ -65,28 +81,29 @@ class FactoredSystem {
   const Eigen::VectorXd& gradient() const { return gradient_; }
   const Mat6List& diagonal() const { return diagonal_; }
 
-  // y = H x, without the blocks on the diagonal's own planes counted twice.
+  // y = H x. The diagonal blocks already hold each plane's Z_a^T W Z_a, so
+  // the plane sums leave the frame's own term out.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const {
-    std::vector<Vec3> wz(planes_.size());
-    tbb::parallel_for(std::size_t{0}, planes_.size(), [&](std::size_t p) {
+    const Eigen::VectorXf xf = x.cast<float>();
+    std::vector<Eigen::Vector3f> wz(factors_.size());
+    tbb::parallel_for(std::size_t{0}, factors_.size(), [&](std::size_t p) {
       const auto& clusters = problem_.planes()[p].clusters;
-      Vec3 z = Vec3::Zero();
+      Eigen::Vector3f z = Eigen::Vector3f::Zero();
       for (std::size_t a = 0; a < clusters.size(); ++a) {
-        z.noalias() += planes_[p].Z.middleCols<6>(6 * a) * x.segment<6>(6 * clusters[a].frame);
+        z.noalias() += factors_[p].Z.middleCols<6>(6 * a) * xf.segment<6>(6 * clusters[a].frame);
       }
-      wz[p] = planes_[p].weights.cwiseProduct(z);
+      wz[p] = factors_[p].weights.cast<float>().cwiseProduct(z);
     });
     Eigen::VectorXd y(x.size());
     tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
-      // The diagonal blocks hold Z_a^T W Z_a already: subtract it from the
-      // plane sum instead of treating a == own frame separately.
-      Vec6 sum = diagonal_[i] * x.segment<6>(6 * i);
+      Eigen::Vector<float, 6> sum = Eigen::Vector<float, 6>::Zero();
       for (const auto& [p, a] : uses_[i]) {
-        const Eigen::Matrix<double, 3, 6> Za = planes_[p].Z.middleCols<6>(6 * a);
-        sum.noalias() += Za.transpose() * (wz[p] - planes_[p].weights.cwiseProduct(
-                                                       Za * x.segment<6>(6 * i)));
+        const auto Za = factors_[p].Z.middleCols<6>(6 * a);
+        const Eigen::Vector3f own =
+            factors_[p].weights.cast<float>().cwiseProduct(Za * xf.segment<6>(6 * i));
+        sum.noalias() += Za.transpose() * (wz[p] - own);
       }
-      y.segment<6>(6 * i) = sum;
+      y.segment<6>(6 * i) = diagonal_[i] * x.segment<6>(6 * i) + sum.cast<double>();
     });
     for (const PriorBlock& block : prior_) {
       y.segment<6>(6 * block.a) += block.ab * x.segment<6>(6 * block.b);
@@ -99,7 +116,7 @@ class FactoredSystem {
   const PlaneProblem& problem_;
   const std::vector<std::vector<std::pair<std::size_t, std::size_t>>>& uses_;
   std::size_t frames_ = 0;
-  std::vector<PlaneLinearization> planes_;
+  std::vector<PlaneFactor> factors_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;
   Mat6List diagonal_;

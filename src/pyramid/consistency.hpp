@@ -20,6 +20,7 @@ class FixedPlaneMap {
 
   std::size_t planes() const { return association_.problem.numPlanes(); }
   std::size_t regions() const { return region_points_.size(); }
+  double points() const { return points_; }
   // RMS point-to-plane distance (m) over all planes, and per region (planes
   // belong to the region of their first observing frame; a region without
   // planes reads 0).

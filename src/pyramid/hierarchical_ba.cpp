@@ -1,7 +1,6 @@
 #include "hba/pyramid/hierarchical_ba.hpp"
 
 #include <spdlog/spdlog.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,11 +8,10 @@
 
 #include "bottom_up.hpp"
 #include "hba/core/stopwatch.hpp"
-#include "hba/voxel/downsample.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
-#include "consistency.hpp"
+#include "refine_stage.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
@@ -168,105 +166,6 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   return solved.poses;
 }
 
-// Path (m) between consecutive poses.
-std::vector<double> stepLengths(const std::vector<Pose>& poses) {
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < poses.size(); ++i) steps.push_back((poses[i].t - poses[i - 1].t).norm());
-  return steps;
-}
-
-// Regions of the per-region self-check: about 100 frames each, 4 to 20.
-std::size_t regionCount(std::size_t frames) {
-  return std::clamp<std::size_t>(frames / 100, 4, 20);
-}
-
-void warn(HbaReport& report, std::string message) {
-  spdlog::warn("{}", message);
-  report.warnings.push_back(std::move(message));
-}
-
-// Checks the hierarchy's poses against the input on a fixed plane map, runs
-// the sparse plane BA over every layer-1 frame (from the input where the
-// hierarchy made the map blurrier) and checks the result the same way.
-std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
-                                 const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 HbaReport& report) {
-  const auto start = Clock::now();
-  std::vector<PointCloud> clouds(scans.size());
-  // Every scan is held at once (for the plane extraction over all of them):
-  // coarser than the windows' scans, so memory stays within the pyramid's.
-  tbb::parallel_for(std::size_t{0}, scans.size(), [&](std::size_t i) {
-    clouds[i] = settings.refine_scan_voxel > 0.0 ? voxel::downsample(scans.load(i), settings.refine_scan_voxel)
-                                                 : scans.load(i);
-  });
-  std::vector<const PointCloud*> pointers(clouds.size());
-  for (std::size_t i = 0; i < clouds.size(); ++i) pointers[i] = &clouds[i];
-
-  ba::RefinementSettings rs = settings.refinement;
-  rs.motion_prior.point_sigma = settings.information.point_sigma;
-  const FixedPlaneMap fixed(pointers, initial, rs.planes, rs.reject_ratio, regionCount(initial.size()));
-  ConsistencyReport& c = report.consistency;
-  c.planes = fixed.planes();
-  c.input_rms = fixed.rms(initial);
-  c.hierarchy_rms = fixed.rms(hierarchy);
-  std::vector<Pose> start_poses = hierarchy;
-  if (c.hierarchy_rms > c.input_rms) {
-    c.hierarchy_rejected = true;
-    start_poses = initial;
-    warn(report, fmt::format("the hierarchy made the map less consistent than the input (plane RMS "
-                             "{:.4f} -> {:.4f} m on the input's planes): refining from the input",
-                             c.input_rms, c.hierarchy_rms));
-  }
-
-  std::vector<Pose> result = start_poses;
-  if (settings.refine && report.layers > 1) {  // one layer is one global BA already
-    const ba::RefinementResult refined =
-        ba::refineGlobally(pointers, start_poses, rs, stepLengths(initial));
-    RefinementReport& r = report.refinement;
-    r.ran = true;
-    r.planes = refined.planes;
-    r.observations = refined.observations;
-    r.plane_points = refined.plane_points;
-    r.rms_before = refined.rms_before;
-    r.rms_after = refined.rms_after;
-    r.iterations = refined.iterations;
-    report.seconds_voxelize += refined.seconds_associate;
-    report.seconds_solve += refined.seconds_solve;
-    spdlog::info("refinement: {} frames, {} planes, {} observations, plane RMS {:.4f} -> {:.4f} m, "
-                 "{} LM iterations",
-                 initial.size(), r.planes, r.observations, r.rms_before, r.rms_after, r.iterations);
-    result = refined.poses;
-  }
-
-  c.final_rms = fixed.rms(result);
-  if (c.final_rms > c.input_rms) {
-    c.final_rejected = true;
-    result = initial;
-    warn(report, fmt::format("the result is less consistent than the input (plane RMS {:.4f} -> "
-                             "{:.4f} m on the input's planes): returning the input poses",
-                             c.input_rms, c.final_rms));
-    c.final_rms = c.input_rms;
-  }
-  c.region_first_frame = fixed.regionStarts();
-  c.region_input_rms = fixed.regionRms(initial);
-  c.region_final_rms = fixed.regionRms(result);
-  for (std::size_t k = 0; k < c.region_first_frame.size(); ++k) {
-    // The input's own planes favour the input a little where a loop closure
-    // pulls frames towards earlier scans (hku1's return: +5 % here while the
-    // map's entropy drops): warn only beyond that.
-    if (c.region_final_rms[k] > c.region_input_rms[k] * 1.10) {
-      warn(report, fmt::format("frames from {}: less consistent than the input (plane RMS {:.4f} -> "
-                               "{:.4f} m)",
-                               c.region_first_frame[k], c.region_input_rms[k], c.region_final_rms[k]));
-    }
-  }
-  report.refinement.seconds = secondsSince(start);
-  spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
-               "{:.4f} m, final {:.4f} m",
-               c.planes, c.input_rms, c.hierarchy_rms, c.final_rms);
-  return result;
-}
-
 }  // namespace
 
 HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
@@ -308,7 +207,7 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
     }
   }
 
-  result.poses = refineAndCheck(scans, initial, result.poses, settings, report);
+  result.poses = refineAndCheck(scans, initial, result.poses, settings, report.layers, report);
 
   std::size_t planes = 0;
   for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;

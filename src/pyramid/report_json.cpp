@@ -43,6 +43,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
   }
   return {{"frames", r.frames},
           {"refinement", {{"ran", f.ran},
+                          {"blocks", f.blocks},
                           {"planes", f.planes},
                           {"observations", f.observations},
                           {"plane_points", f.plane_points},

@@ -121,7 +121,8 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     rejectUnknownKeys(root,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
-                       "global", "refine", "refine_voxel", "refine_scan_voxel", "motion_prior"},
+                       "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
+                       "motion_prior"},
                       "", source);
     read(root, "window", settings.window, source);
     read(root, "stride", settings.stride, source);
@@ -135,6 +136,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "refine", settings.refine, source);
     read(root, "refine_voxel", settings.refinement.planes.voxel_size, source);
     read(root, "refine_scan_voxel", settings.refine_scan_voxel, source);
+    read(root, "refine_max_points", settings.refine_max_points, source);
     bool motion_prior = settings.motionPrior();
     read(root, "motion_prior", motion_prior, source);
     settings.setMotionPrior(motion_prior);
@@ -191,6 +193,7 @@ void checkSettings(const HbaSettings& s) {
   if (!(s.refine_scan_voxel == 0.0 || (s.refine_scan_voxel >= 1e-3 && s.refine_scan_voxel <= 100.0))) {
     throw Error("setting refine_scan_voxel must be 0 (= scan_voxel) or in [0.001, 100] m");
   }
+  if (s.refine_max_points < 1000) throw Error("setting refine_max_points must be >= 1000");
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -210,6 +213,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"refine", s.refine},
           {"refine_voxel", s.refinement.planes.voxel_size},
           {"refine_scan_voxel", s.refine_scan_voxel},
+          {"refine_max_points", s.refine_max_points},
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

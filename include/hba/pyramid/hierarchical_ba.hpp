@@ -48,6 +48,7 @@ struct IterationReport {
 // The final refinement over every layer-1 frame.
 struct RefinementReport {
   bool ran = false;
+  std::size_t blocks = 0;  // consecutive, overlapping stretches of frames (memory bound)
   std::size_t planes = 0;
   std::size_t observations = 0;
   std::size_t plane_points = 0;

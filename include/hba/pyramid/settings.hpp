@@ -61,6 +61,11 @@ struct HbaSettings {
   // The refinement and the self-check hold every scan at once, downsampled
   // to this (m; 0 = as the windows' scans).
   double refine_scan_voxel = 0.2;
+  // At most this many points (at refine_scan_voxel) are held at once: a
+  // longer sequence is refined and checked in consecutive blocks that
+  // overlap by a quarter (about 16 bytes a point for the scans, and as much
+  // again for the plane map: 20 M points is roughly 1 GB).
+  std::size_t refine_max_points = 20'000'000;
 
   int outer_iterations = 1;          // bottom-up + top-down rounds at most
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
