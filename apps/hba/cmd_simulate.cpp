@@ -23,6 +23,9 @@ struct SimulateArgs {
   double drift_translation = sim::DriftConfig{}.translation;
   double drift_rotation = sim::DriftConfig{}.rotation_deg_per_m;
   double drift_z = sim::DriftConfig{}.vertical;
+  double jitter_translation = 0.0;
+  double jitter_rotation = 0.0;
+  std::string scene = "mixed";
   bool loop_closed = false;
   bool poses_only = false;
   double downsample = 0.0;
@@ -53,6 +56,10 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
   config.drift.rotation_deg_per_m = args.drift_rotation;
   config.drift.vertical = args.drift_z;
   config.drift.loop_closed = args.loop_closed;
+  config.drift.jitter_translation = args.jitter_translation;
+  config.drift.jitter_rotation_deg = args.jitter_rotation;
+  config.scene = *sim::sceneFromString(args.scene);  // CLI11 checked the name
+  config.world = sim::scenePreset(config.scene);
   config.downsample_voxel = args.downsample;
   return config;
 }
@@ -112,6 +119,16 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--drift-rotation", args->drift_rotation,
                       "Odometry heading drift in deg per metre")
       ->capture_default_str();
+  command->add_option("--jitter-translation", args->jitter_translation,
+                      "Per-frame odometry noise on top of the drift, sigma per axis (m)")
+      ->default_val(args->jitter_translation);
+  command->add_option("--jitter-rotation", args->jitter_rotation,
+                      "Per-frame odometry noise on top of the drift, sigma per axis (deg)")
+      ->default_val(args->jitter_rotation);
+  command->add_option("--scene", args->scene,
+                      "mixed | city (dense buildings) | open (sparse structure, vegetation)")
+      ->check(CLI::IsMember({"mixed", "city", "open"}))
+      ->default_val(args->scene);
   command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")
       ->capture_default_str();
   command->add_flag("--loop-closed", args->loop_closed,

@@ -69,12 +69,16 @@ std::vector<Pose> perturbIndependently(const std::vector<Pose>& truth, const Dri
 
 void validate(const DriftConfig& c) {
   const bool ok = c.translation >= 0.0 && c.rotation_deg_per_m >= 0.0 && c.vertical >= 0.0 &&
+                  c.jitter_translation >= 0.0 && c.jitter_rotation_deg >= 0.0 &&
                   c.wander_length > 0.0 && c.closed_translation_sigma >= 0.0 &&
                   c.closed_rotation_sigma_deg >= 0.0;
   if (!ok) throw Error("simulate: drift rates and noise levels must be non-negative");
   if (c.translation > 1.0 || c.rotation_deg_per_m > 10.0 || c.vertical > 1.0) {
     throw Error("simulate: drift rates are implausibly large (translation and vertical are "
                 "fractions of the distance, e.g. 0.01 for 1 %)");
+  }
+  if (c.jitter_translation > 1.0 || c.jitter_rotation_deg > 10.0) {
+    throw Error("simulate: jitter is implausibly large (at most 1 m and 10 deg per frame)");
   }
 }
 
@@ -83,8 +87,18 @@ std::vector<Pose> applyDrift(const std::vector<Pose>& truth, const DriftConfig& 
   validate(config);
   if (truth.empty()) return {};
   auto rng = makeRng(seed, Stream::Drift);
-  return config.loop_closed ? perturbIndependently(truth, config, rng)
-                            : accumulateDrift(truth, config, rng);
+  std::vector<Pose> poses = config.loop_closed ? perturbIndependently(truth, config, rng)
+                                               : accumulateDrift(truth, config, rng);
+  if (config.jitter_translation > 0.0 || config.jitter_rotation_deg > 0.0) {
+    // Its own stream: runs without jitter keep their exact bytes.
+    auto jitter = makeRng(seed, Stream::Jitter);
+    for (std::size_t k = 1; k < poses.size(); ++k) {  // the first pose fixes the frame
+      const Vec3 dt = config.jitter_translation * gaussianVector(jitter);
+      const Vec3 dr = config.jitter_rotation_deg * kDegToRad * gaussianVector(jitter);
+      poses[k] = Pose((poses[k].q * Quat(so3Exp(dr))).normalized(), Vec3(poses[k].t + dt));
+    }
+  }
+  return poses;
 }
 
 }  // namespace hba::sim

@@ -47,6 +47,7 @@ void emitSensor(YAML::Emitter& out, const SensorConfig& c) {
 void emitWorld(YAML::Emitter& out, const Simulation& s) {
   const WorldConfig& w = s.config.world;
   out << YAML::Key << "world" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "scene" << YAML::Value << toString(s.config.scene);
   out << YAML::Key << "max_slope" << YAML::Value << w.max_slope;
   out << YAML::Key << "ground_cell_m" << YAML::Value << w.ground_cell;
   out << YAML::Key << "margin_m" << YAML::Value << w.margin;
@@ -77,6 +78,8 @@ void emitDrift(YAML::Emitter& out, const DriftConfig& d) {
     out << YAML::Key << "vertical_per_m" << YAML::Value << d.vertical;
     out << YAML::Key << "wander_length_m" << YAML::Value << d.wander_length;
   }
+  out << YAML::Key << "jitter_translation_m" << YAML::Value << d.jitter_translation;
+  out << YAML::Key << "jitter_rotation_deg" << YAML::Value << d.jitter_rotation_deg;
   out << YAML::EndMap;
 }
 

@@ -100,5 +100,33 @@ TEST(SimDrift, RejectsNegativeRates) {
   EXPECT_THROW(applyDrift(straightDrive(3), only(0.0, 0.0, 2.0), 1), Error);
 }
 
+// Jitter: per-frame, independent errors of the configured size on top of
+// the drift; without jitter the drift's own bytes are unchanged.
+TEST(SimDrift, JitterAddsIndependentPerFrameNoiseOfTheConfiguredSize) {
+  const auto truth = straightDrive(2001);
+  DriftConfig smooth = only(0.01, 0.01, 0.0);
+  DriftConfig jittery = smooth;
+  jittery.jitter_translation = 0.03;
+  jittery.jitter_rotation_deg = 0.2;
+  const auto a = applyDrift(truth, smooth, 7);
+  const auto b = applyDrift(truth, jittery, 7);
+  EXPECT_EQ(a[0].t, b[0].t);  // the first pose fixes the frame
+  double sum_t = 0.0, sum_r = 0.0, lag = 0.0;
+  for (std::size_t k = 1; k < truth.size(); ++k) {
+    const Vec3 dt = b[k].t - a[k].t;
+    sum_t += dt.squaredNorm();
+    sum_r += so3Log(Quat(a[k].q.conjugate() * b[k].q)).squaredNorm();
+    if (k > 1) lag += dt.dot(b[k - 1].t - a[k - 1].t);
+  }
+  const double n = static_cast<double>(truth.size() - 1);
+  EXPECT_NEAR(std::sqrt(sum_t / (3 * n)), 0.03, 0.002);
+  EXPECT_NEAR(std::sqrt(sum_r / (3 * n)) * 180.0 / M_PI, 0.2, 0.015);
+  EXPECT_LT(std::abs(lag / n), 0.1 * sum_t / n);  // independent from frame to frame
+  const auto again = applyDrift(truth, smooth, 7);
+  for (std::size_t k = 0; k < truth.size(); ++k) EXPECT_EQ(again[k].t, a[k].t);
+  jittery.jitter_translation = -1.0;
+  EXPECT_THROW(applyDrift(truth, jittery, 7), Error);
+}
+
 }  // namespace
 }  // namespace hba::sim

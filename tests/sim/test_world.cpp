@@ -59,6 +59,28 @@ TEST(SimWorld, SameSeedSameWorldOtherSeedOtherWorld) {
               other.triangles().back().a != s.world.triangles().back().a);
 }
 
+// Scene presets: a city block holds far more building faces than an open,
+// vegetated scene, which holds far more foliage.
+TEST(SimWorld, ScenesDifferInStructureAndVegetation) {
+  const Simulation& s = test::smallSimulation();
+  const World city = buildWorld(s.truth.poses, s.terrain, scenePreset(Scene::City), s.config.seed);
+  const World open = buildWorld(s.truth.poses, s.terrain, scenePreset(Scene::Open), s.config.seed);
+  std::size_t city_tall = 0, open_tall = 0;
+  for (const auto* w : {&city, &open}) {
+    for (const Triangle& t : w->triangles()) {
+      const double ground = s.terrain.height(t.a.x(), t.a.y());
+      const bool tall = std::min({t.a.z(), t.b.z(), t.c.z()}) > ground + 6.0 &&
+                        (t.b - t.a).cross(t.c - t.a).norm() > 2.0;  // big faces: walls, roofs
+      if (tall) ++(w == &city ? city_tall : open_tall);
+    }
+  }
+  EXPECT_GT(city_tall, 5 * std::max<std::size_t>(open_tall, 1));
+  EXPECT_GT(open.spheres().size(), 2 * city.spheres().size());
+  EXPECT_EQ(sceneFromString("open"), Scene::Open);
+  EXPECT_FALSE(sceneFromString("forest"));
+  EXPECT_STREQ(toString(Scene::City), "city");
+}
+
 TEST(SimWorld, TerrainSlopesStayGentle) {
   const Terrain terrain(11, 0.03);
   double steepest = 0.0, lowest = 1e9, highest = -1e9;

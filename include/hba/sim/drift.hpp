@@ -27,6 +27,11 @@ struct DriftConfig {
   bool loop_closed = false;
   double closed_translation_sigma = 0.03;  // m, per axis
   double closed_rotation_sigma_deg = 0.1;  // deg, per axis
+  // Per-frame errors on top of the drift, independent from frame to frame,
+  // as real odometry has them (registration noise, deskew residuals, z and
+  // attitude wobble): sigma per axis. 0 = smooth drift only.
+  double jitter_translation = 0.0;   // m
+  double jitter_rotation_deg = 0.0;  // deg
 };
 
 // Throws hba::Error for negative rates or sigmas.

@@ -28,6 +28,7 @@ struct SimulationConfig {
   std::uint64_t seed = 1;
   TrajectoryConfig trajectory;
   SensorConfig sensor = sensorPreset(SensorModel::Vlp16);
+  Scene scene = Scene::Mixed;  // the preset `world` was made from (for sim.yaml)
   WorldConfig world;
   DriftConfig drift;
   double downsample_voxel = 0.0;  // m; 0 keeps every return

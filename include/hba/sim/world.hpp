@@ -3,6 +3,7 @@
 // Ray queries are const and safe to run from many threads at once.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "hba/core/pose.hpp"
@@ -53,6 +54,16 @@ struct WorldConfig {
   double trees = 20.0;
   double bushes = 25.0;
 };
+
+// Scene kinds: densities of the world's objects.
+//  - mixed: the default, buildings, walls, poles and vegetation;
+//  - city: dense buildings and walls, little vegetation (a city block);
+//  - open: a few buildings, mostly trees and bushes (a park, a campus lawn):
+//    sparse structure, as in the scenes where local windows struggle.
+enum class Scene { Mixed, City, Open };
+std::optional<Scene> sceneFromString(const std::string& name);
+const char* toString(Scene scene);
+WorldConfig scenePreset(Scene scene);
 
 // Builds terrain-following ground, kerbs along the path, buildings of varied
 // size and orientation, walls, poles, trees (trunk + foliage of random small

@@ -1,0 +1,47 @@
+#include "hba/sim/world.hpp"
+
+namespace hba::sim {
+
+std::optional<Scene> sceneFromString(const std::string& name) {
+  if (name == "mixed") return Scene::Mixed;
+  if (name == "city") return Scene::City;
+  if (name == "open") return Scene::Open;
+  return std::nullopt;
+}
+
+const char* toString(Scene scene) {
+  switch (scene) {
+    case Scene::City:
+      return "city";
+    case Scene::Open:
+      return "open";
+    case Scene::Mixed:
+      break;
+  }
+  return "mixed";
+}
+
+WorldConfig scenePreset(Scene scene) {
+  WorldConfig config;  // mixed
+  switch (scene) {
+    case Scene::City:
+      config.buildings = 70.0;
+      config.walls = 25.0;
+      config.poles = 40.0;
+      config.trees = 6.0;
+      config.bushes = 6.0;
+      break;
+    case Scene::Open:
+      config.buildings = 2.0;
+      config.walls = 1.0;
+      config.poles = 4.0;
+      config.trees = 70.0;
+      config.bushes = 120.0;
+      break;
+    case Scene::Mixed:
+      break;
+  }
+  return config;
+}
+
+}  // namespace hba::sim
