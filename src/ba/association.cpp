@@ -31,6 +31,11 @@ PlaneObservation observationOf(const voxel::PlaneFeature& feature,
                                const std::vector<const PointCloud*>& scans) {
   PlaneObservation obs;
   const auto& refs = feature.points;  // sorted by frame: one run per frame
+  // Exact size: planes of a global map hold millions of clusters, and a
+  // growing vector's slack would double their memory.
+  std::size_t runs = refs.empty() ? 0 : 1;
+  for (std::size_t k = 1; k < refs.size(); ++k) runs += refs[k].frame != refs[k - 1].frame;
+  obs.clusters.reserve(runs);
   std::size_t start = 0;
   while (start < refs.size()) {
     std::size_t stop = start;

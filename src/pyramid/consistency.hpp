@@ -18,7 +18,7 @@ class FixedPlaneMap {
   FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                 const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions);
 
-  std::size_t planes() const { return association_.problem.numPlanes(); }
+  std::size_t planes() const { return problem_.numPlanes(); }
   std::size_t regions() const { return region_points_.size(); }
   double points() const { return points_; }
   // RMS point-to-plane distance (m) over all planes, and per region (planes
@@ -30,7 +30,7 @@ class FixedPlaneMap {
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
 
  private:
-  ba::Association association_;
+  ba::PlaneProblem problem_;  // the clusters only: the points are not kept
   std::vector<std::size_t> plane_region_;
   std::vector<double> plane_points_;
   std::vector<double> region_points_;

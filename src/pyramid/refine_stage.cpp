@@ -98,6 +98,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   while (first + 1 < initial.size() || blocks == 0) {
     const Block block = loadBlock(scans, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
+    r.scan_points += block.points;
     std::vector<const PointCloud*> pointers;
     for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
     // The input of this block, moved rigidly onto the result at its first
@@ -179,9 +180,9 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   r.blocks = blocks;
   r.seconds = secondsSince(start);
   if (r.ran) {
-    spdlog::info("refinement: {} frames in {} block(s), {} planes, {} observations, plane RMS "
+    spdlog::info("refinement: {} frames ({} points) in {} block(s), {} planes, {} observations, plane RMS "
                  "{:.4f} -> {:.4f} m, {} LM iterations",
-                 initial.size(), blocks, r.planes, r.observations, r.rms_before, r.rms_after,
+                 initial.size(), r.scan_points, blocks, r.planes, r.observations, r.rms_before, r.rms_after,
                  r.iterations);
   }
   spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "

@@ -44,6 +44,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
   return {{"frames", r.frames},
           {"refinement", {{"ran", f.ran},
                           {"blocks", f.blocks},
+                          {"scan_points", f.scan_points},
                           {"planes", f.planes},
                           {"observations", f.observations},
                           {"plane_points", f.plane_points},

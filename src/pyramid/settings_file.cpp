@@ -41,7 +41,7 @@ void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
   if (!node.IsMap()) bad(source, "'" + name + "' must be a map of settings");
   rejectUnknownKeys(node,
                     {"voxel_size", "final_voxel_size", "eigen_ratio", "max_depth", "min_points",
-                     "max_iterations", "association_rounds", "reject_ratio"},
+                     "max_iterations", "association_rounds", "reject_ratio", "trust_check"},
                     name + ".", source);
   read(node, "voxel_size", ba.planes.voxel_size, source);
   read(node, "final_voxel_size", ba.final_voxel_size, source);
@@ -51,6 +51,7 @@ void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
   read(node, "max_iterations", ba.max_iterations, source);
   read(node, "association_rounds", ba.association_rounds, source);
   read(node, "reject_ratio", ba.reject_ratio, source);
+  read(node, "trust_check", ba.check_fixed_map, source);
 }
 
 nlohmann::json baToJson(const ba::BaSettings& ba) {
@@ -58,7 +59,7 @@ nlohmann::json baToJson(const ba::BaSettings& ba) {
           {"eigen_ratio", ba.planes.eigen_ratio},
           {"max_depth", ba.planes.max_depth},       {"min_points", ba.planes.min_points},
           {"max_iterations", ba.max_iterations},    {"association_rounds", ba.association_rounds},
-          {"reject_ratio", ba.reject_ratio}};
+          {"reject_ratio", ba.reject_ratio},        {"trust_check", ba.check_fixed_map}};
 }
 
 void checkBa(const ba::BaSettings& ba, const std::string& name) {

@@ -49,6 +49,7 @@ struct IterationReport {
 struct RefinementReport {
   bool ran = false;
   std::size_t blocks = 0;  // consecutive, overlapping stretches of frames (memory bound)
+  std::size_t scan_points = 0;  // points held, summed over blocks (at refine_scan_voxel)
   std::size_t planes = 0;
   std::size_t observations = 0;
   std::size_t plane_points = 0;

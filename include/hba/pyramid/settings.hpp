@@ -63,8 +63,10 @@ struct HbaSettings {
   double refine_scan_voxel = 0.2;
   // At most this many points (at refine_scan_voxel) are held at once: a
   // longer sequence is refined and checked in consecutive blocks that
-  // overlap by a quarter (about 16 bytes a point for the scans, and as much
-  // again for the plane map: 20 M points is roughly 1 GB).
+  // overlap by a quarter. Peak memory is about 90 bytes a point (400
+  // simulated HDL-32 scans, 8.7 M points: 780 MB), so 20 M is about 2 GB.
+  // Blocks lose the planes shared across them (hku1 in four blocks: MME
+  // -3.008 instead of -3.037), so the budget is generous.
   std::size_t refine_max_points = 20'000'000;
 
   int outer_iterations = 1;          // bottom-up + top-down rounds at most
