@@ -216,7 +216,13 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
     ++summary.iterations;
 
     const Eigen::VectorXd scale = dampingScale(system->diagonal());
-    const Eigen::VectorXd step = solveDamped(*system, scale, mu, settings);
+    Eigen::VectorXd step = solveDamped(*system, scale, mu, settings);
+    double largest = 0.0;  // of the step, relative to the caps
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      largest = std::max({largest, step.segment<3>(6 * i).norm() / settings.max_step_m,
+                          step.segment<3>(6 * i + 3).norm() * 180.0 / M_PI / settings.max_step_deg});
+    }
+    if (largest > 1.0) step /= largest;
     const double predicted = -(g.dot(step) + 0.5 * step.dot(system->multiply(step)));
     bool accepted = false;
     if (step.allFinite() && predicted > 0.0) {

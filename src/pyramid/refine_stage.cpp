@@ -117,7 +117,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     hierarchy_sum.add(current_rms, fixed.points());
     std::vector<Pose> poses = current;
     // A margin of 0.5 %: equal maps differ by rounding and plane edges.
-    if (current_rms > input_rms * 1.005) {
+    if (!(current_rms <= input_rms * 1.005)) {  // NaN counts as worse
       c.hierarchy_rejected = true;
       poses = input;
       warn(report, fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
@@ -141,7 +141,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
       poses = refined.poses;
     }
     double final_rms = fixed.rms(poses);
-    if (final_rms > input_rms * 1.005) {
+    if (!(final_rms <= input_rms * 1.005)) {
       c.final_rejected = true;
       poses = input;
       final_rms = input_rms;

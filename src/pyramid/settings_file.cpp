@@ -123,6 +123,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
                        "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
+                       "refine_iterations", "refine_rounds",
                        "motion_prior"},
                       "", source);
     read(root, "window", settings.window, source);
@@ -138,6 +139,8 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "refine_voxel", settings.refinement.planes.voxel_size, source);
     read(root, "refine_scan_voxel", settings.refine_scan_voxel, source);
     read(root, "refine_max_points", settings.refine_max_points, source);
+    read(root, "refine_iterations", settings.refinement.lm.max_iterations, source);
+    read(root, "refine_rounds", settings.refinement.association_rounds, source);
     bool motion_prior = settings.motionPrior();
     read(root, "motion_prior", motion_prior, source);
     settings.setMotionPrior(motion_prior);
@@ -195,6 +198,8 @@ void checkSettings(const HbaSettings& s) {
     throw Error("setting refine_scan_voxel must be 0 (= scan_voxel) or in [0.001, 100] m");
   }
   if (s.refine_max_points < 1000) throw Error("setting refine_max_points must be >= 1000");
+  if (s.refinement.lm.max_iterations < 0) throw Error("setting refine_iterations must be >= 0");
+  if (s.refinement.association_rounds < 1) throw Error("setting refine_rounds must be >= 1");
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -215,6 +220,8 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"refine_voxel", s.refinement.planes.voxel_size},
           {"refine_scan_voxel", s.refine_scan_voxel},
           {"refine_max_points", s.refine_max_points},
+          {"refine_iterations", s.refinement.lm.max_iterations},
+          {"refine_rounds", s.refinement.association_rounds},
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

@@ -25,6 +25,11 @@ struct SparseLmSettings {
   // a third of the time).
   int cg_max_iterations = 50;             // per LM step
   double cg_relative_tolerance = 1e-2;    // residual norm, relative to the first
+  // A step that moves any frame further than this is scaled down to it:
+  // the refinement polishes centimetres, and a frame that the planes leave
+  // (nearly) free must not be thrown away along the free direction.
+  double max_step_m = 0.5;
+  double max_step_deg = 5.0;
 };
 
 // Optimizes `poses` in place on the plane cost plus `prior`.
