@@ -1,6 +1,7 @@
 #include "hba/ba/sparse_lm.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <utility>
 
@@ -21,37 +22,67 @@ struct PriorBlock {
   Mat6 ab = Mat6::Zero();
 };
 
-// One plane's share of H x: its frames and Z (3 x 6F, single precision:
-// it only feeds the conjugate-gradient products) and weights.
-struct PlaneFactor {
-  Eigen::Matrix<float, 3, Eigen::Dynamic> Z;
-  Vec3 weights = Vec3::Zero();
+// Where the observations (frame, plane) are: in plane order, and for each
+// frame the list of its observations (compressed rows), built once per
+// association.
+struct ObservationIndex {
+  std::vector<std::uint32_t> plane_begin;  // observations of plane p: [plane_begin[p], plane_begin[p+1])
+  std::vector<std::uint32_t> frame_of;     // per observation
+  std::vector<std::uint32_t> frame_begin;  // observations of frame i: uses[frame_begin[i] .. frame_begin[i+1])
+  std::vector<std::uint32_t> uses;         // observation indices, in plane order within a frame
+  std::vector<std::uint32_t> plane_of;     // per observation
+
+  ObservationIndex(const PlaneProblem& problem, std::size_t frames) {
+    plane_begin.push_back(0);
+    for (std::size_t p = 0; p < problem.numPlanes(); ++p) {
+      for (const FrameCluster& fc : problem.planes()[p].clusters) {
+        frame_of.push_back(fc.frame);
+        plane_of.push_back(static_cast<std::uint32_t>(p));
+      }
+      plane_begin.push_back(static_cast<std::uint32_t>(frame_of.size()));
+    }
+    frame_begin.assign(frames + 1, 0);
+    for (const std::uint32_t f : frame_of) ++frame_begin[f + 1];
+    for (std::size_t i = 0; i < frames; ++i) frame_begin[i + 1] += frame_begin[i];
+    uses.resize(frame_of.size());
+    std::vector<std::uint32_t> next(frame_begin.begin(), frame_begin.end() - 1);
+    for (std::uint32_t k = 0; k < frame_of.size(); ++k) uses[next[frame_of[k]]++] = k;
+  }
 };
 
 // The linearized objective at one set of poses, kept factored: per frame
-// the gradient and the 6x6 diagonal block, per plane its rank-3 factor.
+// the gradient and the 6x6 diagonal block, per observation the 3x6 block of
+// its plane's Z (single precision, flat: it only feeds the conjugate-
+// gradient products), per plane the weights.
 class FactoredSystem {
  public:
   FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior,
-                 const std::vector<std::vector<std::pair<std::size_t, std::size_t>>>& uses,
-                 const std::vector<Pose>& poses)
-      : problem_(problem), uses_(uses), frames_(poses.size()) {
+                 const ObservationIndex& index, const std::vector<Pose>& poses)
+      : index_(index), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
-    factors_.resize(problem.numPlanes());
+    const std::size_t planes = problem.numPlanes();
+    z_.resize(18 * index.frame_of.size());
+    weights_.resize(planes);
     gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
     diagonal_.assign(frames_, Mat6::Zero());
+    own_.assign(frames_, Mat6::Zero());
     // Planes in chunks, so that the full linearizations (gradient and
     // diagonal blocks per observation) of only one chunk are alive at once;
     // their sums go to the frames in plane order (deterministic).
     constexpr std::size_t kChunk = 2048;
     std::vector<PlaneLinearization> chunk;
-    for (std::size_t c0 = 0; c0 < factors_.size(); c0 += kChunk) {
-      const std::size_t c1 = std::min(factors_.size(), c0 + kChunk);
+    for (std::size_t c0 = 0; c0 < planes; c0 += kChunk) {
+      const std::size_t c1 = std::min(planes, c0 + kChunk);
       chunk.assign(c1 - c0, PlaneLinearization{});
       tbb::parallel_for(c0, c1, [&](std::size_t p) {
-        chunk[p - c0] = linearizePlane(problem.planes()[p], transforms);
-        factors_[p].Z = chunk[p - c0].Z.cast<float>();
-        factors_[p].weights = chunk[p - c0].weights;
+        PlaneLinearization& lin = chunk[p - c0];
+        lin = linearizePlane(problem.planes()[p], transforms);
+        weights_[p] = lin.weights.cast<float>();
+        const std::size_t first = index.plane_begin[p];
+        for (std::size_t a = 0; a < problem.planes()[p].clusters.size(); ++a) {
+          Eigen::Map<Eigen::Matrix<float, 3, 6>> stored(&z_[18 * (first + a)]);
+          stored = lin.Z.middleCols<6>(6 * a).cast<float>();
+        }
       });
       for (std::size_t p = c0; p < c1; ++p) {
         const PlaneLinearization& lin = chunk[p - c0];
@@ -61,7 +92,8 @@ class FactoredSystem {
           const std::size_t i = clusters[a].frame;
           gradient_.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
           const Eigen::Matrix<double, 3, 6> Za = lin.Z.middleCols<6>(6 * a);
-          diagonal_[i] += lin.diagonal[a] + Za.transpose() * lin.weights.asDiagonal() * Za;
+          diagonal_[i] += lin.diagonal[a];
+          own_[i] += Za.transpose() * lin.weights.asDiagonal() * Za;
         }
       }
     }
@@ -79,29 +111,30 @@ class FactoredSystem {
 
   double cost() const { return cost_; }
   const Eigen::VectorXd& gradient() const { return gradient_; }
-  const Mat6List& diagonal() const { return diagonal_; }
+  // The 6x6 diagonal block of frame i of H (for the preconditioner).
+  Mat6 block(std::size_t i) const { return diagonal_[i] + own_[i]; }
+  std::size_t frames() const { return frames_; }
 
-  // y = H x. The diagonal blocks already hold each plane's Z_a^T W Z_a, so
-  // the plane sums leave the frame's own term out.
+  // y = H x = blockdiag(D) x + sum over planes Z^T W Z x.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const {
     const Eigen::VectorXf xf = x.cast<float>();
-    std::vector<Eigen::Vector3f> wz(factors_.size());
-    tbb::parallel_for(std::size_t{0}, factors_.size(), [&](std::size_t p) {
-      const auto& clusters = problem_.planes()[p].clusters;
+    const std::size_t planes = weights_.size();
+    std::vector<Eigen::Vector3f> wz(planes);
+    tbb::parallel_for(std::size_t{0}, planes, [&](std::size_t p) {
       Eigen::Vector3f z = Eigen::Vector3f::Zero();
-      for (std::size_t a = 0; a < clusters.size(); ++a) {
-        z.noalias() += factors_[p].Z.middleCols<6>(6 * a) * xf.segment<6>(6 * clusters[a].frame);
+      for (std::uint32_t k = index_.plane_begin[p]; k < index_.plane_begin[p + 1]; ++k) {
+        z.noalias() += Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]) *
+                       xf.segment<6>(6 * index_.frame_of[k]);
       }
-      wz[p] = factors_[p].weights.cast<float>().cwiseProduct(z);
+      wz[p] = weights_[p].cwiseProduct(z);
     });
     Eigen::VectorXd y(x.size());
     tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
-      Eigen::Vector<float, 6> sum = Eigen::Vector<float, 6>::Zero();
-      for (const auto& [p, a] : uses_[i]) {
-        const auto Za = factors_[p].Z.middleCols<6>(6 * a);
-        const Eigen::Vector3f own =
-            factors_[p].weights.cast<float>().cwiseProduct(Za * xf.segment<6>(6 * i));
-        sum.noalias() += Za.transpose() * (wz[p] - own);
+      Eigen::Matrix<float, 6, 1> sum = Eigen::Matrix<float, 6, 1>::Zero();
+      for (std::uint32_t u = index_.frame_begin[i]; u < index_.frame_begin[i + 1]; ++u) {
+        const std::uint32_t k = index_.uses[u];
+        sum.noalias() += Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() *
+                         wz[index_.plane_of[k]];
       }
       y.segment<6>(6 * i) = diagonal_[i] * x.segment<6>(6 * i) + sum.cast<double>();
     });
@@ -113,20 +146,21 @@ class FactoredSystem {
   }
 
  private:
-  const PlaneProblem& problem_;
-  const std::vector<std::vector<std::pair<std::size_t, std::size_t>>>& uses_;
+  const ObservationIndex& index_;
   std::size_t frames_ = 0;
-  std::vector<PlaneFactor> factors_;
+  std::vector<float> z_;  // 3x6 column-major per observation
+  std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;
-  Mat6List diagonal_;
+  Mat6List diagonal_;  // per frame: the planes' D blocks and the prior's
+  Mat6List own_;       // per frame: sum of Z_a^T W Z_a (in H x through the planes)
   double cost_ = 0.0;
 };
 
 // Marquardt scale of each unknown (its own curvature, with a floor).
-Eigen::VectorXd dampingScale(const Mat6List& diagonal) {
-  Eigen::VectorXd d(6 * static_cast<Eigen::Index>(diagonal.size()));
-  for (std::size_t i = 0; i < diagonal.size(); ++i) d.segment<6>(6 * i) = diagonal[i].diagonal();
+Eigen::VectorXd dampingScale(const FactoredSystem& system) {
+  Eigen::VectorXd d(6 * static_cast<Eigen::Index>(system.frames()));
+  for (std::size_t i = 0; i < system.frames(); ++i) d.segment<6>(6 * i) = system.block(i).diagonal();
   d = d.cwiseMax(0.0);
   const double floor = std::max(1e-9 * d.maxCoeff(), 1e-12);
   return d.cwiseMax(floor);
@@ -138,7 +172,7 @@ Eigen::VectorXd dampingScale(const Mat6List& diagonal) {
 Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd& scale, double mu,
                             const SparseLmSettings& settings) {
   const Eigen::Index n = system.gradient().size();
-  const std::size_t frames = system.diagonal().size();
+  const std::size_t frames = system.frames();
   auto gauge = [](Eigen::VectorXd& v) { v.head<6>().setZero(); };
   auto apply = [&](const Eigen::VectorXd& v) {
     Eigen::VectorXd out = system.multiply(v) + mu * scale.cwiseProduct(v);
@@ -148,7 +182,7 @@ Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd&
   // Block-Jacobi preconditioner: the damped 6x6 blocks, inverted.
   Mat6List inverse(frames);
   for (std::size_t i = 0; i < frames; ++i) {
-    Mat6 block = system.diagonal()[i];
+    Mat6 block = system.block(i);
     block.diagonal() += mu * scale.segment<6>(6 * i);
     const Eigen::LDLT<Mat6> ldlt(block);
     if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
@@ -196,11 +230,7 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
                                         const SparseLmSettings& settings,
                                         const MotionPrior& prior) {
   auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> uses(poses.size());
-  for (std::size_t p = 0; p < problem.numPlanes(); ++p) {
-    const auto& clusters = problem.planes()[p].clusters;
-    for (std::size_t a = 0; a < clusters.size(); ++a) uses[clusters[a].frame].emplace_back(p, a);
-  }
+  const ObservationIndex index(problem, poses.size());
 
   LmSummary summary;
   double cost = objective(poses);
@@ -209,13 +239,13 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
   double nu = 2.0;
   std::unique_ptr<FactoredSystem> system;
   while (poses.size() > 1 && summary.iterations < settings.max_iterations && cost > 0.0) {
-    if (!system) system = std::make_unique<FactoredSystem>(problem, prior, uses, poses);
+    if (!system) system = std::make_unique<FactoredSystem>(problem, prior, index, poses);
     Eigen::VectorXd g = system->gradient();
     g.head<6>().setZero();
     if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
     ++summary.iterations;
 
-    const Eigen::VectorXd scale = dampingScale(system->diagonal());
+    const Eigen::VectorXd scale = dampingScale(*system);
     Eigen::VectorXd step = solveDamped(*system, scale, mu, settings);
     double largest = 0.0;  // of the step, relative to the caps
     for (std::size_t i = 0; i < poses.size(); ++i) {
