@@ -69,7 +69,7 @@ class FactoredSystem {
     // Planes in chunks, so that the full linearizations (gradient and
     // diagonal blocks per observation) of only one chunk are alive at once;
     // their sums go to the frames in plane order (deterministic).
-    constexpr std::size_t kChunk = 2048;
+    constexpr std::size_t kChunk = 256;
     std::vector<PlaneLinearization> chunk;
     for (std::size_t c0 = 0; c0 < planes; c0 += kChunk) {
       const std::size_t c1 = std::min(planes, c0 + kChunk);

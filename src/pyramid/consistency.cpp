@@ -3,17 +3,37 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 namespace hba::pyramid {
 
 FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans,
                              const std::vector<Pose>& poses, const voxel::PlaneSettings& planes,
-                             double reject_ratio, std::size_t regions)
-    : problem_(ba::associate(scans, poses, planes, reject_ratio).problem) {
+                             double reject_ratio, std::size_t regions) {
+  const ba::PlaneProblem problem = ba::associate(scans, poses, planes, reject_ratio).problem;
+  std::size_t total = 0;
+  for (const ba::PlaneObservation& plane : problem.planes()) total += plane.clusters.size();
+  clusters_.reserve(total);
+  plane_begin_.reserve(problem.numPlanes() + 1);
+  for (const ba::PlaneObservation& plane : problem.planes()) {
+    for (const ba::FrameCluster& fc : plane.clusters) {
+      CompactCluster c;
+      c.frame = fc.frame;
+      c.count = static_cast<float>(fc.cluster.count);
+      c.mean = fc.cluster.mean.cast<float>();
+      const Mat3& S = fc.cluster.scatter;
+      c.scatter = {static_cast<float>(S(0, 0)), static_cast<float>(S(0, 1)),
+                   static_cast<float>(S(0, 2)), static_cast<float>(S(1, 1)),
+                   static_cast<float>(S(1, 2)), static_cast<float>(S(2, 2))};
+      clusters_.push_back(c);
+    }
+    plane_begin_.push_back(clusters_.size());
+  }
   const std::size_t frames = std::max<std::size_t>(1, poses.size());
   regions = std::clamp<std::size_t>(regions, 1, frames);
   for (std::size_t r = 0; r < regions; ++r) region_starts_.push_back(r * frames / regions);
   region_points_.assign(regions, 0.0);
-  for (const ba::PlaneObservation& plane : problem_.planes()) {
+  for (const ba::PlaneObservation& plane : problem.planes()) {
     const std::size_t first = plane.clusters.front().frame;
     const std::size_t region = std::min(regions - 1, first * regions / frames);
     plane_region_.push_back(region);
@@ -23,13 +43,35 @@ FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans,
   }
 }
 
+std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) const {
+  const ba::FrameTransforms frames(poses);
+  std::vector<double> costs(planes());
+  tbb::parallel_for(std::size_t{0}, costs.size(), [&](std::size_t p) {
+    ba::PlaneObservation plane;
+    for (std::size_t k = plane_begin_[p]; k < plane_begin_[p + 1]; ++k) {
+      const CompactCluster& c = clusters_[k];
+      ba::FrameCluster fc;
+      fc.frame = c.frame;
+      fc.cluster.count = c.count;
+      fc.cluster.mean = c.mean.cast<double>();
+      const auto& v = c.scatter;
+      fc.cluster.scatter << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+      plane.clusters.push_back(fc);
+    }
+    costs[p] = ba::planeCost(plane, frames);
+  });
+  return costs;
+}
+
 double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {
   if (!(points_ > 0.0)) return 0.0;
-  return std::sqrt(problem_.cost(poses) / points_);
+  double cost = 0.0;
+  for (double c : planeCosts(poses)) cost += c;  // fixed order: deterministic
+  return std::sqrt(cost / points_);
 }
 
 std::vector<double> FixedPlaneMap::regionRms(const std::vector<Pose>& poses) const {
-  const std::vector<double> costs = problem_.planeCosts(poses);
+  const std::vector<double> costs = planeCosts(poses);
   std::vector<double> sums(region_points_.size(), 0.0);
   for (std::size_t p = 0; p < costs.size(); ++p) sums[plane_region_[p]] += costs[p];
   for (std::size_t r = 0; r < sums.size(); ++r) {

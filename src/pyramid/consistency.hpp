@@ -3,8 +3,12 @@
 // measured on one fixed set of planes (found at the input poses, finest
 // voxel) so that the input, the hierarchy's and the final poses are
 // compared like for like; in total and per stretch of the trajectory.
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "hba/ba/association.hpp"
 #include "hba/core/point_cloud.hpp"
@@ -18,7 +22,7 @@ class FixedPlaneMap {
   FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                 const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions);
 
-  std::size_t planes() const { return problem_.numPlanes(); }
+  std::size_t planes() const { return plane_begin_.size() - 1; }
   std::size_t regions() const { return region_points_.size(); }
   double points() const { return points_; }
   // RMS point-to-plane distance (m) over all planes, and per region (planes
@@ -30,7 +34,19 @@ class FixedPlaneMap {
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
 
  private:
-  ba::PlaneProblem problem_;  // the clusters only: the points are not kept
+  // A frame's cluster of one plane in single precision (44 bytes instead
+  // of 112): the map is held beside the refinement's own plane problem and
+  // only compared with itself under two sets of poses.
+  struct CompactCluster {
+    std::uint32_t frame = 0;
+    float count = 0.0f;
+    Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+    std::array<float, 6> scatter{};  // xx xy xz yy yz zz
+  };
+  std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
+
+  std::vector<CompactCluster> clusters_;
+  std::vector<std::size_t> plane_begin_{0};  // clusters of plane p: [plane_begin_[p], plane_begin_[p+1])
   std::vector<std::size_t> plane_region_;
   std::vector<double> plane_points_;
   std::vector<double> region_points_;

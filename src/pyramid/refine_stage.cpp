@@ -56,7 +56,9 @@ Block loadBlock(const ScanSource& scans, std::size_t first, std::size_t max_poin
     const std::size_t end = std::min(scans.size(), block.end + batch);
     std::vector<PointCloud> loaded(end - block.end);
     tbb::parallel_for(block.end, end, [&](std::size_t i) {
-      loaded[i - block.end] = voxel > 0.0 ? voxel::downsample(scans.load(i), voxel) : scans.load(i);
+      PointCloud& cloud = loaded[i - block.end];
+      cloud = voxel > 0.0 ? voxel::downsample(scans.load(i), voxel) : scans.load(i);
+      cloud.intensity = {};  // planes need positions only
     });
     for (PointCloud& cloud : loaded) {
       if (block.points >= max_points && block.end - first >= 2) break;
