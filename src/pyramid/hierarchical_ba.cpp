@@ -208,6 +208,11 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
   }
 
   result.poses = refineAndCheck(scans, initial, result.poses, settings, report.layers, report);
+  const Update total = largestUpdate(initial, result.poses);
+  report.largest_translation_update = total.translation;
+  report.largest_rotation_update = total.rotation_deg;
+  spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation,
+               total.rotation_deg);
 
   std::size_t planes = 0;
   for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;

@@ -42,6 +42,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
                        {"final_rms_m", c.region_final_rms[k]}});
   }
   return {{"frames", r.frames},
+          {"largest_update", {{"translation_m", r.largest_translation_update},
+                              {"rotation_deg", r.largest_rotation_update}}},
           {"refinement", {{"ran", f.ran},
                           {"blocks", f.blocks},
                           {"scan_points", f.scan_points},

@@ -189,6 +189,12 @@ TEST(OptimizeReal, NcltMapGetsCrisperWithoutWarping) {
   const double global = -3.301;
   EXPECT_LT(after, before + 0.9 * (global - before)) << "after " << after;
   EXPECT_LT(ateRmse(data / "optimized_poses.txt", poses), 0.3);
+  // No pose moves metres: the odometry is locally good (measured: 0.37 m).
+  const nlohmann::json report = readJson(dir / "out" / "report.json");
+  EXPECT_LT(report.at("largest_update").at("translation_m").get<double>(), 1.0);
+  EXPECT_TRUE(report.at("consistency").at("hierarchy_rejected").is_boolean());
+  EXPECT_LT(report.at("consistency").at("final_rms_m").get<double>(),
+            report.at("consistency").at("input_rms_m").get<double>());
 }
 
 }  // namespace

@@ -93,6 +93,10 @@ struct HbaReport {
   double seconds_graph = 0.0;     // pose graph solves
   double seconds_total = 0.0;
   bool converged = false;  // the last outer iteration moved no pose beyond tolerance
+  // Final poses against the input (the iterations' figures are the
+  // hierarchy's alone).
+  double largest_translation_update = 0.0;  // m
+  double largest_rotation_update = 0.0;     // degrees
   std::vector<std::string> warnings;
 };
 
