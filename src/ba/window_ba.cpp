@@ -112,7 +112,6 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
   Linearization final_lin = last.problem.linearize(result.poses);
   prior.addTo(final_lin, result.poses);
   result.hessian = std::move(final_lin.hessian);
-  result.final_prior_cost = prior.cost(result.poses);
   result.last_association_initial_cost = last.problem.cost(initial);
   result.num_planes = last.problem.numPlanes();
   for (const PlaneObservation& plane : last.problem.planes()) {

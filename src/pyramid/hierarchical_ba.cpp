@@ -207,7 +207,7 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
     }
   }
 
-  result.poses = refineAndCheck(scans, initial, result.poses, settings, report.layers, report);
+  result.poses = refineAndCheck(scans, initial, result.poses, settings, report);
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;
   report.largest_rotation_update = total.rotation_deg;

@@ -85,7 +85,7 @@ struct RmsSum {
 
 std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 int layers, HbaReport& report) {
+                                 HbaReport& report) {
   const auto start = Clock::now();
   ba::RefinementSettings rs = settings.refinement;
   rs.motion_prior.point_sigma = settings.information.point_sigma;
@@ -127,7 +127,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
                                "refining from the input",
                                block.first, block.end - 1, input_rms, current_rms));
     }
-    if (settings.refine && layers > 1) {  // one layer is one global BA already
+    if (settings.refine && report.layers > 1) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                             steps.begin() + static_cast<long>(block.end - 1));
       const ba::RefinementResult refined = ba::refineGlobally(pointers, poses, rs, block_steps);

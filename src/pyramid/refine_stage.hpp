@@ -11,10 +11,11 @@
 
 namespace hba::pyramid {
 
-// Returns the final poses from the input poses and the hierarchy's; fills
-// report.consistency and report.refinement and adds warnings.
+// Returns the final poses from the input poses and the hierarchy's (built
+// with report.layers layers); fills report.consistency and
+// report.refinement and adds warnings.
 std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 int layers, HbaReport& report);
+                                 HbaReport& report);
 
 }  // namespace hba::pyramid

@@ -8,15 +8,12 @@
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/sim/simulation.hpp"
+#include "simulated_sequence.hpp"
 
 namespace hba::pyramid {
 namespace {
 
-struct Sequence {
-  std::vector<PointCloud> scans;
-  Trajectory truth;
-  std::vector<Pose> initial;
-};
+using test::Sequence;
 
 // A short simulated drive (solid-state sensor: small scans, fast test).
 const Sequence& simulated() {
@@ -27,14 +24,7 @@ const Sequence& simulated() {
     config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
     config.drift.translation = 0.03;
     config.drift.rotation_deg_per_m = 0.05;
-    const sim::Simulation simulation = sim::prepareSimulation(config);
-    Sequence s;
-    for (std::size_t i = 0; i < config.trajectory.frames; ++i) {
-      s.scans.push_back(sim::simulateFrame(simulation, i));
-    }
-    s.truth = simulation.truth;
-    s.initial = simulation.initial;
-    return s;
+    return test::simulateSequence(config);
   }();
   return sequence;
 }

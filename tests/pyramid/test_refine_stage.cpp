@@ -8,15 +8,12 @@
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/sim/simulation.hpp"
 #include "refine_stage.hpp"
+#include "simulated_sequence.hpp"
 
 namespace hba::pyramid {
 namespace {
 
-struct Sequence {
-  std::vector<PointCloud> scans;
-  Trajectory truth;
-  std::vector<Pose> initial;
-};
+using test::Sequence;
 
 const Sequence& simulated() {
   static const Sequence sequence = [] {
@@ -25,14 +22,7 @@ const Sequence& simulated() {
     config.trajectory.frames = 60;
     config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
     config.drift.translation = 0.02;
-    const sim::Simulation simulation = sim::prepareSimulation(config);
-    Sequence s;
-    for (std::size_t i = 0; i < config.trajectory.frames; ++i) {
-      s.scans.push_back(sim::simulateFrame(simulation, i));
-    }
-    s.truth = simulation.truth;
-    s.initial = simulation.initial;
-    return s;
+    return test::simulateSequence(config);
   }();
   return sequence;
 }
@@ -46,7 +36,8 @@ double ate(const std::vector<Pose>& poses) {
 std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                       HbaReport& report) {
   const MemoryScanSource source(simulated().scans, settings.scan_voxel);
-  return refineAndCheck(source, simulated().initial, hierarchy, settings, 3, report);
+  report.layers = 3;  // as if a pyramid had run
+  return refineAndCheck(source, simulated().initial, hierarchy, settings, report);
 }
 
 // From the drifting input itself (as when the hierarchy is refused), the

@@ -50,10 +50,9 @@ struct BaResult {
   // Hessian of the cost (planes and motion prior) at the solution, 6K x 6K in the convention above
   // (not gauge-fixed: the caller chooses which frame to fix).
   Eigen::MatrixXd hessian;
-  // Plane costs (the motion prior's is apart).
+  // Plane costs (without the motion prior's).
   double initial_cost = 0.0;  // at the initial poses and first association
   double final_cost = 0.0;    // at the solution and last association
-  double final_prior_cost = 0.0;  // the motion prior at the solution
   // The last association's cost at the initial poses: compare with
   // final_cost for a like-for-like improvement (same planes, same points).
   double last_association_initial_cost = 0.0;
