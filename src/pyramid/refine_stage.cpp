@@ -145,12 +145,12 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     double final_rms = fixed.rms(poses);
     if (!(final_rms <= input_rms * 1.005)) {
       c.final_rejected = true;
-      poses = input;
-      final_rms = input_rms;
       warn(report, fmt::format("frames {}-{}: the result is less consistent than the input (plane "
                                "RMS {:.4f} -> {:.4f} m on the input's planes): keeping the input "
                                "poses there",
-                               block.first, block.end - 1, input_rms, fixed.rms(poses)));
+                               block.first, block.end - 1, input_rms, final_rms));
+      poses = input;
+      final_rms = input_rms;
     }
     final_sum.add(final_rms, fixed.points());
     const std::vector<double> region_input = fixed.regionRms(input);

@@ -130,17 +130,21 @@ TEST_F(OptimizeSimulated, SettingsFileAndFlagsCombine) {
 namespace hba {
 namespace {
 
+// The number that follows `marker` in the output of `command` (which must succeed).
+double numberAfter(const std::string& command, const std::string& marker) {
+  const test::CommandResult result = test::runCommand(command);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  const auto at = result.output.rfind(marker);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << marker << " not in: " << result.output;
+    return 1e9;
+  }
+  return std::stod(result.output.substr(at + marker.size()));
+}
+
 // "MME -2.972112 (...)" -> -2.972112
 double mmeOf(const std::string& dataset, const std::string& poses) {
-  const test::CommandResult result =
-      test::runCommand(hba() + " -q mme " + dataset + (poses.empty() ? "" : " --poses " + poses));
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  const auto at = result.output.rfind("MME ");
-  if (at == std::string::npos) {
-    ADD_FAILURE() << result.output;
-    return 0.0;
-  }
-  return std::stod(result.output.substr(at + 4));
+  return numberAfter(hba() + " -q mme " + dataset + (poses.empty() ? "" : " --poses " + poses), "MME ");
 }
 
 // The real Livox sequence: the optimized map must be crisper (lower mean map
@@ -162,15 +166,7 @@ TEST(OptimizeReal, Hku1MapGetsCrisper) {
 
 // "ATE trans m     0.224242 ..." -> 0.224242 (the RMSE column)
 double ateRmse(const fs::path& gt, const fs::path& est) {
-  const test::CommandResult result =
-      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string());
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  const auto at = result.output.find("ATE trans m");
-  if (at == std::string::npos) {
-    ADD_FAILURE() << result.output;
-    return 1e9;
-  }
-  return std::stod(result.output.substr(at + 11));
+  return numberAfter(hba() + " -q eval --gt " + gt.string() + " --est " + est.string(), "ATE trans m");
 }
 
 // The real HDL-32E sequence on which the pyramid alone warped the map by

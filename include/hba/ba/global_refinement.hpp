@@ -26,8 +26,9 @@ struct RefinementSettings {
 struct RefinementResult {
   std::vector<Pose> poses;
   // Plane cost (sum of squared point-to-plane distances, m^2) of the first
-  // association, at the start and at the end: the same planes and points,
-  // so a like-for-like measure of how much crisper the map got.
+  // association, before and after its LM: the same planes and points, so a
+  // like-for-like measure of how much crisper the map got (later rounds,
+  // off by default, re-associate and are not counted here).
   double cost_before = 0.0;
   double cost_after = 0.0;
   double rms_before = 0.0;  // sqrt(cost / plane points), m
