@@ -126,8 +126,9 @@ void registerSimulateCommand(CLI::App& app) {
                       "Per-frame odometry noise on top of the drift, sigma per axis (deg)")
       ->default_val(args->jitter_rotation);
   command->add_option("--scene", args->scene,
-                      "mixed | city (dense buildings) | open (sparse structure, vegetation)")
-      ->check(CLI::IsMember({"mixed", "city", "open"}))
+                      "mixed | city (dense buildings) | open (sparse structure, vegetation) | indoor "
+                      "(corridors and halls under a ceiling)")
+      ->check(CLI::IsMember({"mixed", "city", "open", "indoor"}))
       ->default_val(args->scene);
   command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")
       ->capture_default_str();

@@ -18,6 +18,7 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
                 std::to_string(initial.size()) + " poses");
   }
   if (settings.association_rounds < 1) throw Error("refinement: association_rounds must be >= 1");
+  if (!(settings.round_gain >= 0.0)) throw Error("refinement: round_gain must be >= 0");
   RefinementResult result;
   result.poses = initial;
   const MotionPrior prior = neighbourPrior(initial, path_m, settings.motion_prior);
@@ -43,6 +44,8 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
       result.cost_after = problem.cost(result.poses);
     }
     if (summary.accepted_steps == 0) break;
+    // A round that barely moved the cost has converged the association.
+    if (summary.initial_cost - summary.final_cost < settings.round_gain * summary.initial_cost) break;
   }
   if (result.plane_points > 0) {
     const double n = static_cast<double>(result.plane_points);

@@ -138,6 +138,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
       refine_before.add(refined.rms_before, static_cast<double>(refined.plane_points));
       refine_after.add(refined.rms_after, static_cast<double>(refined.plane_points));
       r.iterations += refined.iterations;
+      r.rounds += refined.rounds;
       report.seconds_voxelize += refined.seconds_associate;
       report.seconds_solve += refined.seconds_solve;
       poses = refined.poses;
@@ -183,9 +184,9 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   r.seconds = secondsSince(start);
   if (r.ran) {
     spdlog::info("refinement: {} frames ({} points) in {} block(s), {} planes, {} observations, plane RMS "
-                 "{:.4f} -> {:.4f} m, {} LM iterations",
+                 "{:.4f} -> {:.4f} m (first association), {} associations, {} LM iterations",
                  initial.size(), r.scan_points, blocks, r.planes, r.observations, r.rms_before, r.rms_after,
-                 r.iterations);
+                 r.rounds, r.iterations);
   }
   spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
                "{:.4f} m, final {:.4f} m",

@@ -53,6 +53,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"plane_rms_before_m", f.rms_before},
                           {"plane_rms_after_m", f.rms_after},
                           {"lm_iterations", f.iterations},
+                          {"associations", f.rounds},
                           {"seconds", f.seconds}}},
           {"consistency", {{"planes", c.planes},
                            {"input_rms_m", c.input_rms},

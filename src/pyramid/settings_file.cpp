@@ -123,7 +123,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
                       {"window", "stride", "layers", "outer_iterations", "scan_voxel",
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
                        "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
-                       "refine_iterations", "refine_rounds",
+                       "refine_iterations", "refine_rounds", "refine_round_gain",
                        "motion_prior"},
                       "", source);
     read(root, "window", settings.window, source);
@@ -141,6 +141,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "refine_max_points", settings.refine_max_points, source);
     read(root, "refine_iterations", settings.refinement.lm.max_iterations, source);
     read(root, "refine_rounds", settings.refinement.association_rounds, source);
+    read(root, "refine_round_gain", settings.refinement.round_gain, source);
     bool motion_prior = settings.motionPrior();
     read(root, "motion_prior", motion_prior, source);
     settings.setMotionPrior(motion_prior);
@@ -200,6 +201,9 @@ void checkSettings(const HbaSettings& s) {
   if (s.refine_max_points < 1000) throw Error("setting refine_max_points must be >= 1000");
   if (s.refinement.lm.max_iterations < 0) throw Error("setting refine_iterations must be >= 0");
   if (s.refinement.association_rounds < 1) throw Error("setting refine_rounds must be >= 1");
+  if (!(s.refinement.round_gain >= 0.0 && s.refinement.round_gain <= 1.0)) {
+    throw Error("setting refine_round_gain must be in [0, 1]");
+  }
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -222,6 +226,7 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"refine_max_points", s.refine_max_points},
           {"refine_iterations", s.refinement.lm.max_iterations},
           {"refine_rounds", s.refinement.association_rounds},
+          {"refine_round_gain", s.refinement.round_gain},
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};

@@ -6,6 +6,7 @@ std::optional<Scene> sceneFromString(const std::string& name) {
   if (name == "mixed") return Scene::Mixed;
   if (name == "city") return Scene::City;
   if (name == "open") return Scene::Open;
+  if (name == "indoor") return Scene::Indoor;
   return std::nullopt;
 }
 
@@ -15,6 +16,8 @@ const char* toString(Scene scene) {
       return "city";
     case Scene::Open:
       return "open";
+    case Scene::Indoor:
+      return "indoor";
     case Scene::Mixed:
       break;
   }
@@ -37,6 +40,11 @@ WorldConfig scenePreset(Scene scene) {
       config.poles = 4.0;
       config.trees = 70.0;
       config.bushes = 120.0;
+      break;
+    case Scene::Indoor:
+      config.indoor = true;
+      config.max_slope = 0.0;
+      config.buildings = config.walls = config.poles = config.trees = config.bushes = 0.0;
       break;
     case Scene::Mixed:
       break;

@@ -7,6 +7,7 @@
 #include "hba/core/error.hpp"
 #include "hba/sim/random.hpp"
 #include "hba/sim/world.hpp"
+#include "corridor.hpp"
 #include "mesh_builder.hpp"
 #include "path_clearance.hpp"
 
@@ -32,7 +33,11 @@ class WorldBuilder {
 
   World build() {
     addGround();
-    addKerbs();
+    if (config_.indoor) {
+      addCorridor(path_, terrain_, clearance_, rng_, mesh_);
+    } else {
+      addKerbs();
+    }
     const auto populated = clearance_.cellsBetween(0.0, config_.populated_distance);
     const double area_units = populated.size() * clearance_.cell() * clearance_.cell() / 1e4;
     // Each object class draws from its own band of distances from the path.

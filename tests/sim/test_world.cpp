@@ -81,6 +81,36 @@ TEST(SimWorld, ScenesDifferInStructureAndVegetation) {
   EXPECT_STREQ(toString(Scene::City), "city");
 }
 
+// Indoors the path runs in a closed corridor: the path stays free, a
+// ceiling is overhead and walls stand within a hall's width on both sides
+// nearly everywhere (door niches and crossings leave gaps), on a flat floor.
+TEST(SimWorld, IndoorSceneEnclosesThePath) {
+  SimulationConfig config;
+  config.seed = 7;
+  config.trajectory.frames = 400;  // more than one lap: revisits are built once
+  config.scene = Scene::Indoor;
+  config.world = scenePreset(Scene::Indoor);
+  const Simulation s = prepareSimulation(config);
+  EXPECT_TRUE(s.world.spheres().empty());  // no vegetation
+  const auto& poses = s.truth.poses;
+  std::size_t enclosed = 0, checked = 0;
+  for (std::size_t k = 0; k + 1 < poses.size(); k += 5) {
+    const Vec3 step = poses[k + 1].t - poses[k].t;
+    EXPECT_FALSE(s.world.intersect(Ray{poses[k].t, step.normalized()}, step.norm()))
+        << "frame " << k;
+    EXPECT_NEAR(poses[k].t.z(), 1.8, 1e-9) << "frame " << k;  // flat floor
+    const auto up = s.world.intersect(Ray{poses[k].t, Vec3::UnitZ()}, 20.0);
+    const Vec3 left = poses[k].R().col(1);
+    const auto l = s.world.intersect(Ray{poses[k].t, left}, 20.0);
+    const auto r = s.world.intersect(Ray{poses[k].t, -left}, 20.0);
+    ++checked;
+    if (up && up->distance < 6.0 && l && l->distance < 7.5 && r && r->distance < 7.5) ++enclosed;
+  }
+  EXPECT_GT(enclosed, 0.85 * static_cast<double>(checked)) << enclosed << " of " << checked;
+  EXPECT_EQ(sceneFromString("indoor"), Scene::Indoor);
+  EXPECT_STREQ(toString(Scene::Indoor), "indoor");
+}
+
 TEST(SimWorld, TerrainSlopesStayGentle) {
   const Terrain terrain(11, 0.03);
   double steepest = 0.0, lowest = 1e9, highest = -1e9;

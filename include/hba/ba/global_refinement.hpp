@@ -17,18 +17,36 @@ namespace hba::ba {
 struct RefinementSettings {
   voxel::PlaneSettings planes;  // voxel 1 m, theta 0.05: the local windows' final planes
   double reject_ratio = 0.05;
-  int association_rounds = 1;
+  // Associations, each followed by an LM: the planes found at the
+  // hierarchy's poses are not all the planes at better poses (a sparse,
+  // jittery sequence needs several; a dense one stops after one or two).
+  // Another round runs only while the last one cut its plane cost by at
+  // least `round_gain` (a share of the cost it started from).
+  int association_rounds = 6;
+  double round_gain = 0.02;
   SparseLmSettings lm;
   MotionPriorSettings motion_prior;
-  RefinementSettings() { planes.voxel_size = 1.0; }
+  RefinementSettings() {
+    planes.voxel_size = 1.0;
+    // Tighter than the windows' prior: the refinement starts from the
+    // hierarchy (or the input), whose neighbouring frames are right to a few
+    // centimetres. Looser, frames that the planes barely constrain (a
+    // narrow field of view over open ground) slid by metres along the free
+    // directions while re-association fed them noise; this still lets the
+    // planes move a frame by centimetres where they see it.
+    motion_prior.translation_sigma = 0.05;
+    motion_prior.translation_per_m = 0.05;
+    motion_prior.rotation_sigma_deg = 0.5;
+    motion_prior.rotation_per_m_deg = 0.1;
+  }
 };
 
 struct RefinementResult {
   std::vector<Pose> poses;
   // Plane cost (sum of squared point-to-plane distances, m^2) of the first
   // association, before and after its LM: the same planes and points, so a
-  // like-for-like measure of how much crisper the map got (later rounds,
-  // off by default, re-associate and are not counted here).
+  // like-for-like measure of how much crisper the map got (later rounds
+  // re-associate and are not counted here).
   double cost_before = 0.0;
   double cost_after = 0.0;
   double rms_before = 0.0;  // sqrt(cost / plane points), m

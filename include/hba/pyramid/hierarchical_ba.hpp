@@ -56,6 +56,7 @@ struct RefinementReport {
   double rms_before = 0.0;  // m, on the refinement's planes
   double rms_after = 0.0;
   int iterations = 0;
+  int rounds = 0;  // associations, summed over blocks
   double seconds = 0.0;
 };
 

@@ -53,14 +53,19 @@ struct WorldConfig {
   double poles = 25.0;
   double trees = 20.0;
   double bushes = 25.0;
+  // Indoors: walls and a ceiling along the path instead of kerbs (see
+  // corridor.hpp); the densities above still add objects beyond the walls.
+  bool indoor = false;
 };
 
 // Scene kinds: densities of the world's objects.
 //  - mixed: the default, buildings, walls, poles and vegetation;
 //  - city: dense buildings and walls, little vegetation (a city block);
 //  - open: a few buildings, mostly trees and bushes (a park, a campus lawn):
-//    sparse structure, as in the scenes where local windows struggle.
-enum class Scene { Mixed, City, Open };
+//    sparse structure, as in the scenes where local windows struggle;
+//  - indoor: corridors and halls on a flat floor, under a ceiling: short
+//    ranges, long walls nearly free along their axis.
+enum class Scene { Mixed, City, Open, Indoor };
 std::optional<Scene> sceneFromString(const std::string& name);
 const char* toString(Scene scene);
 WorldConfig scenePreset(Scene scene);
