@@ -1,6 +1,8 @@
 #include "hba/ba/global_refinement.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 
 #include "hba/ba/association.hpp"
@@ -9,19 +11,15 @@
 
 namespace hba::ba {
 
-RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
-                                const std::vector<Pose>& initial,
-                                const RefinementSettings& settings,
-                                const std::vector<double>& path_m) {
-  if (scans.size() != initial.size()) {
-    throw Error("refinement: " + std::to_string(scans.size()) + " scans but " +
-                std::to_string(initial.size()) + " poses");
-  }
-  if (settings.association_rounds < 1) throw Error("refinement: association_rounds must be >= 1");
-  if (!(settings.round_gain >= 0.0)) throw Error("refinement: round_gain must be >= 0");
-  RefinementResult result;
+namespace {
+
+// Associations, each followed by an LM, from `initial` until a round gains
+// little; the first round's figures go to `result`, the time and
+// iterations add up over calls.
+void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+                 const RefinementSettings& settings, const MotionPrior& prior,
+                 RefinementResult& result) {
   result.poses = initial;
-  const MotionPrior prior = neighbourPrior(initial, path_m, settings.motion_prior);
   for (int round = 0; round < settings.association_rounds; ++round) {
     const auto start = Clock::now();
     const Association association =
@@ -36,6 +34,8 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
     result.rounds = round + 1;
     if (round == 0) {
       result.planes = problem.numPlanes();
+      result.observations = 0;
+      result.plane_points = 0;
       for (const PlaneObservation& plane : problem.planes()) {
         result.observations += plane.clusters.size();
         result.plane_points += static_cast<std::size_t>(plane.pointCount());
@@ -47,6 +47,63 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
     // A round that barely moved the cost has converged the association.
     if (summary.initial_cost - summary.final_cost < settings.round_gain * summary.initial_cost) break;
   }
+}
+
+// The pairs in `slid` and `reach` pairs either side, ascending, unique.
+std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t reach,
+                               std::size_t pairs) {
+  std::vector<std::size_t> out;
+  for (const std::size_t k : slid) {
+    for (std::size_t j = k >= reach ? k - reach : 0; j <= std::min(pairs - 1, k + reach); ++j) {
+      out.push_back(j);
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace
+
+RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
+                                const std::vector<Pose>& initial,
+                                const RefinementSettings& settings,
+                                const std::vector<double>& path_m,
+                                const std::vector<Pose>& reference) {
+  if (scans.size() != initial.size()) {
+    throw Error("refinement: " + std::to_string(scans.size()) + " scans but " +
+                std::to_string(initial.size()) + " poses");
+  }
+  if (settings.association_rounds < 1) throw Error("refinement: association_rounds must be >= 1");
+  if (!(settings.round_gain >= 0.0)) throw Error("refinement: round_gain must be >= 0");
+  RefinementResult result;
+  if (!reference.empty() && reference.size() != initial.size()) {
+    throw Error("refinement: " + std::to_string(reference.size()) + " reference poses for " +
+                std::to_string(initial.size()) + " frames");
+  }
+  const std::vector<Pose>& anchor = reference.empty() ? initial : reference;
+  MotionPrior prior = neighbourPrior(anchor, path_m, settings.motion_prior);
+  std::vector<std::size_t> held;
+  for (int attempt = 0;; ++attempt) {
+    solveRounds(scans, initial, settings, prior, result);
+    if (!settings.motion_prior.enabled || initial.size() < 2) break;
+    const std::vector<std::size_t> slid = stepsBeyondThePrior(
+        anchor, result.poses, path_m, settings.motion_prior, settings.slide_sigmas);
+    if (slid.empty()) break;
+    if (attempt == settings.max_holds) {  // still sliding: the start is safer
+      result.poses = initial;
+      result.refused = true;
+      break;
+    }
+    // Hold the pairs that slid, and their neighbours, near their start and
+    // solve again: the planes still place everything else.
+    const std::vector<std::size_t> hold = widen(slid, 2, initial.size() - 1);
+    prior.tighten(hold, settings.hold_factor);  // again, for pairs that slid while held
+    std::vector<std::size_t> all;
+    std::set_union(held.begin(), held.end(), hold.begin(), hold.end(), std::back_inserter(all));
+    held = std::move(all);
+  }
+  result.held_pairs = held.size();
   if (result.plane_points > 0) {
     const double n = static_cast<double>(result.plane_points);
     result.rms_before = std::sqrt(result.cost_before / n);

@@ -1,5 +1,6 @@
 #include "hba/ba/motion_prior.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -73,6 +74,31 @@ MotionPrior neighbourPrior(const std::vector<Pose>& initial, const std::vector<d
     terms.push_back(term);
   }
   return MotionPrior(std::move(terms));
+}
+
+std::vector<std::size_t> stepsBeyondThePrior(const std::vector<Pose>& initial,
+                                             const std::vector<Pose>& result,
+                                             const std::vector<double>& path_m,
+                                             const MotionPriorSettings& settings, double sigmas) {
+  std::vector<std::size_t> out;
+  for (std::size_t k = 0; k + 1 < initial.size() && k + 1 < result.size(); ++k) {
+    const Pose before = initial[k].inverse() * initial[k + 1];
+    const Pose change = before.inverse() * (result[k].inverse() * result[k + 1]);
+    const double d = path_m.size() > k ? path_m[k] : before.t.norm();
+    const double sigma_t = settings.translation_sigma + settings.translation_per_m * d;
+    const double sigma_deg = settings.rotation_sigma_deg + settings.rotation_per_m_deg * d;
+    const double angle_deg = Eigen::AngleAxisd(change.q).angle() * 180.0 / M_PI;
+    if (change.t.norm() > sigmas * sigma_t || angle_deg > sigmas * sigma_deg) out.push_back(k);
+  }
+  return out;
+}
+
+void MotionPrior::tighten(const std::vector<std::size_t>& pairs, double factor) {
+  for (RelativePosePrior& term : terms_) {
+    if (std::binary_search(pairs.begin(), pairs.end(), term.from) && term.to == term.from + 1) {
+      term.weight *= factor;
+    }
+  }
 }
 
 }  // namespace hba::ba

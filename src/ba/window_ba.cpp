@@ -101,7 +101,15 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     Association fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
     result.fixed_map_cost_initial = fixed.problem.cost(initial);
     result.fixed_map_cost_final = fixed.problem.cost(result.poses);
-    if (result.fixed_map_cost_final > result.fixed_map_cost_initial) {
+    // Not trusted: a blurrier map on the input's own planes, or neighbouring
+    // frames pulled apart far beyond what the prior allows (planes that
+    // merge unrelated surfaces can make a map look crisper while frames
+    // slide by metres).
+    const bool slid = settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
+                      !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior,
+                                           settings.slide_sigmas)
+                           .empty();
+    if (slid || result.fixed_map_cost_final > result.fixed_map_cost_initial) {
       result.trusted = false;
       result.poses = initial;
       last = std::move(fixed);

@@ -35,7 +35,8 @@ void logLayer(const LayerReport& r) {
   spdlog::debug("  layer {}: {} points, {} association rounds, {} LM iterations", r.layer,
                 r.cloud_points, r.association_rounds, r.lm_iterations);
   if (r.windows_untrusted > 0) {
-    spdlog::warn("  layer {}: {} of {} windows made the map blurrier and keep their input poses",
+    spdlog::warn("  layer {}: {} of {} windows made the map blurrier or slid frames beyond the motion "
+                 "prior, and keep their input poses",
                  r.layer, r.windows_untrusted, r.windows);
   }
   if (r.windows_without_planes > 0) {

@@ -130,7 +130,8 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     if (settings.refine && report.layers > 1) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                             steps.begin() + static_cast<long>(block.end - 1));
-      const ba::RefinementResult refined = ba::refineGlobally(pointers, poses, rs, block_steps);
+      const ba::RefinementResult refined =
+          ba::refineGlobally(pointers, poses, rs, block_steps, input);
       r.ran = true;
       r.planes += refined.planes;
       r.observations += refined.observations;
@@ -139,6 +140,13 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
       refine_after.add(refined.rms_after, static_cast<double>(refined.plane_points));
       r.iterations += refined.iterations;
       r.rounds += refined.rounds;
+      r.held_pairs += refined.held_pairs;
+      if (refined.refused) {
+        ++r.blocks_refused;
+        warn(report, fmt::format("frames {}-{}: the refinement slid frames beyond the motion prior "
+                                 "even when held; this block keeps its start poses",
+                                 block.first, block.end - 1));
+      }
       report.seconds_voxelize += refined.seconds_associate;
       report.seconds_solve += refined.seconds_solve;
       poses = refined.poses;
@@ -187,6 +195,11 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
                  "{:.4f} -> {:.4f} m (first association), {} associations, {} LM iterations",
                  initial.size(), r.scan_points, blocks, r.planes, r.observations, r.rms_before, r.rms_after,
                  r.rounds, r.iterations);
+    if (r.held_pairs > 0) {
+      spdlog::info("refinement: {} pairs of neighbouring frames slid beyond the motion prior and "
+                   "were held near the input's relative poses",
+                   r.held_pairs);
+    }
   }
   spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
                "{:.4f} m, final {:.4f} m",

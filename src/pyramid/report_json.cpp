@@ -54,6 +54,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"plane_rms_after_m", f.rms_after},
                           {"lm_iterations", f.iterations},
                           {"associations", f.rounds},
+                          {"held_pairs", f.held_pairs},
+                          {"blocks_refused", f.blocks_refused},
                           {"seconds", f.seconds}}},
           {"consistency", {{"planes", c.planes},
                            {"input_rms_m", c.input_rms},

@@ -97,6 +97,26 @@ TEST(MotionPrior, LooserWithThePathBetweenFrames) {
   EXPECT_GT(near.terms()[0].weight(3, 3), 10.0 * far.terms()[0].weight(3, 3));
 }
 
+// Only the pair whose relative pose moved beyond three sigmas is named: a
+// metre between frames 4 and 5 of a straight line 1 m apart (sigma 0.2 m),
+// not the 10 cm that the rest of the line moved.
+TEST(MotionPrior, NamesThePairsThatSlidBeyondIt) {
+  std::vector<Pose> line(10);
+  for (std::size_t i = 0; i < line.size(); ++i) line[i].t = Vec3(static_cast<double>(i), 0, 0);
+  std::vector<Pose> moved = line;
+  for (std::size_t i = 5; i < moved.size(); ++i) moved[i].t.y() += 1.0;
+  for (std::size_t i = 0; i < moved.size(); ++i) moved[i].t.z() += 0.1 * static_cast<double>(i % 2);
+  const MotionPriorSettings settings;
+  EXPECT_EQ(stepsBeyondThePrior(line, moved, {}, settings, 3.0), std::vector<std::size_t>{4});
+  EXPECT_TRUE(stepsBeyondThePrior(line, line, {}, settings, 3.0).empty());
+  // A turn of 5 degrees between two frames (sigma 1.2 deg) is named too.
+  std::vector<Pose> turned = line;
+  for (std::size_t i = 7; i < turned.size(); ++i) {
+    turned[i].q = Quat(Eigen::AngleAxisd(5.0 * M_PI / 180.0, Vec3::UnitZ()));
+  }
+  EXPECT_EQ(stepsBeyondThePrior(line, turned, {}, settings, 3.0), std::vector<std::size_t>{6});
+}
+
 TEST(MotionPrior, RejectsBadSettingsAndSizes) {
   std::mt19937 rng(9);
   const std::vector<Pose> input = randomPoses(3, rng);

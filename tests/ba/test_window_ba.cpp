@@ -8,6 +8,7 @@
 #include <tbb/global_control.h>
 
 #include "hba/ba/lm_solver.hpp"
+#include "hba/ba/motion_prior.hpp"
 #include "hba/ba/window_ba.hpp"
 #include "hba/core/error.hpp"
 #include "random_planes.hpp"
@@ -23,6 +24,10 @@ using test::SyntheticWindowSpec;
 BaSettings syntheticSettings() {
   BaSettings settings;
   settings.planes.voxel_size = 8.0;  // one patch per root voxel
+  // Each frame starts 0.2 m and 1 deg off on its own, further from its
+  // neighbours than any odometry: the slide check (tested below) would
+  // refuse the correction.
+  settings.slide_sigmas = 0.0;
   return settings;
 }
 
@@ -74,6 +79,26 @@ TEST(WindowBa, NoisyWindowConvergesToNoiseLevel) {
   std::vector<double> rms = result.plane_rms_final;
   std::sort(rms.begin(), rms.end());
   EXPECT_NEAR(rms[rms.size() / 2], spec.noise_sigma, 0.3 * spec.noise_sigma);
+}
+
+// With the slide check on, a result that moves neighbouring frames apart by
+// more than three prior sigmas (here the correction of start errors no
+// odometry makes) is not trusted: the window keeps its input poses.
+TEST(WindowBa, ResultThatPullsNeighboursApartIsNotTrusted) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.02;
+  spec.seed = 4;
+  const auto window = makeSyntheticWindow(spec);
+  BaSettings settings = syntheticSettings();
+  const BaResult free = optimizeWindow(window.scanPointers(), window.initial, settings);
+  ASSERT_TRUE(free.trusted);
+  ASSERT_FALSE(stepsBeyondThePrior(window.initial, free.poses, {}, settings.motion_prior, 3.0).empty());
+  settings.slide_sigmas = 3.0;
+  const BaResult checked = optimizeWindow(window.scanPointers(), window.initial, settings);
+  EXPECT_FALSE(checked.trusted);
+  for (std::size_t i = 0; i < checked.poses.size(); ++i) {
+    EXPECT_EQ(checked.poses[i].t, window.initial[i].t) << "frame " << i;
+  }
 }
 
 TEST(WindowBa, IdenticalResultsWithOneAndTwoThreads) {

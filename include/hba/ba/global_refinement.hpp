@@ -24,6 +24,14 @@ struct RefinementSettings {
   // least `round_gain` (a share of the cost it started from).
   int association_rounds = 6;
   double round_gain = 0.02;
+  // Neighbouring frames whose relative pose leaves the reference's by more than
+  // `slide_sigmas` prior sigmas slid where the planes do not hold them: the
+  // prior between them (and two pairs either side) is made `hold_factor`
+  // times stiffer and the refinement solved again, at most `max_holds`
+  // times; still sliding, `initial` is returned (`refused`).
+  double slide_sigmas = 3.0;
+  double hold_factor = 100.0;
+  int max_holds = 2;
   SparseLmSettings lm;
   MotionPriorSettings motion_prior;
   RefinementSettings() {
@@ -55,16 +63,22 @@ struct RefinementResult {
   std::size_t observations = 0;  // (frame, plane) clusters
   std::size_t plane_points = 0;
   int iterations = 0;
-  int rounds = 0;
+  int rounds = 0;  // of the last solve
+  std::size_t held_pairs = 0;  // neighbouring pairs held after sliding
+  bool refused = false;        // slid even when held: `poses` are the start
   double seconds_associate = 0.0;
   double seconds_solve = 0.0;
 };
 
 // `path_m[k]`: path between frames k and k+1 for the motion prior (empty:
-// straight distances). Scans are only read.
+// straight distances). The prior holds neighbouring frames at their
+// relative pose in `reference` (the odometry; empty: `initial`), whose
+// local steps are usually better than those of a window that slid.
+// Scans are only read.
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
                                 const std::vector<Pose>& initial,
                                 const RefinementSettings& settings,
-                                const std::vector<double>& path_m = {});
+                                const std::vector<double>& path_m = {},
+                                const std::vector<Pose>& reference = {});
 
 }  // namespace hba::ba

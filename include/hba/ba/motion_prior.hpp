@@ -47,6 +47,9 @@ class MotionPrior {
   explicit MotionPrior(std::vector<RelativePosePrior> terms) : terms_(std::move(terms)) {}
 
   const std::vector<RelativePosePrior>& terms() const { return terms_; }
+  // Multiplies the weight of the terms between frames k and k+1, for each k
+  // in `pairs`, by `factor`.
+  void tighten(const std::vector<std::size_t>& pairs, double factor);
   bool empty() const { return terms_.empty(); }
   double cost(const std::vector<Pose>& poses) const;
   // Adds the prior's cost, gradient and Gauss-Newton Hessian (2 J^T W J)
@@ -62,5 +65,15 @@ class MotionPrior {
 // (empty: the straight distance). Throws hba::Error on invalid settings.
 MotionPrior neighbourPrior(const std::vector<Pose>& initial, const std::vector<double>& path_m,
                            const MotionPriorSettings& settings);
+
+// Indices k of the neighbouring pairs (k, k+1) of `result` that moved away
+// from their relative pose in `initial` by more than `sigmas` standard
+// deviations of the prior (translation or rotation): steps no odometry
+// makes, the sign of a BA that slid frames along a direction its planes do
+// not constrain (or that planes merging unrelated surfaces pulled).
+std::vector<std::size_t> stepsBeyondThePrior(const std::vector<Pose>& initial,
+                                             const std::vector<Pose>& result,
+                                             const std::vector<double>& path_m,
+                                             const MotionPriorSettings& settings, double sigmas);
 
 }  // namespace hba::ba

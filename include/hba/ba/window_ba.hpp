@@ -43,6 +43,10 @@ struct BaSettings {
   // Trust check: the planes found at the input poses (finest voxel) must not
   // get blurrier at the result; a result that fails keeps the input poses.
   bool check_fixed_map = true;
+  // Also not trusted (with check_fixed_map and the prior on): neighbouring
+  // frames whose relative pose moved by more than this many prior sigmas
+  // (frames slid along a direction the planes do not hold). 0 = off.
+  double slide_sigmas = 3.0;
 };
 
 struct BaResult {

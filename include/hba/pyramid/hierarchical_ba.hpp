@@ -57,6 +57,8 @@ struct RefinementReport {
   double rms_after = 0.0;
   int iterations = 0;
   int rounds = 0;  // associations, summed over blocks
+  std::size_t held_pairs = 0;  // neighbouring pairs that slid and were held (summed over blocks)
+  std::size_t blocks_refused = 0;  // blocks that slid even when held: left at their start
   double seconds = 0.0;
 };
 
