@@ -22,8 +22,11 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
   result.poses = initial;
   for (int round = 0; round < settings.association_rounds; ++round) {
     const auto start = Clock::now();
-    const Association association =
+    Association association =
         associate(scans, result.poses, settings.planes, settings.reject_ratio);
+    // The points of each plane are summed into its clusters: their indices
+    // (8 bytes a plane point) are not needed by the LM.
+    association.features = {};
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;
@@ -88,11 +91,10 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
     solveRounds(scans, initial, settings, prior, result);
     if (!settings.motion_prior.enabled || initial.size() < 2) break;
     const std::vector<std::size_t> slid = stepsBeyondThePrior(
-        anchor, result.poses, path_m, settings.motion_prior, settings.slide_sigmas);
+        anchor, result.poses, path_m, settings.slide_prior, settings.slide_sigmas);
     if (slid.empty()) break;
-    if (attempt == settings.max_holds) {  // still sliding: the start is safer
-      result.poses = initial;
-      result.refused = true;
+    if (attempt == settings.max_holds) {
+      result.still_sliding = slid.size();
       break;
     }
     // Hold the pairs that slid, and their neighbours, near their start and

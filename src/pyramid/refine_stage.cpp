@@ -141,11 +141,11 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
       r.iterations += refined.iterations;
       r.rounds += refined.rounds;
       r.held_pairs += refined.held_pairs;
-      if (refined.refused) {
-        ++r.blocks_refused;
-        warn(report, fmt::format("frames {}-{}: the refinement slid frames beyond the motion prior "
-                                 "even when held; this block keeps its start poses",
-                                 block.first, block.end - 1));
+      if (refined.still_sliding > 0) {
+        r.still_sliding += refined.still_sliding;
+        warn(report, fmt::format("frames {}-{}: {} pairs of neighbouring frames still move apart "
+                                 "beyond what odometry plausibly gets wrong, though held",
+                                 block.first, block.end - 1, refined.still_sliding));
       }
       report.seconds_voxelize += refined.seconds_associate;
       report.seconds_solve += refined.seconds_solve;

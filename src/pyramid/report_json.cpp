@@ -55,7 +55,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"lm_iterations", f.iterations},
                           {"associations", f.rounds},
                           {"held_pairs", f.held_pairs},
-                          {"blocks_refused", f.blocks_refused},
+                          {"still_sliding", f.still_sliding},
                           {"seconds", f.seconds}}},
           {"consistency", {{"planes", c.planes},
                            {"input_rms_m", c.input_rms},

@@ -24,21 +24,22 @@ struct RefinementSettings {
   // least `round_gain` (a share of the cost it started from).
   int association_rounds = 6;
   double round_gain = 0.02;
-  // Neighbouring frames whose relative pose leaves the reference's by more than
-  // `slide_sigmas` prior sigmas slid where the planes do not hold them: the
-  // prior between them (and two pairs either side) is made `hold_factor`
-  // times stiffer and the refinement solved again, at most `max_holds`
-  // times; still sliding, `initial` is returned (`refused`).
-  double slide_sigmas = 3.0;
+  // Neighbouring frames whose relative pose leaves the reference's by more
+  // than `slide_sigmas` sigmas of `slide_prior` (the windows' looser prior:
+  // what odometry can plausibly be wrong by) slid where the planes do not
+  // hold them: the prior between them (and two pairs either side) is made
+  // `hold_factor` times stiffer and the refinement solved again, at most
+  // `max_holds` times; pairs still sliding then stay held (`still_sliding`).
+  MotionPriorSettings slide_prior;
+  double slide_sigmas = 5.0;
   double hold_factor = 100.0;
   int max_holds = 2;
   SparseLmSettings lm;
   MotionPriorSettings motion_prior;
   RefinementSettings() {
     planes.voxel_size = 1.0;
-    // Tighter than the windows' prior: the refinement starts from the
-    // hierarchy (or the input), whose neighbouring frames are right to a few
-    // centimetres. Looser, frames that the planes barely constrain (a
+    // Tighter than the windows' prior: it holds neighbouring frames at the
+    // odometry's relative poses, right to a few centimetres. Looser, frames that the planes barely constrain (a
     // narrow field of view over open ground) slid by metres along the free
     // directions while re-association fed them noise; this still lets the
     // planes move a frame by centimetres where they see it.
@@ -64,8 +65,8 @@ struct RefinementResult {
   std::size_t plane_points = 0;
   int iterations = 0;
   int rounds = 0;  // of the last solve
-  std::size_t held_pairs = 0;  // neighbouring pairs held after sliding
-  bool refused = false;        // slid even when held: `poses` are the start
+  std::size_t held_pairs = 0;     // neighbouring pairs held after sliding
+  std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held
   double seconds_associate = 0.0;
   double seconds_solve = 0.0;
 };

@@ -45,8 +45,11 @@ struct BaSettings {
   bool check_fixed_map = true;
   // Also not trusted (with check_fixed_map and the prior on): neighbouring
   // frames whose relative pose moved by more than this many prior sigmas
-  // (frames slid along a direction the planes do not hold). 0 = off.
-  double slide_sigmas = 3.0;
+  // (0.75 m between frames 0.5 m apart): frames slid along a direction the
+  // planes do not hold, or pulled into a wrong alignment. Smaller, a real
+  // odometry glitch (a jump of half a metre) would never be corrected.
+  // 0 = off.
+  double slide_sigmas = 5.0;
 };
 
 struct BaResult {

@@ -58,7 +58,7 @@ struct RefinementReport {
   int iterations = 0;
   int rounds = 0;  // associations, summed over blocks
   std::size_t held_pairs = 0;  // neighbouring pairs that slid and were held (summed over blocks)
-  std::size_t blocks_refused = 0;  // blocks that slid even when held: left at their start
+  std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held
   double seconds = 0.0;
 };
 
