@@ -65,7 +65,8 @@ struct BaResult {
   double last_association_initial_cost = 0.0;
   // The trust check: cost of the planes found at the input poses, at the
   // input and at the solution; `trusted` is false when the solution made
-  // them blurrier, and then `poses` are the input poses.
+  // them blurrier or slid neighbouring frames apart (slide_sigmas), and
+  // then `poses` are the input poses.
   double fixed_map_cost_initial = 0.0;
   double fixed_map_cost_final = 0.0;
   bool trusted = true;
