@@ -1,5 +1,6 @@
 #include "cell_assignment.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "hba/voxel/voxel_key.hpp"
@@ -36,11 +37,10 @@ std::uint64_t hashOf(const VoxelKey& key) {
 template <typename Key>
 class CellTable {
  public:
-  // Room for points / 4 cells before the first doubling: scans downsampled
-  // at 0.1 m keep about that share, plane voxels far fewer.
-  explicit CellTable(std::size_t points) {
+  // Room for `cells` before the first doubling.
+  explicit CellTable(std::size_t cells) {
     std::size_t capacity = kMinCapacity;
-    while (capacity < points / 2) capacity *= 2;
+    while (capacity < 2 * cells) capacity *= 2;
     slots_.resize(capacity);
   }
 
@@ -89,10 +89,10 @@ class CellTable {
 };
 
 template <typename Key>
-CellAssignment assignKeys(const std::vector<Key>& keys) {
+CellAssignment assignKeys(const std::vector<Key>& keys, std::size_t points_per_cell) {
   constexpr std::size_t kLookahead = 16;  // points between a prefetch and its use
   const std::size_t n = keys.size();
-  CellTable<Key> table(n);
+  CellTable<Key> table(n / std::max<std::size_t>(points_per_cell, 1));
   CellAssignment out;
   out.cell_of_point.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -131,13 +131,14 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
 
 }  // namespace
 
-CellAssignment assignCells(const std::vector<Vec3f>& points, double size) {
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
+                           std::size_t points_per_cell) {
   const auto keyOf = [&](std::size_t i) { return VoxelKey::of(points[i].cast<double>(), size); };
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     std::vector<VoxelKey> keys(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) keys[i] = keyOf(i);
-    return assignKeys(keys);
+    return assignKeys(keys, points_per_cell);
   }
   std::vector<std::uint64_t> keys(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -146,7 +147,7 @@ CellAssignment assignCells(const std::vector<Vec3f>& points, double size) {
               static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
               static_cast<std::uint64_t>(key.z - bounds.low.z);
   }
-  return assignKeys(keys);
+  return assignKeys(keys, points_per_cell);
 }
 
 CellMembers membersOf(const CellAssignment& assignment) {

@@ -17,7 +17,11 @@ struct CellAssignment {
 
 // Cells of edge `size` (half-open [k*size, (k+1)*size), as VoxelKey::of).
 // Non-finite points land in the edge cells VoxelKey gives them.
-CellAssignment assignCells(const std::vector<Vec3f>& points, double size);
+// `points_per_cell`: the expected share, which sizes the hash table before
+// its first doubling (a guess only: the table grows as needed, and the
+// result does not depend on it).
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
+                           std::size_t points_per_cell = 4);
 
 // Point ids grouped by cell (counting sort: ids ascend within each cell).
 struct CellMembers {

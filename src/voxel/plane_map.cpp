@@ -169,7 +169,12 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
   const WorldPoints world = placeInWorld(scans, poses);
 
   // Root voxels, their ids ascending (counting sort by cell).
-  const CellAssignment cells = assignCells(world.position, settings.voxel_size);
+  // Plane voxels (metres) gather dozens to thousands of points each: a
+  // table sized for one cell in four points would be mostly empty (268 MB
+  // for a 20 M-point refinement block).
+  constexpr std::size_t kPointsPerPlaneVoxel = 64;
+  const CellAssignment cells =
+      assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
   CellMembers members = membersOf(cells);
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
