@@ -48,7 +48,7 @@ class MotionPrior {
 
   const std::vector<RelativePosePrior>& terms() const { return terms_; }
   // Multiplies the weight of the terms between frames k and k+1, for each k
-  // in `pairs`, by `factor`.
+  // in `pairs` (ascending), by `factor`.
   void tighten(const std::vector<std::size_t>& pairs, double factor);
   bool empty() const { return terms_.empty(); }
   double cost(const std::vector<Pose>& poses) const;
