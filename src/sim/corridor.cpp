@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "path_samples.hpp"
+
 namespace hba::sim {
 namespace {
 
@@ -66,15 +68,8 @@ class CorridorBuilder {
   // The path every kSample metres of travel (planar), with its left normal.
   std::vector<Sample> resample(const std::vector<Pose>& path) const {
     std::vector<Sample> out;
-    double travelled = kSample;
-    for (std::size_t k = 1; k < path.size(); ++k) {
-      travelled += (path[k].t - path[k - 1].t).head<2>().norm();
-      if (travelled < kSample) continue;
-      travelled = 0.0;
-      const Vec3 forward = path[k].R().col(0);
-      const double yaw = std::atan2(forward.y(), forward.x());
-      const Vec2 p = path[k].t.head<2>();
-      out.push_back({p, Vec2(-std::sin(yaw), std::cos(yaw)), terrain_.height(p.x(), p.y())});
+    for (const PathSample& s : samplePath(path, kSample)) {
+      out.push_back({s.position, s.left, terrain_.height(s.position.x(), s.position.y())});
     }
     return out;
   }

@@ -10,6 +10,7 @@
 #include "corridor.hpp"
 #include "mesh_builder.hpp"
 #include "path_clearance.hpp"
+#include "path_samples.hpp"
 
 namespace hba::sim {
 namespace {
@@ -113,21 +114,14 @@ class WorldBuilder {
       }
       return false;
     };
-    double travelled = kStone;
-    for (std::size_t k = 1; k < path_.size(); ++k) {
-      travelled += (path_[k].t - path_[k - 1].t).head<2>().norm();
-      if (travelled < kStone) continue;
-      travelled = 0.0;
-      const Vec3 forward = path_[k].R().col(0);
-      const double yaw = std::atan2(forward.y(), forward.x());
-      const Vec2 left(-std::sin(yaw), std::cos(yaw));
+    for (const PathSample& sample : samplePath(path_, kStone)) {
       for (double side : {-1.0, 1.0}) {
-        const Vec2 c = path_[k].t.head<2>() + side * config_.road_half_width * left;
+        const Vec2 c = sample.position + side * config_.road_half_width * sample.left;
         if (clearance_.clearance(c.x(), c.y()) < config_.road_half_width - kRasterSlack) continue;
         if (occupied(c)) continue;
         placed[cellKey(c, 0, 0)].push_back(c);
         const double ground = terrain_.height(c.x(), c.y());
-        mesh_.addBox(c, ground - 0.1, kStone, kWidth, kHeight + 0.1, yaw, 0.35f);
+        mesh_.addBox(c, ground - 0.1, kStone, kWidth, kHeight + 0.1, sample.yaw, 0.35f);
       }
     }
   }
