@@ -47,8 +47,7 @@ void logLayer(const LayerReport& r) {
 
 // The BA settings of the windows of layer `level` (below the top).
 ba::BaSettings windowSettings(const HbaSettings& settings, int level) {
-  ba::BaSettings window = settings.local;
-  window.motion_prior.point_sigma = settings.information.point_sigma;
+  ba::BaSettings window = settings.localBa();
   if (level == 1 && settings.scan_window_voxel > 0.0) {
     window.planes.voxel_size = settings.scan_window_voxel;
   }
@@ -124,9 +123,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   const auto start = Clock::now();
   const std::vector<Window> all{Window{0, layer.poses.size()}};
   const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
-  ba::BaSettings global = settings.global;
-  global.motion_prior.point_sigma = settings.information.point_sigma;
-  LayerOutcome top = optimizeLayer(layer, top_clouds, all, global, settings, nullptr, 0.0, times);
+  LayerOutcome top =
+      optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times);
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;

@@ -87,8 +87,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                                  HbaReport& report) {
   const auto start = Clock::now();
-  ba::RefinementSettings rs = settings.refinement;
-  rs.motion_prior.point_sigma = settings.information.point_sigma;
+  const ba::RefinementSettings rs = settings.refinementBa();
   const std::vector<double> steps = stepLengths(initial);
   ConsistencyReport& c = report.consistency;
   RefinementReport& r = report.refinement;

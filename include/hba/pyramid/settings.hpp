@@ -73,6 +73,13 @@ struct HbaSettings {
   double outer_tolerance_m = 1e-3;   // stop when no pose moved more than this
   double outer_tolerance_deg = 1e-3;
 
+  // The settings each BA runs with: `information.point_sigma` scales every
+  // motion prior into plane-cost units, and the refinement's slide check
+  // measures against the windows' prior.
+  ba::BaSettings localBa() const;
+  ba::BaSettings globalBa() const;
+  ba::RefinementSettings refinementBa() const;
+
   // The motion prior of every BA (windows, top, refinement) on or off.
   bool motionPrior() const { return local.motion_prior.enabled; }
   void setMotionPrior(bool on) {
