@@ -36,6 +36,12 @@ Pose Pose::operator*(const Pose& other) const {
 
 Pose relative(const Pose& a, const Pose& b) { return a.inverse() * b; }
 
+std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset) {
+  std::vector<Pose> out = poses;
+  for (Pose& pose : out) pose.t += offset;
+  return out;
+}
+
 double pathLength(const std::vector<Pose>& poses) {
   double length = 0.0;
   for (std::size_t i = 1; i < poses.size(); ++i) length += (poses[i].t - poses[i - 1].t).norm();

@@ -23,14 +23,16 @@ MapColor mapColorFromString(const std::string& name) {
   throw Error("unknown map colour '" + name + "' (expected none, scan or height)");
 }
 
-VoxelMerger::VoxelMerger(const MapSettings& settings) : settings_(settings) {}
+VoxelMerger::VoxelMerger(const MapSettings& settings, const Vec3& origin)
+    : settings_(settings), origin_(origin) {}
 
 void VoxelMerger::add(const PointCloud& scan, const Pose& pose, std::uint32_t scan_index) {
   if (!scan.hasIntensity()) has_intensity_ = false;
   const Mat3 R = pose.R();
+  const Vec3 t = pose * scan.origin;
   const bool keep_all = !(settings_.voxel > 0.0);
   for (std::size_t i = 0; i < scan.size(); ++i) {
-    const Vec3 world = R * scan.points[i].cast<double>() + pose.t;
+    const Vec3 world = R * scan.points[i].cast<double>() + t;
     std::uint32_t slot = 0;
     if (keep_all) {
       slot = static_cast<std::uint32_t>(cells_.size());
@@ -43,11 +45,12 @@ void VoxelMerger::add(const PointCloud& scan, const Pose& pose, std::uint32_t sc
       slot = it->second;
     }
     Cell& cell = cells_[slot];
+    const Vec3 local = world - origin_;
     if (cell.count == 0) {
-      cell.first = world.cast<float>();
+      cell.first = local.cast<float>();
       cell.first_scan = scan_index;
     }
-    cell.sum += world;
+    cell.sum += local;
     if (scan.hasIntensity()) cell.intensity_sum += scan.intensity[i];
     ++cell.count;
   }
@@ -57,6 +60,7 @@ PointCloud VoxelMerger::result() const {
   PointCloud out;
   const bool with_intensity = settings_.color != MapColor::None || has_intensity_;
   out.reserve(cells_.size(), with_intensity);
+  out.origin = origin_;
   for (const Cell& cell : cells_) {
     const Vec3f p = settings_.rule == VoxelRule::Centroid
                         ? Vec3f((cell.sum / static_cast<double>(cell.count)).cast<float>())
@@ -69,7 +73,7 @@ PointCloud VoxelMerger::result() const {
     switch (settings_.color) {
       case MapColor::None: value = static_cast<float>(cell.intensity_sum / cell.count); break;
       case MapColor::Scan: value = static_cast<float>(cell.first_scan); break;
-      case MapColor::Height: value = p.z(); break;
+      case MapColor::Height: value = static_cast<float>(origin_.z() + p.z()); break;
     }
     out.add(p, value);
   }
@@ -83,7 +87,7 @@ PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& p
     throw Error("the dataset has " + std::to_string(dataset.size()) + " scans but " +
                 std::to_string(used.size()) + " poses were given");
   }
-  VoxelMerger merger(settings);
+  VoxelMerger merger(settings, used.empty() ? Vec3::Zero() : used.front().t);
   for (std::size_t i = 0; i < dataset.size(); ++i) {
     merger.add(dataset.loadScan(i), used[i], static_cast<std::uint32_t>(i));
   }
@@ -91,7 +95,7 @@ PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& p
 }
 
 PointCloud downsampleMap(const PointCloud& cloud, const MapSettings& settings) {
-  VoxelMerger merger(settings);
+  VoxelMerger merger(settings, cloud.origin);
   merger.add(cloud, Pose::identity(), 0);
   return merger.result();
 }

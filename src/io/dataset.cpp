@@ -94,7 +94,12 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
 PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
-    return readScan(path);
+    PointCloud scan = readScan(path);
+    if (!scan.origin.isZero()) {  // a float64 file far from its origin: sensor-frame points
+      for (Vec3f& p : scan.points) p = (scan.origin + p.cast<double>()).cast<float>();
+      scan.origin.setZero();
+    }
+    return scan;
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {

@@ -4,6 +4,7 @@
 
 #include "hba/core/error.hpp"
 #include "pcd_format.hpp"
+#include "point_columns.hpp"
 #include "text_parsing.hpp"
 
 namespace hba::io::detail {
@@ -11,12 +12,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// float32 text is parsed as float directly: through double it could round twice.
-std::optional<float> parseValue(std::string_view word, ScalarType type) {
-  if (type == ScalarType::Float32) return parseFloat(word);
+// float32 text is parsed as float directly: through double it could round
+// twice. Other types are rounded to float once, as the binary reader does;
+// float64 keeps its precision (addFinitePoint).
+std::optional<double> parseValue(std::string_view word, ScalarType type) {
+  if (type == ScalarType::Float32) {
+    const std::optional<float> value = parseFloat(word);
+    return value ? std::optional<double>(*value) : std::nullopt;
+  }
   const std::optional<double> value = parseDouble(word);
-  if (!value) return std::nullopt;
-  return static_cast<float>(*value);
+  if (!value || type == ScalarType::Float64) return value;
+  return static_cast<double>(static_cast<float>(*value));
 }
 
 // The word positions of the values hba keeps, in the order x y z intensity.
@@ -48,6 +54,8 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
   cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(header.points, most_possible)),
                 layout.intensity.has_value());
 
+  const bool wide = wanted.type[0] == ScalarType::Float64 || wanted.type[1] == ScalarType::Float64 ||
+                    wanted.type[2] == ScalarType::Float64;
   std::uint64_t points_read = 0;
   std::uint64_t line_number = 0;
   std::string_view rest = body;
@@ -61,12 +69,12 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
       failAt(path, where + ": more points than the " + std::to_string(header.points) +
                        " the header declares");
     }
-    float values[4] = {0, 0, 0, 0};
+    double values[4] = {0, 0, 0, 0};
     std::size_t word_index = 0;
     for (; !word.empty(); word = nextWord(words), ++word_index) {
       for (std::size_t k = 0; k < wanted.count; ++k) {
         if (wanted.index[k] != word_index) continue;
-        const std::optional<float> value = parseValue(word, wanted.type[k]);
+        const std::optional<double> value = parseValue(word, wanted.type[k]);
         if (!value) failAt(path, where + ": " + quoteToken(word) + " is not a number");
         values[k] = *value;
       }
@@ -76,13 +84,7 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
                        std::to_string(layout.words_per_point));
     }
     ++points_read;
-    const Vec3f p(values[0], values[1], values[2]);
-    if (!p.allFinite()) continue;
-    if (layout.intensity) {
-      cloud.add(p, values[3]);
-    } else {
-      cloud.add(p);
-    }
+    addFinitePoint(values, layout.intensity.has_value(), wide, cloud);
   }
   if (points_read != header.points) {
     failAt(path, "truncated: the header declares " + std::to_string(header.points) +

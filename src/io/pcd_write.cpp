@@ -1,5 +1,6 @@
 // writePcd: fields x y z [intensity] as float32, written atomically. The file
-// is assembled in memory and written with one call.
+// is assembled in memory and written with one call. A cloud with an origin
+// (a map far from the world origin) gets float64 x y z: origin + point.
 #include <charconv>
 #include <cstring>
 #include <string>
@@ -23,12 +24,15 @@ const char* encodingName(PcdEncoding encoding) {
   return "binary";
 }
 
+bool wideCoordinates(const PointCloud& cloud) { return cloud.origin != Vec3::Zero(); }
+
 std::string pcdHeaderText(const PointCloud& cloud, PcdEncoding encoding) {
   const bool with_i = cloud.hasIntensity();
   const std::string n = std::to_string(cloud.size());
+  const std::string xyz_size = wideCoordinates(cloud) ? "8 8 8" : "4 4 4";
   std::string text = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
-  text += with_i ? "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
-                 : "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n";
+  text += with_i ? "FIELDS x y z intensity\nSIZE " + xyz_size + " 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                 : "FIELDS x y z\nSIZE " + xyz_size + "\nTYPE F F F\nCOUNT 1 1 1\n";
   text += "WIDTH " + n + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\n";
   text += std::string("DATA ") + encodingName(encoding) + "\n";
   return text;
@@ -37,56 +41,62 @@ std::string pcdHeaderText(const PointCloud& cloud, PcdEncoding encoding) {
 // Fields written: x, y, z and, when the cloud has it, intensity.
 std::size_t fieldCount(const PointCloud& cloud) { return cloud.hasIntensity() ? 4 : 3; }
 
-float valueOf(const PointCloud& cloud, std::size_t point, std::size_t field) {
-  return field < 3 ? cloud.points[point][static_cast<Eigen::Index>(field)] : cloud.intensity[point];
+template <typename T>
+void appendValue(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
 }
 
-void appendFloat(std::string& out, float value) {
-  char bytes[sizeof(float)];
-  std::memcpy(bytes, &value, sizeof(float));
-  out.append(bytes, sizeof(float));
-}
-
-// Shortest text that parses back to the same float: ascii round-trips exactly.
-void appendFloatText(std::string& out, float value) {
+// Shortest text that parses back to the same value: ascii round-trips exactly.
+template <typename T>
+void appendText(std::string& out, T value) {
   char text[32];
   const auto result = std::to_chars(text, text + sizeof(text), value);
   out.append(text, result.ptr);
+}
+
+// Appends field `field` of point `point` as the header declares it.
+template <bool kText>
+void appendField(const PointCloud& cloud, std::size_t point, std::size_t field, std::string& out) {
+  if (field == 3) {
+    kText ? appendText(out, cloud.intensity[point]) : appendValue(out, cloud.intensity[point]);
+  } else if (wideCoordinates(cloud)) {
+    const double v = cloud.world(point)[static_cast<Eigen::Index>(field)];
+    kText ? appendText(out, v) : appendValue(out, v);
+  } else {
+    const float v = cloud.points[point][static_cast<Eigen::Index>(field)];
+    kText ? appendText(out, v) : appendValue(out, v);
+  }
 }
 
 void appendAscii(const PointCloud& cloud, std::string& out) {
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
       if (f > 0) out += ' ';
-      appendFloatText(out, valueOf(cloud, i, f));
+      appendField<true>(cloud, i, f, out);
     }
     out += '\n';
   }
 }
 
 void appendBinary(const PointCloud& cloud, std::string& out) {
-  out.reserve(out.size() + cloud.size() * fieldCount(cloud) * sizeof(float));
+  out.reserve(out.size() + cloud.size() * fieldCount(cloud) * sizeof(double));
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    for (std::size_t f = 0; f < fieldCount(cloud); ++f) appendFloat(out, valueOf(cloud, i, f));
+    for (std::size_t f = 0; f < fieldCount(cloud); ++f) appendField<false>(cloud, i, f, out);
   }
-}
-
-void appendUint32(std::string& out, std::uint32_t value) {
-  char bytes[sizeof(value)];
-  std::memcpy(bytes, &value, sizeof(value));
-  out.append(bytes, sizeof(value));
 }
 
 // Column-major (all x, then all y, ...) compresses far better than records.
 void appendCompressed(const PointCloud& cloud, std::string& out, const fs::path& path) {
   std::string columns;
-  columns.reserve(cloud.size() * fieldCount(cloud) * sizeof(float));
+  columns.reserve(cloud.size() * fieldCount(cloud) * sizeof(double));
   for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
-    for (std::size_t i = 0; i < cloud.size(); ++i) appendFloat(columns, valueOf(cloud, i, f));
+    for (std::size_t i = 0; i < cloud.size(); ++i) appendField<false>(cloud, i, f, columns);
   }
   const std::size_t sizes_at = out.size();
-  appendUint32(out, 0);
-  appendUint32(out, static_cast<std::uint32_t>(columns.size()));
+  appendValue<std::uint32_t>(out, 0);
+  appendValue(out, static_cast<std::uint32_t>(columns.size()));
   const std::size_t compressed = detail::lzfCompressAppend(columns, out, path);
   const auto compressed32 = static_cast<std::uint32_t>(compressed);
   std::memcpy(&out[sizes_at], &compressed32, sizeof(compressed32));

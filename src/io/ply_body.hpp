@@ -9,6 +9,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "ply_format.hpp"
+#include "point_columns.hpp"
 
 namespace hba::io::detail {
 
@@ -18,8 +19,8 @@ struct PlyVertexFields {
   std::size_t count = 3;  // 4 with intensity
 };
 
-// Appends the point unless a coordinate is NaN or infinite.
-void addFinitePoint(const float (&values)[4], bool with_intensity, PointCloud& cloud);
+// True if x, y or z is stored as float64 (see addFinitePoint).
+bool hasWideCoordinates(const PlyElement& vertex, const PlyVertexFields& fields);
 
 class PlyBinaryBody {
  public:
@@ -50,7 +51,7 @@ class PlyAsciiBody {
  private:
   std::string_view token(const PlyElement& element);
   void skipProperty(const PlyProperty& property, const PlyElement& element);
-  float parseValue(std::string_view word, ScalarType type, std::uint64_t vertex) const;
+  double parseValue(std::string_view word, ScalarType type, std::uint64_t vertex) const;
 
   std::string_view rest_;
   const std::filesystem::path& path_;

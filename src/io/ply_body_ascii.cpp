@@ -8,6 +8,13 @@
 
 namespace hba::io::detail {
 
+bool hasWideCoordinates(const PlyElement& vertex, const PlyVertexFields& fields) {
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (vertex.properties[fields.index[k]].type == ScalarType::Float64) return true;
+  }
+  return false;
+}
+
 void PlyAsciiBody::skipElement(const PlyElement& element) {
   if (element.properties.empty()) return;  // nothing to read, however many records
   // Each record takes at least one word, so a lying count runs out of words
@@ -23,8 +30,9 @@ PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexF
   // Every value takes at least two characters, which bounds a lying count.
   const std::uint64_t most_possible = rest_.size() / (2 * vertex.properties.size()) + 1;
   cloud.reserve(static_cast<std::size_t>(std::min(vertex.count, most_possible)), with_intensity);
+  const bool wide = hasWideCoordinates(vertex, fields);
   for (std::uint64_t r = 0; r < vertex.count; ++r) {
-    float values[4] = {0, 0, 0, 0};
+    double values[4] = {0, 0, 0, 0};
     for (std::size_t p = 0; p < vertex.properties.size(); ++p) {
       const PlyProperty& property = vertex.properties[p];
       if (property.is_list) {
@@ -36,7 +44,7 @@ PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexF
         if (fields.index[k] == p) values[k] = parseValue(word, property.type, r);
       }
     }
-    addFinitePoint(values, with_intensity, cloud);
+    addFinitePoint(values, with_intensity, wide, cloud);
   }
   return cloud;
 }
@@ -56,12 +64,13 @@ void PlyAsciiBody::skipProperty(const PlyProperty& property, const PlyElement& e
 }
 
 // float32 text is parsed as float directly: through double it could round twice.
-float PlyAsciiBody::parseValue(std::string_view word, ScalarType type, std::uint64_t vertex) const {
-  std::optional<float> value;
+double PlyAsciiBody::parseValue(std::string_view word, ScalarType type, std::uint64_t vertex) const {
+  std::optional<double> value;
   if (type == ScalarType::Float32) {
-    value = parseFloat(word);
+    if (const std::optional<float> narrow = parseFloat(word)) value = *narrow;
   } else if (const std::optional<double> wide = parseDouble(word)) {
-    value = static_cast<float>(*wide);
+    // Integers and float64 as float64 text would give them, then rounded once.
+    value = type == ScalarType::Float64 ? *wide : static_cast<double>(static_cast<float>(*wide));
   }
   if (!value) {
     failAt(path_, "vertex " + std::to_string(vertex) + ": " + quoteToken(word) + " is not a number");

@@ -61,16 +61,17 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
   cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(vertex.count, remaining())),
                 with_intensity);
   std::vector<std::size_t> starts(vertex.properties.size());  // in the current record
+  const bool wide = hasWideCoordinates(vertex, fields);
   for (std::uint64_t r = 0; r < vertex.count; ++r) {
     const std::size_t record_start = pos_;
     walkRecord(vertex, starts.data());
-    float values[4] = {0, 0, 0, 0};
+    double values[4] = {0, 0, 0, 0};
     for (std::size_t k = 0; k < fields.count; ++k) {
       const std::size_t p = fields.index[k];
-      values[k] = loadAsFloat(bytes_.data() + record_start + starts[p], vertex.properties[p].type,
-                              big_endian_);
+      values[k] = loadAsDouble(bytes_.data() + record_start + starts[p], vertex.properties[p].type,
+                               big_endian_);
     }
-    addFinitePoint(values, with_intensity, cloud);
+    addFinitePoint(values, with_intensity, wide, cloud);
   }
   return cloud;
 }

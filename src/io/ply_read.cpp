@@ -10,20 +10,6 @@
 #include "text_parsing.hpp"
 
 namespace hba::io {
-namespace detail {
-
-void addFinitePoint(const float (&values)[4], bool with_intensity, PointCloud& cloud) {
-  const Vec3f p(values[0], values[1], values[2]);
-  if (!p.allFinite()) return;
-  if (with_intensity) {
-    cloud.add(p, values[3]);
-  } else {
-    cloud.add(p);
-  }
-}
-
-}  // namespace detail
-
 namespace {
 namespace fs = std::filesystem;
 using detail::PlyElement;

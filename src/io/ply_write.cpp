@@ -1,4 +1,6 @@
 // writePly: one vertex element with float x y z [intensity], written atomically.
+// A cloud with an origin (a map far from the world origin) gets double x y z:
+// origin + point.
 #include <charconv>
 #include <cstring>
 #include <string>
@@ -14,7 +16,8 @@ std::string plyHeaderText(const PointCloud& cloud, PlyEncoding encoding) {
   std::string text = "ply\nformat ";
   text += encoding == PlyEncoding::Ascii ? "ascii" : "binary_little_endian";
   text += " 1.0\ncomment written by hba\nelement vertex " + std::to_string(cloud.size()) + "\n";
-  text += "property float x\nproperty float y\nproperty float z\n";
+  const char* type = cloud.origin != Vec3::Zero() ? "double" : "float";
+  for (const char* axis : {"x", "y", "z"}) text += std::string("property ") + type + " " + axis + "\n";
   if (cloud.hasIntensity()) text += "property float intensity\n";
   text += "end_header\n";
   return text;
@@ -22,16 +25,16 @@ std::string plyHeaderText(const PointCloud& cloud, PlyEncoding encoding) {
 
 void appendAscii(const PointCloud& cloud, std::string& out) {
   char text[32];
-  const auto append = [&](float value) {
-    // Shortest text that parses back to the same float: ascii round-trips exactly.
+  const auto append = [&](auto value) {
+    // Shortest text that parses back to the same value: ascii round-trips exactly.
     out.append(text, std::to_chars(text, text + sizeof(text), value).ptr);
   };
+  const bool wide = cloud.origin != Vec3::Zero();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    append(cloud.points[i].x());
-    out += ' ';
-    append(cloud.points[i].y());
-    out += ' ';
-    append(cloud.points[i].z());
+    for (Eigen::Index axis = 0; axis < 3; ++axis) {
+      if (axis > 0) out += ' ';
+      wide ? append(cloud.world(i)[axis]) : append(cloud.points[i][axis]);
+    }
     if (cloud.hasIntensity()) {
       out += ' ';
       append(cloud.intensity[i]);
@@ -40,7 +43,19 @@ void appendAscii(const PointCloud& cloud, std::string& out) {
   }
 }
 
+void appendWideBinary(const PointCloud& cloud, std::string& out) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3 p = cloud.world(i);
+    const double xyz[3] = {p.x(), p.y(), p.z()};
+    out.append(reinterpret_cast<const char*>(xyz), sizeof(xyz));
+    if (cloud.hasIntensity()) {
+      out.append(reinterpret_cast<const char*>(&cloud.intensity[i]), sizeof(float));
+    }
+  }
+}
+
 void appendBinary(const PointCloud& cloud, std::string& out) {
+  if (cloud.origin != Vec3::Zero()) return appendWideBinary(cloud, out);
   const std::size_t values = cloud.hasIntensity() ? 4 : 3;
   const std::size_t start = out.size();
   out.resize(start + cloud.size() * values * sizeof(float));

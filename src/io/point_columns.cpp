@@ -51,7 +51,21 @@ void appendFloat32(const PointColumns& c, std::size_t count, PointCloud& cloud) 
   if (!all_finite) dropNonFinite(cloud, start);
 }
 
+bool isFloat64(const Column& column) { return column.type == ScalarType::Float64; }
+
+void appendWide(const PointColumns& c, std::size_t count, PointCloud& cloud) {
+  const bool be = c.big_endian;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double values[4] = {loadAsDouble(c.x.first + i * c.x.stride, c.x.type, be),
+                              loadAsDouble(c.y.first + i * c.y.stride, c.y.type, be),
+                              loadAsDouble(c.z.first + i * c.z.stride, c.z.type, be),
+                              c.intensity ? c.intensity->at(i, be) : 0.0};
+    addFinitePoint(values, c.intensity.has_value(), true, cloud);
+  }
+}
+
 void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) {
+  if (isFloat64(c.x) || isFloat64(c.y) || isFloat64(c.z)) return appendWide(c, count, cloud);
   const bool be = c.big_endian;
   for (std::size_t i = 0; i < count; ++i) {
     const Vec3f p(c.x.at(i, be), c.y.at(i, be), c.z.at(i, be));
@@ -65,6 +79,24 @@ void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) 
 }
 
 }  // namespace
+
+void addFinitePoint(const double (&values)[4], bool with_intensity, bool wide, PointCloud& cloud) {
+  const Vec3 p(values[0], values[1], values[2]);
+  if (!p.allFinite()) return;
+  constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
+  constexpr double kOnEarth = 1.0e8;  // m; beyond that a stray value, not a place
+  const double distance = p.cwiseAbs().maxCoeff();
+  if (wide && cloud.empty() && cloud.origin.isZero() && distance > kFar && distance < kOnEarth) {
+    cloud.origin = p.array().round().matrix();
+  }
+  const Vec3f relative = (p - cloud.origin).cast<float>();
+  if (!relative.allFinite()) return;  // too large for a float
+  if (with_intensity) {
+    cloud.add(relative, static_cast<float>(values[3]));
+  } else {
+    cloud.add(relative);
+  }
+}
 
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud) {
   cloud.reserve(cloud.size() + count, columns.intensity.has_value());

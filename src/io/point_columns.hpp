@@ -29,7 +29,14 @@ struct PointColumns {
 
 // Appends the `count` points the columns describe, dropping any point with a
 // NaN or infinite coordinate. The caller has checked that every element lies
-// inside its buffer.
+// inside its buffer. Float64 coordinates keep their precision (addFinitePoint).
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud);
+
+// Appends x y z [intensity] unless a coordinate is NaN or infinite. When the
+// file stores coordinates as float64 (`wide`), the first point further than
+// 10 km from the origin (a map in UTM or ECEF) sets the cloud's origin to its
+// whole metres, and points are kept relative to it: floats would otherwise
+// round them to decimetres.
+void addFinitePoint(const double (&values)[4], bool with_intensity, bool wide, PointCloud& cloud);
 
 }  // namespace hba::io::detail

@@ -46,6 +46,9 @@ inline T loadUnaligned(const char* p, bool big_endian) {
   return value;
 }
 
+// Loads a float64 or float32 value stored at `p` as a double (other types via float).
+inline double loadAsDouble(const char* p, ScalarType type, bool big_endian = false);
+
 // Loads the value of `type` stored at `p` (any alignment) as a float.
 inline float loadAsFloat(const char* p, ScalarType type, bool big_endian = false) {
   switch (type) {
@@ -61,6 +64,11 @@ inline float loadAsFloat(const char* p, ScalarType type, bool big_endian = false
     case ScalarType::Float64: return static_cast<float>(loadUnaligned<double>(p, big_endian));
   }
   return 0.0f;
+}
+
+inline double loadAsDouble(const char* p, ScalarType type, bool big_endian) {
+  if (type == ScalarType::Float64) return loadUnaligned<double>(p, big_endian);
+  return static_cast<double>(loadAsFloat(p, type, big_endian));
 }
 
 }  // namespace hba::io::detail

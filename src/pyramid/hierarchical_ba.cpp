@@ -165,11 +165,9 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   return solved.poses;
 }
 
-}  // namespace
-
-HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
-                            const HbaSettings& settings) {
-  validate(scans, initial, settings);
+// The whole method, on poses near the origin.
+HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initial,
+                        const HbaSettings& settings) {
   const auto start = Clock::now();
   HbaResult result;
   HbaReport& report = result.report;
@@ -221,6 +219,20 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
     result.poses = initial;
   }
   report.seconds_total = secondsSince(start);
+  return result;
+}
+
+}  // namespace
+
+HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+                            const HbaSettings& settings) {
+  validate(scans, initial, settings);
+  // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
+  // apart. Working relative to the first pose makes the result independent of
+  // where the world's origin is.
+  const Vec3 origin = initial.front().t;
+  HbaResult result = runNearOrigin(scans, translated(initial, -origin), settings);
+  result.poses = translated(result.poses, origin);
   return result;
 }
 

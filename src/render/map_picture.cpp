@@ -38,7 +38,8 @@ Box2 viewBox(const std::vector<MapPanel>& panels, const RenderSettings& settings
   if (settings.crop) return *settings.crop;
   std::vector<double> xs, ys;
   for (const MapPanel& panel : panels) {
-    for (const Vec3f& p : panel.map.points) {
+    for (std::size_t i = 0; i < panel.map.size(); ++i) {
+      const Vec3 p = panel.map.world(i);
       xs.push_back(p.x());
       ys.push_back(p.y());
     }
@@ -68,7 +69,8 @@ std::pair<double, double> heightRange(const std::vector<MapPanel>& panels, const
                                       double high_q) {
   std::vector<double> zs;
   for (const MapPanel& panel : panels) {
-    for (const Vec3f& p : panel.map.points) {
+    for (std::size_t i = 0; i < panel.map.size(); ++i) {
+      const Vec3 p = panel.map.world(i);
       if (inside(box, p.x(), p.y())) zs.push_back(p.z());
     }
   }
@@ -123,7 +125,8 @@ void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const Top
                  const Rect& area, std::pair<double, double> heights, double voxel) {
   const int size = footprint(voxel, view.pixels_per_meter);
   PointRaster raster(area.width, area.height, size, size);
-  for (const Vec3f& p : panel.map.points) {
+  for (std::size_t i = 0; i < panel.map.size(); ++i) {
+    const Vec3 p = panel.map.world(i);
     if (!inside(box, p.x(), p.y())) continue;
     const auto pixel = view.toPixel(p.x(), p.y());
     raster.add(pixel.x() - area.left, pixel.y() - area.top, p.z());
@@ -150,7 +153,8 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
     return Pixel(view.toPixel(x, 0).x(), area.top + 4 + (z_range.second - z) * z_scale);
   };
   PointRaster raster(area.width, area.height, footprint(voxel, view.pixels_per_meter), footprint(voxel, z_scale));
-  for (const Vec3f& p : panel.map.points) {
+  for (std::size_t i = 0; i < panel.map.size(); ++i) {
+    const Vec3 p = panel.map.world(i);
     if (!inside(box, p.x(), p.y())) continue;
     const Pixel pixel = toPixel(p.x(), p.z());
     raster.add(pixel.x() - area.left, pixel.y() - area.top, p.z());

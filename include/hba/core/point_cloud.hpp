@@ -1,5 +1,7 @@
 #pragma once
 // A scan: float xyz points in the sensor frame, with optional intensity.
+// A map far from the world origin (UTM, ECEF) keeps its float precision by
+// storing points relative to `origin` (double): world = origin + point.
 #include <cstddef>
 #include <vector>
 
@@ -10,6 +12,10 @@ namespace hba {
 struct PointCloud {
   std::vector<Vec3f> points;
   std::vector<float> intensity;  // empty, or one value per point
+  Vec3 origin = Vec3::Zero();    // metres; zero for scans, may be set for maps
+
+  // Point i in the frame `origin` refers to, in double.
+  Vec3 world(std::size_t i) const { return origin + points[i].cast<double>(); }
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }

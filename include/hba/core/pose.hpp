@@ -36,6 +36,9 @@ struct Trajectory {
   bool hasStamps() const { return !stamps.empty(); }
 };
 
+// The poses moved by `offset` (added to every translation).
+std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset);
+
 // Sum of distances between consecutive positions, in metres.
 double pathLength(const std::vector<Pose>& poses);
 

@@ -39,11 +39,13 @@ struct MapSettings {
 };
 
 // Accumulates world points voxel by voxel. Output order is the order in
-// which voxels were first touched, so results are deterministic.
+// which voxels were first touched, so results are deterministic. The grid is
+// the world's; the output's points are stored relative to `origin` (its
+// PointCloud::origin), so maps far from the world origin keep their precision.
 class VoxelMerger {
  public:
-  explicit VoxelMerger(const MapSettings& settings);
-  // Adds `scan` (sensor frame) moved into the world by `pose`.
+  explicit VoxelMerger(const MapSettings& settings, const Vec3& origin = Vec3::Zero());
+  // Adds `scan` (sensor frame, or relative to scan.origin) moved into the world by `pose`.
   void add(const PointCloud& scan, const Pose& pose, std::uint32_t scan_index);
   std::size_t voxelCount() const { return cells_.size(); }
   PointCloud result() const;
@@ -57,6 +59,7 @@ class VoxelMerger {
     std::uint32_t first_scan = 0;
   };
   MapSettings settings_;
+  Vec3 origin_;
   bool has_intensity_ = true;  // false once a scan without intensity arrives
   // The grid of hba::voxel::downsample, so both agree on what a voxel is.
   std::unordered_map<voxel::VoxelKey, std::uint32_t, voxel::VoxelKeyHash> index_;  // -> cells_ slot
@@ -64,7 +67,8 @@ class VoxelMerger {
 };
 
 // Streams every scan of `dataset` through a VoxelMerger with `poses` (one per
-// scan; the dataset's own trajectory when `poses` is empty). Throws hba::Error.
+// scan; the dataset's own trajectory when `poses` is empty). The map's points
+// are relative to the first pose's position (its `origin`). Throws hba::Error.
 PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
                           const MapSettings& settings);
 
