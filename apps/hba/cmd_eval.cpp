@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "hba/core/atomic_file.hpp"
+#include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/pose_file.hpp"
 
@@ -18,6 +19,7 @@ struct EvalArgs {
   std::string align = "se3", assoc = "auto", delta_unit = "frames";
   double delta = 1.0;
   double t_max_diff = 0.01;
+  double min_matched = 0.5;
 };
 
 Trajectory readTrajectory(const std::string& path, const std::string& format) {
@@ -25,7 +27,8 @@ Trajectory readTrajectory(const std::string& path, const std::string& format) {
 }
 
 std::string statsRow(const std::string& prefix, const char* name, const eval::ErrorStats& s) {
-  return fmt::format("{}{:<14}{:>10.6f}{:>10.6f}{:>10.6f}{:>10.6f}\n", prefix, name, s.rmse, s.mean,
+  // A space before every number: 123.456789 must not run into its neighbour.
+  return fmt::format("{}{:<14} {:>11.6f} {:>11.6f} {:>11.6f} {:>11.6f}\n", prefix, name, s.rmse, s.mean,
                      s.median, s.max);
 }
 
@@ -36,7 +39,7 @@ std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
       r.matched, r.estimate_count, eval::toString(r.association_used), args.align,
       args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
       args.delta_unit);
-  out += fmt::format("{}{:<14}{:>10}{:>10}{:>10}{:>10}\n", prefix, "", "rmse", "mean", "median", "max");
+  out += fmt::format("{}{:<14} {:>11} {:>11} {:>11} {:>11}\n", prefix, "", "rmse", "mean", "median", "max");
   out += statsRow(prefix, "ATE trans m", r.ate.translation_m);
   out += statsRow(prefix, "ATE rot deg", r.ate.rotation_deg);
   out += statsRow(prefix, "RPE trans m", r.rpe.translation_m);
@@ -84,6 +87,22 @@ void run(const EvalArgs& args) {
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
   const Trajectory est = readTrajectory(args.est, args.est_format);
   const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
+  const double share = static_cast<double>(result.matched) / static_cast<double>(result.estimate_count);
+  if (share < args.min_matched && result.association_used == eval::AssociationMode::Index) {
+    throw Error(fmt::format("{}: only {} of {} estimated poses have a ground-truth pose at their index in {} "
+                            "({} poses; --min-matched {}): are they the same sequence?",
+                            args.est, result.matched, result.estimate_count, args.gt, gt.size(),
+                            args.min_matched));
+  }
+  if (share < args.min_matched) {
+    throw Error(fmt::format(
+        "{}: only {} of {} estimated poses ({:.0f} %) have a ground-truth pose within {} s in {} "
+        "(--min-matched {}). The two files' times do not agree: {:.3f} to {:.3f} s against {:.3f} to "
+        "{:.3f} s. A TUM file written from data without timestamps carries scan indices (0, 1, 2, ...): "
+        "give the stamps (hba optimize --times FILE), or pair poses by index (--assoc index).",
+        args.est, result.matched, result.estimate_count, 100.0 * share, args.t_max_diff, args.gt,
+        args.min_matched, est.stamps.front(), est.stamps.back(), gt.stamps.front(), gt.stamps.back()));
+  }
   if (result.matched < result.estimate_count) {
     spdlog::warn("{} estimated poses have no ground truth within {} s and are not evaluated",
                  result.estimate_count - result.matched, args.t_max_diff);
@@ -114,6 +133,10 @@ void registerEvalCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--min-matched", args->min_matched,
+                      "Fail when fewer than this share of estimated poses pair with ground truth")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--delta", args->delta, "RPE distance between compared poses")
       ->check(CLI::PositiveNumber)

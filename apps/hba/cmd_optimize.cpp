@@ -1,4 +1,6 @@
 // `hba optimize DATA -o OUT`: the whole method on a dataset.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 #include <tbb/global_control.h>
@@ -61,6 +63,31 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
                            gt ? &gt->poses : nullptr, png);
 }
 
+// The sensor poses in three formats, and the poses of the frame the input
+// trajectory described (KITTI's camera 0, an --extrinsic body) beside them.
+std::vector<std::string> writeOptimizedPoses(const fs::path& out, const io::Dataset& dataset,
+                                             const std::vector<Pose>& poses) {
+  if (!dataset.trajectory().hasStamps()) {
+    spdlog::info("no timestamps (none in the trajectory, no times.txt, scans not named by time): "
+                 "poses_tum.txt carries the scan index as time; give --times FILE for real stamps");
+  }
+  Trajectory optimized;
+  optimized.poses = poses;
+  optimized.stamps = dataset.trajectory().stamps;
+  io::writePoses(out / "pose.json", optimized, io::PoseFormat::Hba);
+  io::writePoses(out / "poses_kitti.txt", optimized, io::PoseFormat::Kitti);
+  io::writePoses(out / "poses_tum.txt", optimized, io::PoseFormat::Tum);
+  std::vector<std::string> written = {"pose.json (HBA)", "poses_kitti.txt", "poses_tum.txt"};
+  if (!dataset.inputFrame().empty()) {
+    const std::string prefix = dataset.inputFrame() + "_poses";
+    optimized.poses = dataset.toInputFrame(poses);
+    io::writePoses(out / (prefix + "_kitti.txt"), optimized, io::PoseFormat::Kitti);
+    io::writePoses(out / (prefix + "_tum.txt"), optimized, io::PoseFormat::Tum);
+    written.push_back(prefix + "_kitti.txt, " + prefix + "_tum.txt (" + dataset.inputFrame() + " frame)");
+  }
+  return written;
+}
+
 // Defaults, then the YAML file, then the flags given on the command line.
 pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& command) {
   pyramid::HbaSettings settings;
@@ -102,7 +129,10 @@ void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io
                      {"layout", dataset.layout()},
                      {"poses", fs::absolute(dataset.posesFile()).string()},
                      {"pose_format", io::toString(dataset.poseFormat())},
-                     {"scans", dataset.size()}};
+                     {"scans", dataset.size()},
+                     {"stamps", dataset.stampsSource().empty() ? "none (scan index)" : dataset.stampsSource()},
+                     {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
+                     {"scans_in_world", dataset.scansInWorld()}};
   report["settings"] = pyramid::settingsToJson(settings);
   report["threads"] = threads;
   report["peak_memory_mib"] = peakMemoryMiB();
@@ -127,18 +157,12 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   const pyramid::HbaResult result =
       pyramid::runHierarchicalBa(source, dataset.trajectory().poses, settings);
 
-  Trajectory optimized;
-  optimized.poses = result.poses;
-  optimized.stamps = dataset.trajectory().stamps;
-  io::writePoses(out / "pose.json", optimized, io::PoseFormat::Hba);
-  io::writePoses(out / "poses_kitti.txt", optimized, io::PoseFormat::Kitti);
-  io::writePoses(out / "poses_tum.txt", optimized, io::PoseFormat::Tum);
-
+  const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, threads);
 
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), out.string());
-  spdlog::info("wrote pose.json (HBA), poses_kitti.txt, poses_tum.txt, report.json");
+  spdlog::info("wrote {}, report.json", fmt::format("{}", fmt::join(written, ", ")));
   if (!args.no_render) writePicture(args, dataset, result.poses, out);
 }
 

@@ -94,7 +94,7 @@ void registerSimulateCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "simulate",
       "Write a synthetic LiDAR sequence (HBA layout: pcd/, pose.json with drifting initial "
-      "poses, gt.txt ground truth in TUM format, sim.yaml)");
+      "poses, gt.txt ground truth in TUM format, times.txt, sim.yaml)");
   command->add_option("-o,--output", args->output, "Output folder (must be empty or absent)")
       ->required();
   command->add_option("--frames", args->frames, "Number of frames (10 Hz)")
@@ -135,7 +135,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_flag("--loop-closed", args->loop_closed,
                     "Initial poses = truth + small independent noise (no drift)");
   command->add_flag("--poses-only", args->poses_only,
-                    "Write pose.json, gt.txt and sim.yaml but no scans (same bytes as a full "
+                    "Write pose.json, gt.txt, times.txt and sim.yaml but no scans (same bytes as a full "
                     "run; pair with optimize --poses to reuse another run's scans)");
   command->add_option("--downsample", args->downsample,
                       "Voxel size in m to thin each scan (0 = keep every return)")

@@ -2,7 +2,47 @@
 
 #include <spdlog/spdlog.h>
 
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include "hba/core/error.hpp"
+
 namespace hba::cli {
+
+Pose parsePoseArgument(const std::string& text, const std::string& flag) {
+  std::vector<double> values;
+  std::size_t pos = 0;
+  const auto separator = [](char c) { return c == ' ' || c == ',' || c == '\t'; };
+  while (pos < text.size()) {
+    while (pos < text.size() && separator(text[pos])) ++pos;
+    std::size_t end = pos;
+    while (end < text.size() && !separator(text[end])) ++end;
+    if (end == pos) break;
+    double value = 0.0;
+    const auto [ptr, ec] = std::from_chars(text.data() + pos, text.data() + end, value);
+    if (ec != std::errc() || ptr != text.data() + end || !std::isfinite(value)) {
+      throw Error(flag + ": '" + text.substr(pos, end - pos) + "' is not a number");
+    }
+    values.push_back(value);
+    pos = end;
+  }
+  if (values.size() == 7) {
+    const Quat q(values[6], values[3], values[4], values[5]);  // given as qx qy qz qw
+    if (q.norm() < 1e-3) throw Error(flag + ": the quaternion has zero length");
+    return Pose(q, Vec3(values[0], values[1], values[2]));
+  }
+  if (values.size() == 12) {
+    Mat3 R;
+    R << values[0], values[1], values[2], values[4], values[5], values[6], values[8], values[9], values[10];
+    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-3 || R.determinant() < 0.0) {
+      throw Error(flag + ": the 3x3 block is not a rotation");
+    }
+    return Pose(R, Vec3(values[3], values[7], values[11]));
+  }
+  throw Error(flag + ": expected 7 numbers (tx ty tz qx qy qz qw) or 12 (row-major 3x4 [R|t]), found " +
+              std::to_string(values.size()));
+}
 
 void DatasetArgs::addTo(CLI::App* command) {
   command->add_option("DIR", dir, "Dataset folder (HBA, scans+trajectory, or KITTI layout)")
@@ -11,6 +51,16 @@ void DatasetArgs::addTo(CLI::App* command) {
   command->add_option("--poses", poses, "Trajectory file (overrides detection)");
   command->add_option("--format", format, "Format of the --poses file")
       ->check(CLI::IsMember({"kitti", "tum", "hba"}));
+  command->add_option("--times", times, "Timestamps, one per scan and line (seconds)");
+  auto* conventions = command->add_option_group("Conventions", "When the input is not sensor-to-world poses of sensor-frame scans (docs/io_datasets.md)");
+  conventions->add_flag("--invert-poses", invert_poses, "The poses map world to sensor: invert them");
+  conventions->add_option("--extrinsic", extrinsic,
+                          "The poses are of another body (IMU, base): T_body_sensor as "
+                          "'tx ty tz qx qy qz qw' or 12 numbers row-major [R|t]");
+  conventions->add_option("--calib", calibration,
+                          "KITTI calib.txt: the poses are of camera 0, turned into LiDAR poses with Tr");
+  conventions->add_flag("--scans-in-world", scans_in_world,
+                        "The scans were saved in the world frame (moved by their pose)");
 }
 
 io::Dataset DatasetArgs::open() const {
@@ -18,6 +68,11 @@ io::Dataset DatasetArgs::open() const {
   if (!scans.empty()) overrides.scans_dir = scans;
   if (!poses.empty()) overrides.poses_file = poses;
   if (!format.empty()) overrides.pose_format = io::poseFormatFromString(format);
+  if (!times.empty()) overrides.times_file = times;
+  overrides.invert_poses = invert_poses;
+  if (!extrinsic.empty()) overrides.extrinsic = parsePoseArgument(extrinsic, "--extrinsic");
+  if (!calibration.empty()) overrides.calibration = calibration;
+  overrides.scans_in_world = scans_in_world;
   io::Dataset dataset = io::Dataset::open(dir, overrides);
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.
   spdlog::debug("dataset {}: layout {}, {} scans in {}, poses {} ({})", dataset.root().string(),

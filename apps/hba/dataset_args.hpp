@@ -1,6 +1,7 @@
 #pragma once
 // The dataset arguments shared by every command that reads a sequence:
-// DIR plus the overrides --scans, --poses and --format.
+// DIR plus the overrides --scans, --poses, --format, --times and the
+// convention flags --invert-poses, --extrinsic, --calib, --scans-in-world.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -13,11 +14,20 @@ struct DatasetArgs {
   std::string scans;
   std::string poses;
   std::string format;
+  std::string times;
+  bool invert_poses = false;
+  std::string extrinsic;
+  std::string calibration;
+  bool scans_in_world = false;
 
   // Adds the positional DIR and the override flags to `command`.
   void addTo(CLI::App* command);
   // Discovers the dataset (overrides win). Throws hba::Error.
   io::Dataset open() const;
 };
+
+// "tx ty tz qx qy qz qw" or 12 numbers "r00 r01 r02 tx r10 ... tz" (spaces or
+// commas). Throws hba::Error naming `flag` if malformed or not a rotation.
+Pose parsePoseArgument(const std::string& text, const std::string& flag);
 
 }  // namespace hba::cli

@@ -28,15 +28,123 @@ std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_di
   return "scans";
 }
 
-// KITTI ground-truth poses are of camera 0: T_world_cam. The LiDAR's pose is
-// T_world_cam * Tr, and left-multiplying by Tr^-1 makes the world the first
-// LiDAR frame (z up) instead of the first camera frame (y down).
-void cameraToLidarPoses(Trajectory& trajectory, const Pose& lidar_to_camera) {
-  const Pose camera_to_lidar = lidar_to_camera.inverse();
-  for (Pose& pose : trajectory.poses) pose = camera_to_lidar * pose * lidar_to_camera;
+std::string countsDiffer(std::size_t scans, const fs::path& scans_dir, std::size_t poses,
+                         const fs::path& poses_file) {
+  return "scans and poses differ in number: " + std::to_string(scans) + " scans in " +
+         scans_dir.string() + " but " + std::to_string(poses) + " poses in " + poses_file.string();
+}
+
+template <typename T>
+std::vector<T> pick(const std::vector<T>& values, const std::vector<std::size_t>& indices) {
+  std::vector<T> out;
+  out.reserve(indices.size());
+  for (std::size_t i : indices) out.push_back(values[i]);
+  return out;
 }
 
 }  // namespace
+
+// Scans and poses paired: by time when the scans are named by time and the
+// trajectory has stamps, else by position (counts must then agree).
+void Dataset::pairScansWithPoses(const std::vector<double>& scan_stamps) {
+  if (!scan_stamps.empty() && trajectory_.hasStamps()) {
+    const detail::TimeMatch match =
+        detail::matchByTime(scan_stamps, trajectory_.stamps, scans_dir_, poses_file_, notes_);
+    scan_paths_ = pick(scan_paths_, match.kept_scans);
+    trajectory_.poses = pick(trajectory_.poses, match.pose_of_scan);
+    trajectory_.stamps = pick(trajectory_.stamps, match.pose_of_scan);
+    stamps_source_ = "trajectory";
+    return;
+  }
+  if (trajectory_.size() != size()) {
+    throw Error(countsDiffer(size(), scans_dir_, trajectory_.size(), poses_file_));
+  }
+  if (trajectory_.hasStamps()) {
+    stamps_source_ = "trajectory";
+  } else if (!scan_stamps.empty()) {
+    trajectory_.stamps = scan_stamps;
+    stamps_source_ = "scan names";
+  }
+}
+
+// --times FILE, else DIR/times.txt when nothing else gave stamps.
+void Dataset::readTimesFile(const DatasetOverrides& overrides) {
+  std::error_code ec;
+  if (overrides.times_file) {
+    const fs::path path = detail::resolveOverride(root_, *overrides.times_file, "times file");
+    std::vector<double> stamps = readTimes(path);
+    if (stamps.size() != size()) {
+      failAt(path, std::to_string(stamps.size()) + " timestamps for " + std::to_string(size()) + " scans");
+    }
+    if (!stamps_source_.empty()) {
+      notes_.push_back({DatasetNote::Level::Info, "timestamps from " + path.string() +
+                                                      " replace those of the " + stamps_source_});
+    }
+    trajectory_.stamps = std::move(stamps);
+    times_file_ = path;
+    stamps_source_ = "times file";
+    return;
+  }
+  const fs::path times = root_ / "times.txt";
+  if (!stamps_source_.empty() || !fs::is_regular_file(times, ec)) return;
+  std::vector<double> stamps = readTimes(times);
+  if (stamps.size() != size()) {
+    notes_.push_back({DatasetNote::Level::Warning, "ignoring " + times.string() + ": " +
+                                                       std::to_string(stamps.size()) + " timestamps for " +
+                                                       std::to_string(size()) + " scans"});
+    return;
+  }
+  trajectory_.stamps = std::move(stamps);
+  times_file_ = times;
+  stamps_source_ = "times file";
+}
+
+// The poses as the file holds them -> sensor-to-world poses of the scans' sensor.
+void Dataset::convertPoses(const DatasetOverrides& overrides) {
+  if (overrides.invert_poses) {
+    for (Pose& pose : trajectory_.poses) pose = pose.inverse();
+    notes_.push_back({DatasetNote::Level::Info, "poses inverted (--invert-poses): the file holds world-to-sensor poses"});
+  }
+  // KITTI ground-truth poses are of camera 0: T_world_cam. The LiDAR's pose
+  // is T_world_cam * Tr, and left-multiplying by Tr^-1 makes the world the
+  // first LiDAR frame (z up) instead of the first camera frame (y down).
+  // An explicit --poses file is taken as LiDAR poses unless --calib is given.
+  fs::path calib;
+  std::error_code ec;
+  if (overrides.calibration) {
+    calib = detail::resolveOverride(root_, *overrides.calibration, "calibration file");
+  } else if (layout_ == "kitti" && !overrides.poses_file && !overrides.extrinsic &&
+             fs::is_regular_file(root_ / "calib.txt", ec)) {
+    calib = root_ / "calib.txt";
+  }
+  if (!calib.empty()) {
+    if (overrides.extrinsic) throw Error("give either --extrinsic or --calib, not both");
+    const std::optional<Pose> lidar_to_camera = detail::readKittiLidarToCamera(calib);
+    if (!lidar_to_camera) {
+      if (overrides.calibration) failAt(calib, "has no Tr: line (the LiDAR-to-camera transform)");
+      return;
+    }
+    frame_left_ = lidar_to_camera->inverse();
+    frame_right_ = *lidar_to_camera;
+    calibration_file_ = calib;
+    input_frame_ = "camera";
+    notes_.push_back({DatasetNote::Level::Info, "KITTI camera poses turned into LiDAR poses with Tr of " +
+                                                    calib.string()});
+  } else if (overrides.extrinsic) {
+    frame_right_ = *overrides.extrinsic;
+    input_frame_ = "body";
+    notes_.push_back({DatasetNote::Level::Info, "poses of the body frame turned into sensor poses with --extrinsic"});
+  }
+  for (Pose& pose : trajectory_.poses) pose = frame_left_ * pose * frame_right_;
+}
+
+std::vector<Pose> Dataset::toInputFrame(const std::vector<Pose>& sensor_poses) const {
+  const Pose left = frame_left_.inverse(), right = frame_right_.inverse();
+  std::vector<Pose> out;
+  out.reserve(sensor_poses.size());
+  for (const Pose& pose : sensor_poses) out.push_back(left * pose * right);
+  return out;
+}
 
 Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   checkDatasetFolder(dir);
@@ -45,7 +153,8 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.scans_dir_ = overrides.scans_dir
                            ? detail::resolveOverride(dir, *overrides.scans_dir, "scans folder")
                            : detail::findScansDir(dir, dataset.notes_);
-  dataset.scan_paths_ = detail::listNumberedScans(dataset.scans_dir_);
+  detail::ScanFiles scans = detail::listScans(dataset.scans_dir_);
+  dataset.scan_paths_ = std::move(scans.paths);
   dataset.poses_file_ =
       overrides.poses_file ? detail::resolveOverride(dir, *overrides.poses_file, "poses file")
                            : detail::findTrajectoryFile(dir, dataset.scans_dir_, dataset.notes_);
@@ -54,40 +163,10 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.trajectory_ = readPoses(dataset.poses_file_, dataset.pose_format_);
   dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_,
                              dataset.scan_paths_.front());
-
-  if (dataset.trajectory_.size() != dataset.size()) {
-    throw Error("scans and poses differ in number: " + std::to_string(dataset.size()) +
-                " scans in " + dataset.scans_dir_.string() + " but " +
-                std::to_string(dataset.trajectory_.size()) + " poses in " +
-                dataset.poses_file_.string());
-  }
-
-  // An explicit --poses file is taken as LiDAR poses (e.g. hba's own output).
-  const fs::path calib = dir / "calib.txt";
-  std::error_code ec;
-  if (dataset.layout_ == "kitti" && !overrides.poses_file && fs::is_regular_file(calib, ec)) {
-    if (const std::optional<Pose> lidar_to_camera = detail::readKittiLidarToCamera(calib)) {
-      cameraToLidarPoses(dataset.trajectory_, *lidar_to_camera);
-      dataset.calibration_file_ = calib;
-      dataset.notes_.push_back({DatasetNote::Level::Info,
-                                "KITTI camera poses turned into LiDAR poses with Tr of " +
-                                    calib.string()});
-    }
-  }
-
-  const fs::path times = dir / "times.txt";
-  if (!dataset.trajectory_.hasStamps() && fs::is_regular_file(times, ec)) {
-    std::vector<double> stamps = detail::readTimesFile(times);
-    if (stamps.size() == dataset.size()) {
-      dataset.trajectory_.stamps = std::move(stamps);
-      dataset.times_file_ = times;
-    } else {
-      dataset.notes_.push_back({DatasetNote::Level::Warning,
-                                "ignoring " + times.string() + ": " +
-                                    std::to_string(stamps.size()) + " timestamps for " +
-                                    std::to_string(dataset.size()) + " scans"});
-    }
-  }
+  dataset.pairScansWithPoses(scans.stamps);
+  dataset.readTimesFile(overrides);
+  dataset.convertPoses(overrides);
+  dataset.scans_in_world_ = overrides.scans_in_world;
   return dataset;
 }
 
@@ -95,8 +174,10 @@ PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
     PointCloud scan = readScan(path);
-    if (!scan.origin.isZero()) {  // a float64 file far from its origin: sensor-frame points
-      for (Vec3f& p : scan.points) p = (scan.origin + p.cast<double>()).cast<float>();
+    // In double: world-frame scans may be far from the origin (scan.origin).
+    const Pose to_sensor = scans_in_world_ ? trajectory_.poses[i].inverse() : Pose::identity();
+    if (scans_in_world_ || !scan.origin.isZero()) {
+      for (Vec3f& p : scan.points) p = (to_sensor * (scan.origin + p.cast<double>())).cast<float>();
       scan.origin.setZero();
     }
     return scan;

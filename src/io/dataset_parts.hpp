@@ -15,11 +15,31 @@ using Notes = std::vector<DatasetNote>;
 
 // True if `dir` holds at least one scan file (stops at the first).
 bool containsScanFile(const std::filesystem::path& dir);
-// The scan files of `dir`, ordered by the number in their names (the last run
-// of digits: 7.pcd, 000007.pcd, scan_7.pcd). Throws hba::Error naming the
-// files for: no scans, mixed extensions, a name without a number, two files
-// with one number, or a gap in the numbering.
-std::vector<std::filesystem::path> listNumberedScans(const std::filesystem::path& dir);
+struct ScanFiles {
+  std::vector<std::filesystem::path> paths;
+  std::vector<double> stamps;  // seconds, when every name is a time; else empty
+};
+// The scan files of `dir`. Names that are all times (1577836980.099104600.pcd,
+// or 16 to 19 digits of nanoseconds) are ordered by time and give stamps;
+// otherwise by the number in their names (the last run of digits: 7.pcd,
+// 000007.pcd, scan_7.pcd). Throws hba::Error naming the files for: no scans,
+// mixed extensions, a name without a number, two files with one number or
+// time, or a gap in the numbering.
+ScanFiles listScans(const std::filesystem::path& dir);
+
+// --- dataset_time_match.cpp: scans named by time, poses stamped ---
+
+struct TimeMatch {
+  std::vector<std::size_t> pose_of_scan;  // for each kept scan, its pose
+  std::vector<std::size_t> kept_scans;    // scans that have a pose, ascending
+};
+// Pairs every scan with the pose nearest in time, within half the median
+// interval between scans. Scans without one are left out (with a warning);
+// more than half left out, or two scans on one pose, is an error naming
+// `scans_dir` and `poses_file`.
+TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<double>& pose_stamps,
+                      const std::filesystem::path& scans_dir, const std::filesystem::path& poses_file,
+                      Notes& notes);
 
 // --- dataset_discovery.cpp: which folder and which trajectory ---
 
@@ -36,11 +56,9 @@ std::filesystem::path findTrajectoryFile(const std::filesystem::path& root,
 std::filesystem::path resolveOverride(const std::filesystem::path& root,
                                       const std::filesystem::path& path, const char* what);
 
-// --- dataset_sidecars.cpp: calib.txt and times.txt ---
+// --- dataset_sidecars.cpp: calib.txt ---
 
 // KITTI calib.txt's `Tr:` line (LiDAR -> camera 0), or nullopt if it has none.
 std::optional<Pose> readKittiLidarToCamera(const std::filesystem::path& calib_file);
-// One timestamp (seconds) a line, e.g. FAST-LIO's or KITTI's times.txt.
-std::vector<double> readTimesFile(const std::filesystem::path& times_file);
 
 }  // namespace hba::io::detail

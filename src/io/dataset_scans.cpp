@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <string>
 #include <system_error>
 
@@ -46,6 +48,38 @@ std::uint64_t numberInName(const fs::path& path) {
   const std::string digits(first_digit.base(), last_digit.base());
   if (digits.size() > 18) failAt(path, "the number in this file name is too long");
   return std::stoull(digits);
+}
+
+bool allDigits(std::string_view text) {
+  return !text.empty() && std::all_of(text.begin(), text.end(),
+                                      [](unsigned char c) { return std::isdigit(c) != 0; });
+}
+
+// The time a file is named by, in nanoseconds: "1577836980.099104600"
+// (seconds.fraction, as bag-to-PCD exporters name scans) or 16 to 19 digits
+// of nanoseconds. Nothing for other names (000012, scan_7).
+std::optional<std::uint64_t> nanosecondsInName(const fs::path& path) {
+  const std::string stem = path.stem().string();
+  const std::size_t dot = stem.find('.');
+  if (dot == std::string::npos) {
+    if (!allDigits(stem) || stem.size() < 16 || stem.size() > 19) return std::nullopt;
+    return std::stoull(stem);
+  }
+  const std::string_view seconds = std::string_view(stem).substr(0, dot);
+  std::string fraction = stem.substr(dot + 1);
+  // Ten digits of seconds reach the year 2286; fractions beyond ns are cut.
+  if (!allDigits(seconds) || seconds.size() > 10 || !allDigits(fraction)) return std::nullopt;
+  fraction.resize(9, '0');
+  return std::stoull(std::string(seconds)) * 1000000000ULL + std::stoull(fraction);
+}
+
+void checkDistinctTimes(const std::vector<NumberedScan>& scans) {
+  for (std::size_t i = 1; i < scans.size(); ++i) {
+    if (scans[i].number == scans[i - 1].number) {
+      failAt(scans[i].path, "is named by the same time as " + scans[i - 1].path.filename().string() +
+                                "; remove one of them");
+    }
+  }
 }
 
 template <typename OnScan>
@@ -97,28 +131,43 @@ bool containsScanFile(const fs::path& dir) {
   return found;
 }
 
-std::vector<fs::path> listNumberedScans(const fs::path& dir) {
-  std::vector<NumberedScan> scans;
-  fs::path first_of_kind;
+ScanFiles listScans(const fs::path& dir) {
+  std::vector<fs::path> files;
   forEachScanFile(dir, [&](const fs::path& path) {
-    if (first_of_kind.empty()) first_of_kind = path;
-    if (lowercaseExtension(path) != lowercaseExtension(first_of_kind)) {
-      failAt(dir, "mixed scan formats: " + first_of_kind.filename().string() + " and " +
+    if (!files.empty() && lowercaseExtension(path) != lowercaseExtension(files.front())) {
+      failAt(dir, "mixed scan formats: " + files.front().filename().string() + " and " +
                       path.filename().string() + "; keep one kind of scan file per folder");
     }
-    scans.push_back({numberInName(path), path});
+    files.push_back(path);
     return true;
   });
-  if (scans.empty()) failAt(dir, "no scan files (.pcd, .bin or .ply) in this folder");
+  if (files.empty()) failAt(dir, "no scan files (.pcd, .bin or .ply) in this folder");
+
+  std::vector<NumberedScan> scans;
+  scans.reserve(files.size());
+  const bool named_by_time = std::all_of(files.begin(), files.end(), [](const fs::path& path) {
+    return nanosecondsInName(path).has_value();
+  });
+  for (fs::path& path : files) {
+    const std::uint64_t key = named_by_time ? *nanosecondsInName(path) : numberInName(path);
+    scans.push_back({key, std::move(path)});
+  }
   // Numeric order: 2.pcd before 10.pcd; ties broken by name so errors are stable.
   std::sort(scans.begin(), scans.end(), [](const NumberedScan& a, const NumberedScan& b) {
     return a.number != b.number ? a.number < b.number : a.path < b.path;
   });
-  checkConsecutive(scans);
-  std::vector<fs::path> paths;
-  paths.reserve(scans.size());
-  for (NumberedScan& scan : scans) paths.push_back(std::move(scan.path));
-  return paths;
+  if (named_by_time) {
+    checkDistinctTimes(scans);
+  } else {
+    checkConsecutive(scans);
+  }
+  ScanFiles result;
+  result.paths.reserve(scans.size());
+  for (NumberedScan& scan : scans) {
+    if (named_by_time) result.stamps.push_back(static_cast<double>(scan.number) * 1e-9);
+    result.paths.push_back(std::move(scan.path));
+  }
+  return result;
 }
 
 }  // namespace hba::io::detail

@@ -62,16 +62,4 @@ std::optional<Pose> readKittiLidarToCamera(const fs::path& calib_file) {
   return std::nullopt;
 }
 
-std::vector<double> readTimesFile(const fs::path& times_file) {
-  std::vector<double> stamps;
-  for (const NumberRow& row : readNumberRows(times_file)) {
-    if (row.values.size() != 1) {
-      failAt(times_file, "line " + std::to_string(row.line) + ": expected one timestamp, found " +
-                             std::to_string(row.values.size()) + " numbers");
-    }
-    stamps.push_back(row.values.front());
-  }
-  return stamps;
-}
-
 }  // namespace hba::io::detail

@@ -106,4 +106,16 @@ Trajectory readPoses(const fs::path& path) {
   return trajectoryFromRows(path, rows, detail::formatOfRow(path, rows.front()));
 }
 
+std::vector<double> readTimes(const fs::path& path) {
+  std::vector<double> stamps;
+  for (const detail::NumberRow& row : detail::readNumberRows(path)) {
+    if (row.values.size() != 1) {
+      failAt(path, "line " + std::to_string(row.line) + ": expected one timestamp, found " +
+                       std::to_string(row.values.size()) + " numbers");
+    }
+    stamps.push_back(row.values.front());
+  }
+  return stamps;
+}
+
 }  // namespace hba::io

@@ -54,7 +54,11 @@ void writePoses(const fs::path& path, const Trajectory& trajectory, PoseFormat f
                      " timestamps for " + std::to_string(trajectory.size()) + " poses");
   }
   writeFileAtomically(path, [&](std::ostream& out) {
-    if (format == PoseFormat::Tum) out << "# timestamp tx ty tz qx qy qz qw\n";
+    if (format == PoseFormat::Tum) {
+      out << (trajectory.hasStamps() ? "# timestamp tx ty tz qx qy qz qw\n"
+                                     : "# timestamp tx ty tz qx qy qz qw (no timestamps were "
+                                       "given: the time is the scan index)\n");
+    }
     for (std::size_t i = 0; i < trajectory.size(); ++i) {
       const Pose& pose = trajectory.poses[i];
       switch (format) {
@@ -66,6 +70,13 @@ void writePoses(const fs::path& path, const Trajectory& trajectory, PoseFormat f
           break;
       }
     }
+  });
+}
+
+void writeTimes(const fs::path& path, const std::vector<double>& stamps) {
+  if (stamps.empty()) failAt(path, "refusing to write an empty list of timestamps");
+  writeFileAtomically(path, [&](std::ostream& out) {
+    for (double stamp : stamps) writeRow<1>(out, {stamp});
   });
 }
 

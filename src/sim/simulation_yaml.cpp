@@ -95,6 +95,7 @@ void writeSimulationYaml(const Simulation& s, const std::filesystem::path& path)
   out << YAML::Key << "scans" << YAML::Value << "pcd/ (binary PCD x y z intensity, sensor frame)";
   out << YAML::Key << "initial_poses" << YAML::Value << "pose.json (hba: tx ty tz qw qx qy qz)";
   out << YAML::Key << "ground_truth" << YAML::Value << "gt.txt (tum: t tx ty tz qx qy qz qw)";
+  out << YAML::Key << "times" << YAML::Value << "times.txt (one stamp a line, s)";
   out << YAML::EndMap;
   out << YAML::Key << "sensor_frame" << YAML::Value << "x forward, y left, z up";
   emitTrajectory(out, s);

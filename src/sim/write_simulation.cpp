@@ -45,6 +45,7 @@ void writeScans(const Simulation& simulation, const fs::path& scans, const Write
 // pose.json does not look complete.
 void writePoseFiles(const Simulation& simulation, const fs::path& dir) {
   io::writePoses(dir / "gt.txt", simulation.truth, io::PoseFormat::Tum);
+  io::writeTimes(dir / "times.txt", simulation.truth.stamps);
   writeSimulationYaml(simulation, dir / "sim.yaml");
   Trajectory initial;
   initial.poses = simulation.initial;

@@ -29,7 +29,7 @@ TEST(CliSimulate, OneAndTwoThreadsWriteTheSameBytes) {
   ASSERT_EQ(runCommand(simulate("-j 1") + " -o " + (dir / "a").string()).exit_code, 0);
   ASSERT_EQ(runCommand(simulate("-j 2") + " -o " + (dir / "b").string()).exit_code, 0);
   const auto a = hba::test::fileContents(dir / "a");
-  EXPECT_EQ(a.size(), 28u);
+  EXPECT_EQ(a.size(), 29u);  // 25 scans, pose.json, gt.txt, times.txt, sim.yaml
   EXPECT_TRUE(a == hba::test::fileContents(dir / "b"));
 }
 
@@ -42,8 +42,8 @@ TEST(CliSimulate, PosesOnlyWritesAFullRunsPoseFilesWithoutScans) {
   EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
   const auto full = hba::test::fileContents(dir / "full");
   const auto poses = hba::test::fileContents(dir / "poses");
-  ASSERT_EQ(poses.size(), 3u);
-  for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {
+  ASSERT_EQ(poses.size(), 4u);
+  for (const char* name : {"pose.json", "gt.txt", "times.txt", "sim.yaml"}) {
     EXPECT_EQ(poses.at(name), full.at(name)) << name;
   }
 }

@@ -69,7 +69,7 @@ TEST(SimOutput, SameSeedSameBytesWithOneOrTwoThreads) {
   }
   const auto one = hba::test::fileContents(dir / "one");
   const auto two = hba::test::fileContents(dir / "two");
-  ASSERT_EQ(one.size(), 15u);  // 12 scans + pose.json + gt.txt + sim.yaml
+  ASSERT_EQ(one.size(), 16u);  // 12 scans + pose.json + gt.txt + times.txt + sim.yaml
   EXPECT_TRUE(one == two) << "outputs differ between 1 and 2 threads";
 
   writeSimulation(tinySimulation(6), dir / "other", WriteOptions{});
@@ -107,8 +107,8 @@ TEST(SimOutput, PosesOnlyWritesTheSamePoseFilesAndNoScans) {
   const auto full = hba::test::fileContents(dir / "full");
   const auto poses = hba::test::fileContents(dir / "poses");
   EXPECT_FALSE(fs::exists(dir / "poses" / "pcd"));
-  ASSERT_EQ(poses.size(), 3u);
-  for (const char* name : {"pose.json", "gt.txt", "sim.yaml"}) {
+  ASSERT_EQ(poses.size(), 4u);
+  for (const char* name : {"pose.json", "gt.txt", "times.txt", "sim.yaml"}) {
     EXPECT_EQ(poses.at(name), full.at(name)) << name;
   }
 }

@@ -8,8 +8,12 @@
 //  - kitti:    DIR/velodyne/NNNNNN.bin + a KITTI pose file; calib.txt's Tr is
 //              applied when the poses are of the camera
 // Explicit overrides (scans folder, poses file, pose format) always win.
-// A times.txt beside the trajectory supplies timestamps when the trajectory
-// has none. docs/io_datasets.md describes every rule.
+// A times.txt beside the trajectory (or --times) supplies timestamps when the
+// trajectory has none; scans named by time are ordered by it and, with a
+// stamped trajectory, paired with their poses by time. Conventions other
+// than "sensor-to-world poses of the scans' sensor, scans in the sensor
+// frame" are converted on request (inverted poses, another body frame,
+// scans saved in the world frame). docs/io_datasets.md describes every rule.
 //
 // Opening reads no scan (only directory listings and the trajectory): scans
 // are loaded lazily by index.
@@ -29,6 +33,11 @@ struct DatasetOverrides {
   std::optional<std::filesystem::path> scans_dir;
   std::optional<std::filesystem::path> poses_file;
   std::optional<PoseFormat> pose_format;
+  std::optional<std::filesystem::path> times_file;  // one stamp (s) a line, one per scan
+  bool invert_poses = false;    // the file holds world-to-sensor poses
+  std::optional<Pose> extrinsic;  // T_body_sensor: the file holds poses of another body
+  std::optional<std::filesystem::path> calibration;  // KITTI calib.txt: the file holds camera-0 poses
+  bool scans_in_world = false;  // the scans were saved already moved into the world
 };
 
 // One thing discovery decided or noticed (which file it picked, what it
@@ -56,14 +65,31 @@ class Dataset {
   const std::filesystem::path& timesFile() const { return times_file_; }
   // The KITTI calib.txt whose Tr turned camera poses into LiDAR poses (else empty).
   const std::filesystem::path& calibrationFile() const { return calibration_file_; }
+  // Where the stamps came from: "trajectory", "times file", "scan names" or "" (none).
+  const std::string& stampsSource() const { return stamps_source_; }
+  // The frame the trajectory file described when it was not the sensor's:
+  // "camera" (KITTI calibration), "body" (--extrinsic), else "".
+  const std::string& inputFrame() const { return input_frame_; }
+  // Sensor poses (like trajectory()) turned back into that frame's poses.
+  std::vector<Pose> toInputFrame(const std::vector<Pose>& sensor_poses) const;
+  bool scansInWorld() const { return scans_in_world_; }
   const std::vector<DatasetNote>& notes() const { return notes_; }
   const std::filesystem::path& scanPath(std::size_t i) const { return scan_paths_.at(i); }
-  // Reads scan i from disk (sensor frame). Throws hba::Error naming the file.
+  // Reads scan i from disk, in the sensor frame (scans saved in the world
+  // frame are moved back by their pose). Throws hba::Error naming the file.
   PointCloud loadScan(std::size_t i) const;
 
  private:
+  void pairScansWithPoses(const std::vector<double>& scan_stamps);
+  void readTimesFile(const DatasetOverrides& overrides);
+  void convertPoses(const DatasetOverrides& overrides);
+
   std::string layout_;
   std::filesystem::path root_, scans_dir_, poses_file_, times_file_, calibration_file_;
+  std::string stamps_source_, input_frame_;
+  // trajectory() = frame_left_ * (pose in the file) * frame_right_
+  Pose frame_left_, frame_right_;
+  bool scans_in_world_ = false;
   PoseFormat pose_format_ = PoseFormat::Kitti;
   Trajectory trajectory_;
   std::vector<std::filesystem::path> scan_paths_;

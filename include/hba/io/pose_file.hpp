@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "hba/core/pose.hpp"
 
@@ -23,9 +24,14 @@ PoseFormat detectPoseFormat(const std::filesystem::path& path);
 
 Trajectory readPoses(const std::filesystem::path& path, PoseFormat format);
 Trajectory readPoses(const std::filesystem::path& path);  // detected format
-// Written atomically with at least 9 significant digits. TUM needs stamps;
-// without them the pose index is written as the time.
+// Written atomically, every number in the shortest form that reads back
+// exactly. TUM needs stamps; without them the pose index is written as the
+// time and the header line says so.
 void writePoses(const std::filesystem::path& path, const Trajectory& trajectory,
                 PoseFormat format);
+
+// A times.txt: one timestamp (seconds) a line, as KITTI and FAST-LIO write.
+std::vector<double> readTimes(const std::filesystem::path& path);
+void writeTimes(const std::filesystem::path& path, const std::vector<double>& stamps);
 
 }  // namespace hba::io

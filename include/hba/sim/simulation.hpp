@@ -5,6 +5,7 @@
 //   DIR/pcd/000000.pcd ...  scans, binary PCD (x y z intensity), sensor frame
 //   DIR/pose.json           initial (drifting) poses, HBA format
 //   DIR/gt.txt              ground truth, TUM format, stamps index / rate
+//   DIR/times.txt           the same stamps, one a line (hba reads them with the poses)
 //   DIR/sim.yaml            every parameter, the seed and the hba version
 //
 // Output is bit-identical for a seed whatever the number of threads: each

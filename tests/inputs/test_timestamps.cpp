@@ -1,0 +1,87 @@
+// Timestamps flow from the input to every output: the simulator's times.txt,
+// TUM output that pairs with ground truth by time, `hba eval` refusing files
+// whose times do not agree, and scans named by time.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli_runs.hpp"
+#include "hba/io/pose_file.hpp"
+#include "test_support.hpp"
+
+namespace hba {
+namespace {
+namespace fs = std::filesystem;
+
+nlohmann::json evalJson(const fs::path& gt, const fs::path& est, const fs::path& json) {
+  const test::CommandResult result = test::runHba("-q eval --gt " + test::quoted(gt) + " --est " +
+                                                  test::quoted(est) + " --json " + test::quoted(json));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  return nlohmann::json::parse(test::readText(json));
+}
+
+// gt.txt, pose.json (by index) and poses_tum.txt (by time) tell one story.
+TEST(Timestamps, SimulatorTumOutputPairsWithGroundTruthByTime) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runHba("-q simulate --frames 40 --seed 6 -o " + test::quoted(dir / "sim")).exit_code, 0);
+  ASSERT_EQ(test::runOptimize(dir / "sim", dir / "out", "--no-render").exit_code, 0);
+  const nlohmann::json by_index = evalJson(dir / "sim" / "gt.txt", dir / "out" / "pose.json", dir / "a.json");
+  const nlohmann::json by_time = evalJson(dir / "sim" / "gt.txt", dir / "out" / "poses_tum.txt", dir / "b.json");
+  EXPECT_EQ(by_index.at("association"), "index");
+  EXPECT_EQ(by_time.at("association"), "time");
+  EXPECT_EQ(by_time.at("matched"), 40);
+  EXPECT_DOUBLE_EQ(by_time.at("ate").at("translation_m").at("rmse").get<double>(),
+                   by_index.at("ate").at("translation_m").at("rmse").get<double>());
+  const Trajectory tum = io::readPoses(dir / "out" / "poses_tum.txt");
+  EXPECT_DOUBLE_EQ(tum.stamps[39], 3.9);
+}
+
+// Without stamps the TUM output carries scan indices; evaluating it by time
+// against real stamps must fail and say why, not score 10 % of the poses.
+TEST(Timestamps, EvalRefusesTimesThatDoNotAgree) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runHba("-q simulate --frames 40 --seed 6 --poses-only -o " + test::quoted(dir / "sim")).exit_code, 0);
+  Trajectory indexed = io::readPoses(dir / "sim" / "gt.txt");
+  for (std::size_t i = 0; i < indexed.size(); ++i) indexed.stamps[i] = static_cast<double>(i);
+  io::writePoses(dir / "indexed.txt", indexed, io::PoseFormat::Tum);
+  const std::string args = "eval --gt " + test::quoted(dir / "sim" / "gt.txt") + " --est " + test::quoted(dir / "indexed.txt");
+  const test::CommandResult refused = test::runHba(args);
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.output.find("only 4 of 40 estimated poses"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--assoc index"), std::string::npos) << refused.output;
+  EXPECT_EQ(test::runHba(args + " --assoc index").exit_code, 0);
+  EXPECT_EQ(test::runHba(args + " --min-matched 0.05").exit_code, 0);
+}
+
+// A copy of hku1 with scans named by time (bag-to-PCD style) and a TUM
+// trajectory optimizes to the same poses as the original.
+TEST(Timestamps, Hku1WithScansNamedByTimeGivesTheSamePoses) {
+  const fs::path data = test::sharedDataDir() / "hku1";
+  if (!fs::exists(data)) GTEST_SKIP() << data << " not present";
+  test::TempDir dir;
+  const fs::path copy = dir / "named";
+  fs::create_directories(copy / "pcd");
+  const std::vector<double> stamps = io::readTimes(data / "times.txt");
+  Trajectory trajectory = io::readPoses(data / "odom_poses.txt");
+  trajectory.stamps = stamps;
+  io::writePoses(copy / "trajectory.tum", trajectory, io::PoseFormat::Tum);
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    const auto ns = static_cast<long long>(std::llround(stamps[i] * 1e9));
+    char name[64];
+    std::snprintf(name, sizeof(name), "%lld.%09lld.pcd", ns / 1000000000LL, ns % 1000000000LL);
+    char original[32];
+    std::snprintf(original, sizeof(original), "%06zu.pcd", i);
+    fs::create_symlink(data / "Scans" / original, copy / "pcd" / name);
+  }
+  ASSERT_EQ(test::runOptimize(data, dir / "a", "--no-render", 2).exit_code, 0);
+  const test::CommandResult named = test::runOptimize(copy, dir / "b", "--no-render", 2);
+  ASSERT_EQ(named.exit_code, 0) << named.output;
+  EXPECT_LT(test::largestTranslation(test::readOptimizedPoses(dir / "a"), test::readOptimizedPoses(dir / "b")), 1e-9);
+  EXPECT_EQ(io::readPoses(dir / "b" / "poses_tum.txt").stamps, trajectory.stamps);
+}
+
+}  // namespace
+}  // namespace hba
