@@ -13,6 +13,7 @@
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/pyramid/convention_check.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
@@ -33,6 +34,7 @@ struct OptimizeArgs {
   double voxel = 0.0;  // sets both local and global voxel sizes
   std::string ground_truth;
   bool no_render = false;
+  bool no_convention_check = false;
 };
 
 double peakMemoryMiB() {
@@ -122,9 +124,28 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
   return settings;
 }
 
+// Refuses input in another convention (inverted poses, world-frame scans)
+// before hours of work on it, naming the flag that fixes it.
+nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSource& source,
+                                const io::Dataset& dataset) {
+  if (args.no_convention_check) return "skipped (--no-convention-check)";
+  const pyramid::ConventionCheck check = pyramid::checkConventions(source, dataset.trajectory().poses);
+  if (check.verdict != pyramid::ConventionVerdict::AsGiven) throw Error(dataset.posesFile().string() + ": " + check.message);
+  if (check.stretches == 0) {
+    spdlog::info("convention check: the path has no stretch long enough to tell");
+    return "not enough motion to tell";
+  }
+  spdlog::info("convention check: the poses as given make the crispest map ({:.2f}; inverted {:.2f}, "
+               "no poses {:.2f}, as a camera's {:.2f})",
+               check.as_given, check.inverted, check.in_world, check.camera);
+  return {{"stretches", check.stretches}, {"as_given", check.as_given}, {"inverted", check.inverted},
+          {"no_poses", check.in_world}, {"camera_axes", check.camera}};
+}
+
 void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io::Dataset& dataset,
-                 const pyramid::HbaSettings& settings, std::size_t threads) {
+                 const pyramid::HbaSettings& settings, std::size_t threads, const nlohmann::json& conventions) {
   nlohmann::json report = pyramid::reportToJson(result.report);
+  report["convention_check"] = conventions;
   report["input"] = {{"dataset", fs::absolute(dataset.root()).string()},
                      {"layout", dataset.layout()},
                      {"poses", fs::absolute(dataset.posesFile()).string()},
@@ -147,18 +168,19 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 
   const io::Dataset dataset = args.data.open();
+  const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
+  const nlohmann::json conventions = checkConventions(args, source, dataset);
   const fs::path out = prepareOutputDir(args.output, dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::info("settings: {}", pyramid::settingsToJson(settings).dump());
   spdlog::info("threads: {}", threads);
 
-  const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
   const pyramid::HbaResult result =
       pyramid::runHierarchicalBa(source, dataset.trajectory().poses, settings);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
-  writeReport(out, result, dataset, settings, threads);
+  writeReport(out, result, dataset, settings, threads, conventions);
 
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), out.string());
@@ -180,6 +202,8 @@ void registerOptimizeCommand(CLI::App& app) {
                       "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
       ->check(CLI::ExistingFile);
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
+  command->add_flag("--no-convention-check", args->no_convention_check,
+                    "Do not check that the map is crispest with the poses as given (vs inverted, vs none)");
   command->add_option("--config", args->config, "YAML settings file (flags override it)")
       ->check(CLI::ExistingFile);
   command->add_option("--window", s.window, "Frames per local window (w)")->default_val(s.window);
