@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
@@ -132,14 +133,14 @@ void registerEvalCommand(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "index", "time"}))
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegative())
       ->capture_default_str();
   command->add_option("--min-matched", args->min_matched,
                       "Fail when fewer than this share of estimated poses pair with ground truth")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--delta", args->delta, "RPE distance between compared poses")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   command->add_option("--delta-unit", args->delta_unit, "Unit of --delta")
       ->check(CLI::IsMember({"frames", "m"}))

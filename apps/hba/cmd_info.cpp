@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
@@ -180,9 +181,21 @@ void printText(const io::Dataset& dataset, const Summary& s) {
                            printable(s.extent_min.y()), printable(s.extent_max.y()),
                            printable(s.extent_min.z()), printable(s.extent_max.z()));
   if (s.has_duration) {
-    const std::string source = dataset.timesFile().empty() ? dataset.posesFile().filename().string()
-                                                           : dataset.timesFile().filename().string();
+    const std::string source = dataset.stampsSource() == "times file" ? dataset.timesFile().filename().string()
+                               : dataset.stampsSource() == "scan names" ? "the scan names"
+                                                                        : dataset.posesFile().filename().string();
     std::cout << fmt::format("duration:    {:.2f} s (timestamps from {})\n", s.duration_s, source);
+  } else {
+    std::cout << "duration:    unknown (no timestamps: give --times FILE)\n";
+  }
+  if (!dataset.inputFrame().empty() && dataset.calibrationFile().empty()) {
+    std::cout << "pose frame:  " << dataset.inputFrame() << " poses turned into sensor poses (--extrinsic)\n";
+  }
+  if (dataset.scansInWorld()) std::cout << "scans:       saved in the world frame (--scans-in-world)\n";
+  const double far = std::max(s.extent_min.cwiseAbs().maxCoeff(), s.extent_max.cwiseAbs().maxCoeff());
+  if (far > 1e4) {
+    std::cout << fmt::format("coordinates: {:.0f} km from the origin; hba works relative to the first "
+                             "pose (no precision lost)\n", far / 1000.0);
   }
 }
 
@@ -198,6 +211,9 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"pose_count", dataset.trajectory().size()},
       {"calibration_file", dataset.calibrationFile().string()},
       {"times_file", dataset.timesFile().string()},
+      {"stamps", dataset.stampsSource()},
+      {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
+      {"scans_in_world", dataset.scansInWorld()},
       {"points_per_scan",
        {{"min", s.points.min}, {"median", s.points.median}, {"max", s.points.max},
         {"scans_looked_at", s.points.scans_looked_at}}},
@@ -237,7 +253,7 @@ void registerInfoCommand(CLI::App& app) {
   options->dataset.addTo(command);
   command->add_option("--sample", options->sample,
                       "Look at N evenly spaced scans for the point statistics (0 = all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(nonNegative());
   command->add_flag("--json", options->json, "Print a JSON document instead of text");
   command->callback([options] { runInfo(*options); });
 }

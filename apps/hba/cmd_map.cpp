@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "output_dir.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
@@ -50,6 +51,7 @@ void registerMapCommand(CLI::App& app) {
   args->data.addTo(command);
   command->add_option("-o,--output", args->output, "Output map file (.pcd or .ply)")->required();
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
+      ->check(nonNegative())
       ->capture_default_str();
   command->add_option("--color", args->color,
                       "What the intensity field carries: none (mean intensity), scan (scan index), "

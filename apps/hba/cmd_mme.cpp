@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
@@ -66,13 +67,14 @@ void registerMmeCommand(CLI::App& app) {
   command->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin) instead of a dataset")
       ->check(CLI::ExistingFile);
   command->add_option("--voxel", args->map.voxel, "Voxel size of the merged map (m; 0 = keep all)")
+      ->check(nonNegative())
       ->capture_default_str();
   command->add_option("--radius", args->entropy.radius, "Neighbourhood radius (m)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   command->add_option("--min-neighbors", args->entropy.min_neighbors,
                       "Points with no more neighbours than this are left out")
-      ->check(CLI::NonNegativeNumber)
+      ->check(nonNegative())
       ->capture_default_str();
   auto* rules = command->add_option_group("Rule variants", "Alternative MME conventions (docs/eval.md)");
   rules->add_flag("--first-point", args->first_point, "Keep each voxel's first point, not its centroid");

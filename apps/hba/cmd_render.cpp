@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "output_dir.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
@@ -65,7 +66,9 @@ void registerRenderCommand(CLI::App& app) {
   command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
   command->add_option("--width", args->settings.width, "Picture width (px)")->check(CLI::Range(200, 16384))->capture_default_str();
   command->add_option("--height", args->settings.height, "Picture height (px)")->check(CLI::Range(200, 16384))->capture_default_str();
-  command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m)")->capture_default_str();
+  command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m; 0 = keep all)")
+      ->check(nonNegative())
+      ->capture_default_str();
   command->add_flag("--no-side", args->no_side, "Leave out the side view (x vs z)");
   command->callback([args] { run(*args); });
 }

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/sim/simulation.hpp"
@@ -98,7 +99,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output, "Output folder (must be empty or absent)")
       ->required();
   command->add_option("--frames", args->frames, "Number of frames (10 Hz)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   command->add_option("--seed", args->seed, "Random seed (same seed, same files)")
       ->capture_default_str();

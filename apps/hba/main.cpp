@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/version.hpp"
 
@@ -21,7 +22,7 @@ int main(int argc, char** argv) {
   bool verbose = false;
   bool quiet = false;
   app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(hba::cli::nonNegative());
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
 

@@ -199,7 +199,7 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
     spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation, u.rotation_deg);
     result.poses = std::move(updated);
     if (u.translation < settings.outer_tolerance_m && u.rotation_deg < settings.outer_tolerance_deg) {
-      report.converged = true;
+      report.poses_settled = true;
       break;
     }
   }

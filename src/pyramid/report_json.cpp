@@ -65,7 +65,9 @@ nlohmann::json reportToJson(const HbaReport& r) {
                            {"final_rejected", c.final_rejected},
                            {"regions", regions}}},
           {"layers", r.layers},
-          {"converged", r.converged},
+          // "converged: false" read as a failure after the default single pass.
+          {"outer_iterations", {{"run", r.iterations.size()},
+                                {"stopped", r.poses_settled ? "poses settled" : "iteration limit"}}},
           {"layer_reports", layers},
           {"iterations", iterations},
           {"seconds", {{"read", r.seconds_read},

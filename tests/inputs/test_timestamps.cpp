@@ -85,3 +85,50 @@ TEST(Timestamps, Hku1WithScansNamedByTimeGivesTheSamePoses) {
 
 }  // namespace
 }  // namespace hba
+
+namespace hba {
+namespace {
+
+// Errors of 100 m and more keep a space between the table's columns.
+TEST(EvalTable, LargeErrorsStaySeparated) {
+  test::TempDir dir;
+  Trajectory gt, est;
+  for (int i = 0; i < 5; ++i) {
+    gt.poses.push_back(Pose(Quat::Identity(), Vec3(i, 0, 0)));
+    est.poses.push_back(Pose(Quat::Identity(), Vec3(i + 1234.5, 0, 0)));
+  }
+  io::writePoses(dir / "gt.txt", gt, io::PoseFormat::Kitti);
+  io::writePoses(dir / "est.txt", est, io::PoseFormat::Kitti);
+  const test::CommandResult run =
+      test::runHba("-q eval --align none --gt " + test::quoted(dir / "gt.txt") + " --est " + test::quoted(dir / "est.txt"));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("ATE trans m    1234.500000 1234.500000 1234.500000 1234.500000"), std::string::npos)
+      << run.output;
+}
+
+// The default single pass is not reported as a failure to converge.
+TEST(ReportJson, SaysWhyTheOuterIterationsStopped) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runHba("-q simulate --frames 30 --seed 2 -o " + test::quoted(dir / "sim")).exit_code, 0);
+  ASSERT_EQ(test::runOptimize(dir / "sim", dir / "out", "--no-render").exit_code, 0);
+  const nlohmann::json report = nlohmann::json::parse(test::readText(dir / "out" / "report.json"));
+  EXPECT_FALSE(report.contains("converged"));
+  EXPECT_EQ(report.at("outer_iterations").at("run"), 1);
+  EXPECT_EQ(report.at("outer_iterations").at("stopped"), "iteration limit");
+  EXPECT_EQ(report.at("input").at("stamps"), "times file");
+  EXPECT_TRUE(report.at("convention_check").contains("as_given"));
+}
+
+// Negative voxel sizes are refused with a readable message.
+TEST(MapCli, NegativeVoxelIsRefused) {
+  test::TempDir dir;
+  ASSERT_EQ(test::runHba("-q simulate --frames 5 --seed 2 -o " + test::quoted(dir / "sim")).exit_code, 0);
+  const test::CommandResult run =
+      test::runHba("map " + test::quoted(dir / "sim") + " -o " + test::quoted(dir / "m.pcd") + " --voxel -1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("--voxel: must be >= 0, got -1"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "m.pcd"));
+}
+
+}  // namespace
+}  // namespace hba

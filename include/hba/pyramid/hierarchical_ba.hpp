@@ -95,7 +95,9 @@ struct HbaReport {
   double seconds_keyframes = 0.0;  // building keyframe clouds
   double seconds_graph = 0.0;     // pose graph solves
   double seconds_total = 0.0;
-  bool converged = false;  // the last outer iteration moved no pose beyond tolerance
+  // The last outer iteration moved no pose beyond tolerance (else the
+  // iteration limit stopped them; the default is one pass).
+  bool poses_settled = false;
   // Final poses against the input (the iterations' figures are the
   // hierarchy's alone).
   double largest_translation_update = 0.0;  // m
