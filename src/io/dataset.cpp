@@ -99,6 +99,21 @@ void Dataset::readTimesFile(const DatasetOverrides& overrides) {
   stamps_source_ = "times file";
 }
 
+// Stamps that go backwards or repeat usually mean a wrong or merged file;
+// pairing by time would then be wrong, so say where.
+void Dataset::checkStampsIncrease() {
+  const std::vector<double>& stamps = trajectory_.stamps;
+  for (std::size_t i = 1; i < stamps.size(); ++i) {
+    if (stamps[i] > stamps[i - 1]) continue;
+    const fs::path& source = stamps_source_ == "times file" ? times_file_ : poses_file_;
+    notes_.push_back({DatasetNote::Level::Warning,
+                      source.string() + ": the timestamps do not increase at scan " + std::to_string(i) + " (" +
+                          std::to_string(stamps[i - 1]) + " then " + std::to_string(stamps[i]) +
+                          "); outputs keep them as given"});
+    return;
+  }
+}
+
 // The poses as the file holds them -> sensor-to-world poses of the scans' sensor.
 void Dataset::convertPoses(const DatasetOverrides& overrides) {
   if (overrides.invert_poses) {
@@ -165,6 +180,7 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
                              dataset.scan_paths_.front());
   dataset.pairScansWithPoses(scans.stamps);
   dataset.readTimesFile(overrides);
+  dataset.checkStampsIncrease();
   dataset.convertPoses(overrides);
   dataset.scans_in_world_ = overrides.scans_in_world;
   return dataset;

@@ -74,6 +74,9 @@ TEST(DatasetTimes, TimesFlagSuppliesStampsAndMustMatchTheScans) {
   const Dataset d = Dataset::open(dir.path(), overrides);
   EXPECT_EQ(d.stampsSource(), "times file");
   EXPECT_EQ(d.trajectory().stamps[2], 10.2);
+  test::writeText(dir / "backwards.txt", "10.0\n10.2\n10.1\n");
+  overrides.times_file = dir / "backwards.txt";
+  EXPECT_TRUE(test::anyNoteMentions(Dataset::open(dir.path(), overrides), "do not increase at scan 2"));
   test::writeText(dir / "short.txt", "10.0\n10.1\n");
   overrides.times_file = dir / "short.txt";
   test::expectErrorMentioning([&] { Dataset::open(dir.path(), overrides); },

@@ -82,6 +82,7 @@ class Dataset {
  private:
   void pairScansWithPoses(const std::vector<double>& scan_stamps);
   void readTimesFile(const DatasetOverrides& overrides);
+  void checkStampsIncrease();
   void convertPoses(const DatasetOverrides& overrides);
 
   std::string layout_;
