@@ -136,10 +136,10 @@ nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSou
     return "not enough motion to tell";
   }
   spdlog::info("convention check: the poses as given make the crispest map ({:.2f}; inverted {:.2f}, "
-               "no poses {:.2f}, as a camera's {:.2f})",
-               check.as_given, check.inverted, check.in_world, check.camera);
+               "no poses {:.2f}, of a turned body {:.2f})",
+               check.as_given, check.inverted, check.in_world, check.turned);
   return {{"stretches", check.stretches}, {"as_given", check.as_given}, {"inverted", check.inverted},
-          {"no_poses", check.in_world}, {"camera_axes", check.camera}};
+          {"no_poses", check.in_world}, {"turned_body", check.turned}};
 }
 
 void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io::Dataset& dataset,

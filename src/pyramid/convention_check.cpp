@@ -6,6 +6,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "hba/voxel/downsample.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::pyramid {
@@ -43,11 +44,31 @@ std::vector<std::vector<std::size_t>> pickStretches(const std::vector<Pose>& pos
   return stretches;
 }
 
-// A camera's axes (x right, y down, z forward) in a z-up, x-forward sensor's.
-Pose cameraAxes() {
-  Mat3 sensor_to_camera;
-  sensor_to_camera << 0, -1, 0, 0, 0, -1, 1, 0, 0;
-  return Pose(sensor_to_camera, Vec3::Zero());
+// The 24 rotations that map axes onto axes (signed permutation matrices
+// with determinant +1), the identity first.
+std::vector<Mat3> axisRotations() {
+  std::vector<Mat3> rotations{Mat3::Identity()};
+  const int orders[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  for (const auto& order : orders) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Mat3 R = Mat3::Zero();
+      for (int row = 0; row < 3; ++row) R(row, order[row]) = (signs >> row & 1) ? -1.0 : 1.0;
+      if (R.determinant() > 0.0 && !R.isIdentity()) rotations.push_back(R);
+    }
+  }
+  return rotations;
+}
+
+bool isCameraAxes(const Mat3& R) {
+  Mat3 camera_to_sensor;  // a camera's x right, y down, z forward in a z-up, x-forward sensor
+  camera_to_sensor << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  return R.isApprox(camera_to_sensor.transpose());
+}
+
+std::string extrinsicText(const Mat3& R) {
+  const Quat q(R);
+  const auto clean = [](double v) { return std::abs(v) < 1e-12 ? 0.0 : v; };
+  return fmt::format("0 0 0 {:.6g} {:.6g} {:.6g} {:.6g}", clean(q.x()), clean(q.y()), clean(q.z()), clean(q.w()));
 }
 
 void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& keys) {
@@ -63,42 +84,53 @@ ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose
   const std::vector<std::vector<std::size_t>> stretches = pickStretches(poses, s);
   check.stretches = stretches.size();
   if (stretches.empty()) return check;
-  const Pose to_camera = cameraAxes(), from_camera = to_camera.inverse();
-  double given = 0.0, inverted = 0.0, world = 0.0, camera = 0.0, single = 0.0;
+  const std::vector<Mat3> turns = axisRotations();
+  std::vector<double> turned(turns.size(), 0.0);  // [0]: as given
+  double inverted = 0.0, world = 0.0, single = 0.0;
   for (const std::vector<std::size_t>& frames : stretches) {
-    KeySet as_given, as_inverted, as_world, as_camera;
+    std::vector<KeySet> as_turned(turns.size());
+    KeySet as_inverted, as_world;
     for (std::size_t i : frames) {
-      const PointCloud scan = scans.load(i);
+      // Halving the voxel first keeps the counts and makes 26 merges cheap.
+      const PointCloud scan = voxel::downsample(scans.load(i), 0.5 * s.voxel);
       KeySet own;
       addVoxels(scan, Pose::identity(), s.voxel, own);
       single += static_cast<double>(own.size()) / static_cast<double>(frames.size());
-      addVoxels(scan, poses[i], s.voxel, as_given);
+      for (std::size_t k = 0; k < turns.size(); ++k) {
+        addVoxels(scan, poses[i] * Pose(turns[k], Vec3::Zero()), s.voxel, as_turned[k]);
+      }
       addVoxels(scan, poses[i].inverse(), s.voxel, as_inverted);
-      addVoxels(scan, from_camera * poses[i] * to_camera, s.voxel, as_camera);
       as_world.insert(own.begin(), own.end());
     }
-    given += static_cast<double>(as_given.size());
+    for (std::size_t k = 0; k < turns.size(); ++k) turned[k] += static_cast<double>(as_turned[k].size());
     inverted += static_cast<double>(as_inverted.size());
     world += static_cast<double>(as_world.size());
-    camera += static_cast<double>(as_camera.size());
   }
   if (single <= 0.0) return check;
-  check.as_given = given / single;
+  const auto best_turn = std::min_element(turned.begin() + 1, turned.end());
+  check.as_given = turned.front() / single;
+  check.turned = *best_turn / single;
+  check.turn = turns[static_cast<std::size_t>(best_turn - turned.begin())];
   check.inverted = inverted / single;
   check.in_world = world / single;
-  check.camera = camera / single;
-  const double best_other = std::min({check.inverted, check.in_world, check.camera});
+  const double best_other = std::min({check.inverted, check.in_world, check.turned});
   if (best_other > s.decisive_ratio * check.as_given) return check;
   const std::string scores = fmt::format(
       "merged over {} stretches of the path, the map occupies {:.2f} scans' worth of {} m voxels with the "
       "poses as given, {:.2f} with each pose inverted, {:.2f} with no poses at all, {:.2f} with the poses "
-      "read as a camera's",
-      check.stretches, check.as_given, s.voxel, check.inverted, check.in_world, check.camera);
-  if (check.camera == best_other) {
-    check.verdict = ConventionVerdict::CameraPoses;
-    check.message = "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " +
-                    scores + ". hba needs poses of the scans' sensor; give the sensor-to-camera "
-                    "transform with --calib calib.txt (KITTI's Tr) or --extrinsic";
+      "of a body turned against the sensor",
+      check.stretches, check.as_given, s.voxel, check.inverted, check.in_world, check.turned);
+  if (check.turned == best_other) {
+    check.verdict = ConventionVerdict::TurnedBody;
+    const std::string turn = extrinsicText(check.turn);
+    check.message = isCameraAxes(check.turn)
+                        ? "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " +
+                              scores + ". hba needs poses of the scans' sensor: give the sensor-to-camera "
+                              "transform with --calib calib.txt (KITTI's Tr) or --extrinsic"
+                        : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
+                          "against the scans' sensor: " + scores + ". hba needs poses of the scans' sensor: give "
+                          "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
+                          "fits best is --extrinsic '" + turn + "' (add your lever arm)";
   } else if (check.inverted == best_other) {
     check.verdict = ConventionVerdict::PosesInverted;
     check.message = "the poses look inverted (world-to-sensor): " + scores +

@@ -96,6 +96,14 @@ TEST_F(Conventions, BodyPosesWithAnExtrinsicGiveTheSensorPosesAndTheBodyPoses) {
   EXPECT_LT(((body.poses[30] * extrinsic).t - sensor[30].t).norm(), 1e-5);
 }
 
+// Poses of a body turned against the sensor (Ouster's sensor frame is its
+// LiDAR frame turned 180 degrees about z): caught, with the turn to give.
+TEST_F(Conventions, PosesOfATurnedBodyAreCaughtWithTheTurn) {
+  const Pose extrinsic(Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())), Vec3(0.0, 0.0, 0.036));
+  makeCopy(dir / "sim", dir / "turned", [&](const Pose& p) { return p * extrinsic.inverse(); });
+  expectCaughtAndFixed(dir / "turned", "--extrinsic '0 0 0 0 0 1 0'", "--extrinsic '0 0 0.036 0 0 1 0'", 1e-4);
+}
+
 // KITTI: camera poses and calib.txt in, camera-frame poses out that match a
 // camera-frame ground truth as well as the LiDAR poses match the LiDAR's.
 TEST_F(Conventions, KittiCameraPosesComeBackInTheCameraFrame) {

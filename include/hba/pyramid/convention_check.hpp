@@ -1,10 +1,12 @@
 #pragma once
 // Before a long run: do the poses and scans follow hba's convention
 // (sensor-to-world poses, sensor-frame scans)? A few stretches of the
-// sequence are merged four ways: with the poses as given, with each pose
-// inverted (world-to-sensor poses), without poses (scans saved in the world
-// frame already) and with the poses read as a camera's (x right, y down,
-// z forward: KITTI's camera-0 poses without their calibration). Whichever occupies the fewest voxels is the crisper
+// sequence are merged in several ways: with the poses as given, with each
+// pose inverted (world-to-sensor poses), without poses (scans saved in the
+// world frame already), and with the poses of a body whose axes are turned
+// against the sensor's by each of the 23 other axis-aligned rotations (an
+// IMU mounted turned, Ouster's sensor vs LiDAR frame, KITTI's camera-0 poses
+// without their calibration). Whichever occupies the fewest voxels is the crisper
 // map; a clear winner other than "as given" means the input is in another
 // convention, and the user is told which flag fixes it.
 #include <cstddef>
@@ -20,14 +22,16 @@ enum class ConventionVerdict {
   AsGiven,       // the poses as given make the crispest map (or nothing tells)
   PosesInverted, // inverting every pose makes a clearly crisper map
   ScansInWorld,  // the scans line up without any pose
-  CameraPoses,   // the poses are of a camera looking along the sensor's x
+  TurnedBody,    // the poses are of a body turned against the sensor (`turn`)
 };
 
 struct ConventionCheck {
   ConventionVerdict verdict = ConventionVerdict::AsGiven;
   // Occupied voxels of the merged stretches per candidate, relative to the
   // mean occupancy of one scan (lower = crisper).
-  double as_given = 0.0, inverted = 0.0, in_world = 0.0, camera = 0.0;
+  double as_given = 0.0, inverted = 0.0, in_world = 0.0;
+  double turned = 0.0;            // the best of the 23 turned bodies
+  Mat3 turn = Mat3::Identity();   // its rotation T_body_sensor
   std::size_t stretches = 0;  // stretches with enough motion to tell; 0: nothing checked
   std::string message;        // what is wrong and which flag fixes it (empty when AsGiven)
 };
@@ -38,7 +42,7 @@ struct ConventionSettings {
   double stretch_rotation_deg = 45.0;
   std::size_t stretch_scans = 8; // scans merged per stretch
   std::size_t max_stretches = 4;
-  double decisive_ratio = 0.75;  // another candidate needs at most this share of the voxels
+  double decisive_ratio = 0.7;  // another candidate needs at most this share of the voxels
 };
 
 // Reads at most max_stretches * stretch_scans scans. Throws what the source throws.
