@@ -44,10 +44,48 @@ std::vector<T> pick(const std::vector<T>& values, const std::vector<std::size_t>
 
 }  // namespace
 
-// Scans and poses paired: by time when the scans are named by time and the
-// trajectory has stamps, else by position (counts must then agree).
-void Dataset::pairScansWithPoses(const std::vector<double>& scan_stamps) {
-  if (!scan_stamps.empty() && trajectory_.hasStamps()) {
+// The scans' own stamps: --times FILE (must fit), else the names, else a
+// times.txt in DIR that fits (one that does not is ignored, with a warning
+// when nothing else gives stamps).
+std::vector<double> Dataset::scanStamps(std::vector<double> name_stamps, const DatasetOverrides& overrides,
+                                        std::string& source) {
+  std::error_code ec;
+  const fs::path times = root_ / "times.txt";
+  fs::path path;
+  if (overrides.times_file) {
+    path = detail::resolveOverride(root_, *overrides.times_file, "times file");
+  } else if (name_stamps.empty() && fs::is_regular_file(times, ec)) {
+    path = times;
+  }
+  if (path.empty()) {
+    source = name_stamps.empty() ? "" : "scan names";
+    return name_stamps;
+  }
+  std::vector<double> stamps = readTimes(path);
+  if (stamps.size() != size()) {
+    const std::string problem =
+        std::to_string(stamps.size()) + " timestamps for " + std::to_string(size()) + " scans";
+    if (overrides.times_file) failAt(path, problem);
+    if (!trajectory_.hasStamps()) {
+      notes_.push_back({DatasetNote::Level::Warning, "ignoring " + path.string() + ": " + problem});
+    }
+    source.clear();
+    return {};
+  }
+  times_file_ = path;
+  source = "times file";
+  return stamps;
+}
+
+// Scans and poses paired by time when both have stamps and the scans' are
+// meant to be matched (named by time, --times, or counts that differ: a
+// trajectory at another rate); else by position, and the counts must agree.
+void Dataset::pairScansWithPoses(std::vector<double> name_stamps, const DatasetOverrides& overrides) {
+  std::string scan_source;
+  const std::vector<double> scan_stamps = scanStamps(std::move(name_stamps), overrides, scan_source);
+  const bool by_time = trajectory_.hasStamps() && !scan_stamps.empty() &&
+                       (scan_source != "times file" || overrides.times_file || trajectory_.size() != size());
+  if (by_time) {
     const detail::TimeMatch match =
         detail::matchByTime(scan_stamps, trajectory_.stamps, scans_dir_, poses_file_, notes_);
     scan_paths_ = pick(scan_paths_, match.kept_scans);
@@ -60,43 +98,12 @@ void Dataset::pairScansWithPoses(const std::vector<double>& scan_stamps) {
     throw Error(countsDiffer(size(), scans_dir_, trajectory_.size(), poses_file_));
   }
   if (trajectory_.hasStamps()) {
+    times_file_.clear();  // the trajectory's own stamps are used
     stamps_source_ = "trajectory";
   } else if (!scan_stamps.empty()) {
     trajectory_.stamps = scan_stamps;
-    stamps_source_ = "scan names";
+    stamps_source_ = scan_source;
   }
-}
-
-// --times FILE, else DIR/times.txt when nothing else gave stamps.
-void Dataset::readTimesFile(const DatasetOverrides& overrides) {
-  std::error_code ec;
-  if (overrides.times_file) {
-    const fs::path path = detail::resolveOverride(root_, *overrides.times_file, "times file");
-    std::vector<double> stamps = readTimes(path);
-    if (stamps.size() != size()) {
-      failAt(path, std::to_string(stamps.size()) + " timestamps for " + std::to_string(size()) + " scans");
-    }
-    if (!stamps_source_.empty()) {
-      notes_.push_back({DatasetNote::Level::Info, "timestamps from " + path.string() +
-                                                      " replace those of the " + stamps_source_});
-    }
-    trajectory_.stamps = std::move(stamps);
-    times_file_ = path;
-    stamps_source_ = "times file";
-    return;
-  }
-  const fs::path times = root_ / "times.txt";
-  if (!stamps_source_.empty() || !fs::is_regular_file(times, ec)) return;
-  std::vector<double> stamps = readTimes(times);
-  if (stamps.size() != size()) {
-    notes_.push_back({DatasetNote::Level::Warning, "ignoring " + times.string() + ": " +
-                                                       std::to_string(stamps.size()) + " timestamps for " +
-                                                       std::to_string(size()) + " scans"});
-    return;
-  }
-  trajectory_.stamps = std::move(stamps);
-  times_file_ = times;
-  stamps_source_ = "times file";
 }
 
 // Stamps that go backwards or repeat usually mean a wrong or merged file;
@@ -178,8 +185,7 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.trajectory_ = readPoses(dataset.poses_file_, dataset.pose_format_);
   dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_,
                              dataset.scan_paths_.front());
-  dataset.pairScansWithPoses(scans.stamps);
-  dataset.readTimesFile(overrides);
+  dataset.pairScansWithPoses(std::move(scans.stamps), overrides);
   dataset.checkStampsIncrease();
   dataset.convertPoses(overrides);
   dataset.scans_in_world_ = overrides.scans_in_world;

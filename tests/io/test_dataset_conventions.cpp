@@ -64,6 +64,21 @@ TEST(DatasetTimeNames, TrajectoryOnAnotherClockIsAnErrorThatSaysSo) {
                               {"only 0 of 2 scans", "same clock"});
 }
 
+// Numbered scans with a times.txt, odometry at twice the scan rate: paired by time.
+TEST(DatasetTimes, TrajectoryAtAnotherRateIsPairedByTheScansTimes) {
+  test::TempDir dir;
+  test::makeScans(dir / "Scans", {"000000.pcd", "000001.pcd", "000002.pcd"});
+  test::writeText(dir / "times.txt", "10.0\n10.1\n10.2\n");
+  test::writeText(dir / "traj.tum", tumLines({9.95, 10.0, 10.05, 10.1, 10.15, 10.2, 10.25}));
+  DatasetOverrides overrides;
+  overrides.poses_file = dir / "traj.tum";
+  const Dataset d = Dataset::open(dir.path(), overrides);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_EQ(d.trajectory().poses[0].t.x(), 1.0);
+  EXPECT_EQ(d.trajectory().poses[2].t.x(), 5.0);
+  EXPECT_TRUE(test::anyNoteMentions(d, "poses have no scan"));
+}
+
 TEST(DatasetTimes, TimesFlagSuppliesStampsAndMustMatchTheScans) {
   test::TempDir dir;
   test::makeScans(dir / "Scans", {"000000.pcd", "000001.pcd", "000002.pcd"});

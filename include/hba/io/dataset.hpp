@@ -80,8 +80,9 @@ class Dataset {
   PointCloud loadScan(std::size_t i) const;
 
  private:
-  void pairScansWithPoses(const std::vector<double>& scan_stamps);
-  void readTimesFile(const DatasetOverrides& overrides);
+  std::vector<double> scanStamps(std::vector<double> name_stamps, const DatasetOverrides& overrides,
+                                 std::string& source);
+  void pairScansWithPoses(std::vector<double> name_stamps, const DatasetOverrides& overrides);
   void checkStampsIncrease();
   void convertPoses(const DatasetOverrides& overrides);
 
