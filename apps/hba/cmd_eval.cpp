@@ -24,7 +24,12 @@ struct EvalArgs {
 };
 
 Trajectory readTrajectory(const std::string& path, const std::string& format) {
-  return format.empty() ? io::readPoses(path) : io::readPoses(path, io::poseFormatFromString(format));
+  Trajectory trajectory =
+      format.empty() ? io::readPoses(path) : io::readPoses(path, io::poseFormatFromString(format));
+  if (io::stampsFromNanoseconds(trajectory.stamps)) {
+    spdlog::info("{}: the stamps are Unix nanoseconds; read as seconds", path);
+  }
+  return trajectory;
 }
 
 std::string statsRow(const std::string& prefix, const char* name, const eval::ErrorStats& s) {

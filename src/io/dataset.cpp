@@ -62,6 +62,9 @@ std::vector<double> Dataset::scanStamps(std::vector<double> name_stamps, const D
     return name_stamps;
   }
   std::vector<double> stamps = readTimes(path);
+  if (stampsFromNanoseconds(stamps)) {
+    notes_.push_back({DatasetNote::Level::Info, path.string() + ": the stamps are Unix nanoseconds; read as seconds"});
+  }
   if (stamps.size() != size()) {
     const std::string problem =
         std::to_string(stamps.size()) + " timestamps for " + std::to_string(size()) + " scans";
@@ -183,6 +186,10 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.pose_format_ =
       overrides.pose_format ? *overrides.pose_format : detectPoseFormat(dataset.poses_file_);
   dataset.trajectory_ = readPoses(dataset.poses_file_, dataset.pose_format_);
+  if (stampsFromNanoseconds(dataset.trajectory_.stamps)) {
+    dataset.notes_.push_back({DatasetNote::Level::Info, dataset.poses_file_.string() +
+                                                            ": the stamps are Unix nanoseconds; read as seconds"});
+  }
   dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_,
                              dataset.scan_paths_.front());
   dataset.pairScansWithPoses(std::move(scans.stamps), overrides);

@@ -20,7 +20,7 @@ struct ScanFiles {
   std::vector<double> stamps;  // seconds, when every name is a time; else empty
 };
 // The scan files of `dir`. Names that are all times (1577836980.099104600.pcd,
-// or 16 to 19 digits of nanoseconds) are ordered by time and give stamps;
+// or Unix ms / µs / ns: 13, 16, 17-19 digits) are ordered by time and give stamps;
 // otherwise by the number in their names (the last run of digits: 7.pcd,
 // 000007.pcd, scan_7.pcd). Throws hba::Error naming the files for: no scans,
 // mixed extensions, a name without a number, two files with one number or

@@ -56,13 +56,17 @@ bool allDigits(std::string_view text) {
 }
 
 // The time a file is named by, in nanoseconds: "1577836980.099104600"
-// (seconds.fraction, as bag-to-PCD exporters name scans) or 16 to 19 digits
-// of nanoseconds. Nothing for other names (000012, scan_7).
+// (seconds.fraction, as bag-to-PCD exporters name scans), or a Unix time in
+// milliseconds (13 digits), microseconds (16) or nanoseconds (17 to 19).
+// Nothing for other names (000012, scan_7): no index runs to 13 digits.
 std::optional<std::uint64_t> nanosecondsInName(const fs::path& path) {
   const std::string stem = path.stem().string();
   const std::size_t dot = stem.find('.');
   if (dot == std::string::npos) {
-    if (!allDigits(stem) || stem.size() < 16 || stem.size() > 19) return std::nullopt;
+    if (!allDigits(stem) || stem.size() > 19) return std::nullopt;
+    if (stem.size() == 13) return std::stoull(stem) * 1000000ULL;
+    if (stem.size() == 16) return std::stoull(stem) * 1000ULL;
+    if (stem.size() < 17) return std::nullopt;
     return std::stoull(stem);
   }
   const std::string_view seconds = std::string_view(stem).substr(0, dot);

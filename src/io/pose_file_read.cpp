@@ -106,6 +106,12 @@ Trajectory readPoses(const fs::path& path) {
   return trajectoryFromRows(path, rows, detail::formatOfRow(path, rows.front()));
 }
 
+bool stampsFromNanoseconds(std::vector<double>& stamps) {
+  if (stamps.empty() || !(stamps.front() > 1e14)) return false;
+  for (double& stamp : stamps) stamp *= 1e-9;
+  return true;
+}
+
 std::vector<double> readTimes(const fs::path& path) {
   std::vector<double> stamps;
   for (const detail::NumberRow& row : detail::readNumberRows(path)) {

@@ -54,6 +54,19 @@ TEST(DatasetTimeNames, NanosecondNamesGiveStampsToAnUnstampedTrajectory) {
   EXPECT_NEAR(d.trajectory().stamps[1] - d.trajectory().stamps[0], 0.1, 1e-6);
 }
 
+TEST(DatasetTimeNames, MillisecondAndMicrosecondNamesAreTimes) {
+  for (const auto& [a, b] : {std::pair<std::string, std::string>{"1577836980100.pcd", "1577836980000.pcd"},
+                             {"1577836980100000.pcd", "1577836980000000.pcd"}}) {
+    test::TempDir dir;
+    test::makeScans(dir / "Scans", {a, b});
+    test::writeText(dir / "odom_poses.txt", test::kittiPoseLines(2));
+    const Dataset d = Dataset::open(dir.path());
+    EXPECT_EQ(d.scanPath(0).filename(), b);
+    EXPECT_NEAR(d.trajectory().stamps[0], 1577836980.0, 1e-6);
+    EXPECT_NEAR(d.trajectory().stamps[1] - d.trajectory().stamps[0], 0.1, 1e-6);
+  }
+}
+
 TEST(DatasetTimeNames, TrajectoryOnAnotherClockIsAnErrorThatSaysSo) {
   test::TempDir dir;
   test::makeScans(dir / "pcd", {"1577836980.000000000.pcd", "1577836980.100000000.pcd"});
@@ -77,6 +90,19 @@ TEST(DatasetTimes, TrajectoryAtAnotherRateIsPairedByTheScansTimes) {
   EXPECT_EQ(d.trajectory().poses[0].t.x(), 1.0);
   EXPECT_EQ(d.trajectory().poses[2].t.x(), 5.0);
   EXPECT_TRUE(test::anyNoteMentions(d, "poses have no scan"));
+}
+
+// Some exporters write TUM stamps in nanoseconds; they still pair by time.
+TEST(DatasetTimes, NanosecondStampsAreReadAsSeconds) {
+  test::TempDir dir;
+  test::makeScans(dir / "pcd", {"1577836980.000000000.pcd", "1577836980.100000000.pcd"});
+  test::writeText(dir / "traj.tum", "1577836980000000000 0 0 0 0 0 0 1\n1577836980100000000 1 0 0 0 0 0 1\n");
+  DatasetOverrides overrides;
+  overrides.poses_file = dir / "traj.tum";
+  const Dataset d = Dataset::open(dir.path(), overrides);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_NEAR(d.trajectory().stamps[1], 1577836980.1, 1e-6);
+  EXPECT_TRUE(test::anyNoteMentions(d, "nanoseconds"));
 }
 
 TEST(DatasetTimes, TimesFlagSuppliesStampsAndMustMatchTheScans) {

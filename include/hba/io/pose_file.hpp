@@ -30,6 +30,11 @@ Trajectory readPoses(const std::filesystem::path& path);  // detected format
 void writePoses(const std::filesystem::path& path, const Trajectory& trajectory,
                 PoseFormat format);
 
+// TUM stamps are seconds, but some exporters write Unix nanoseconds
+// (1.6e18). Stamps beyond 1e14 (three million years in seconds) are taken as
+// nanoseconds and turned into seconds; returns true if it did so.
+bool stampsFromNanoseconds(std::vector<double>& stamps);
+
 // A times.txt: one timestamp (seconds) a line, as KITTI and FAST-LIO write.
 std::vector<double> readTimes(const std::filesystem::path& path);
 void writeTimes(const std::filesystem::path& path, const std::vector<double>& stamps);
