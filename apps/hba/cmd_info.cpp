@@ -1,7 +1,6 @@
 // `hba info DIR`: what discovery found in a dataset folder and a summary of
 // its scans and trajectory, without reading whole scans where avoidable
 // (PCD headers and .bin file sizes give the point counts).
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
@@ -228,13 +227,6 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
 }
 
 void runInfo(const InfoOptions& options) {
-  // With --json, stdout must hold the document alone: messages go to stderr.
-  if (options.json) {
-    auto logger = spdlog::stderr_color_mt("hba_info_stderr");
-    logger->set_level(spdlog::get_level());
-    spdlog::set_default_logger(logger);
-    spdlog::set_pattern("%^[%l]%$ %v");
-  }
   const io::Dataset dataset = options.dataset.open();
   const Summary summary = summarize(dataset, options.sample);
   if (options.json) {

@@ -1,19 +1,51 @@
 // hba: hierarchical LiDAR bundle adjustment from the command line.
+#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 
 #include <CLI/CLI.hpp>
 #include <exception>
+#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
 #include "number_checks.hpp"
+#include "usage_errors.hpp"
 #include "hba/core/error.hpp"
 #include "hba/version.hpp"
+
+namespace {
+
+// Logs go to stderr (results to stdout), and to --log-file with times and
+// every debug message, whatever -q says.
+void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
+  auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  console->set_pattern("%^[%l]%$ %v");
+  console->set_level(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
+  std::vector<spdlog::sink_ptr> sinks{console};
+  if (!log_file.empty()) {
+    try {
+      auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file, false);
+      file->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
+      file->set_level(spdlog::level::debug);
+      sinks.push_back(file);
+    } catch (const spdlog::spdlog_ex& e) {
+      throw hba::Error(log_file + ": cannot write the log file: " + e.what());
+    }
+  }
+  auto logger = std::make_shared<spdlog::logger>("hba", sinks.begin(), sinks.end());
+  logger->set_level(spdlog::level::debug);
+  logger->flush_on(spdlog::level::info);
+  spdlog::set_default_logger(logger);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"hba: turns a drifting LiDAR sequence into a globally consistent map\n"
                "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
+  app.name("hba");
   app.set_version_flag("--version", std::string(HBA_VERSION));
   app.require_subcommand(1);
   app.fallthrough();
@@ -21,10 +53,14 @@ int main(int argc, char** argv) {
   int threads = 0;
   bool verbose = false;
   bool quiet = false;
+  std::string log_file;
   app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
       ->check(hba::cli::nonNegative());
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
+  app.add_option("--log-file", log_file, "Also write every message, with times, to this file");
+  app.footer("Exit codes: 0 success, 1 failure (bad input, a run that could not finish), 2 usage error.\n"
+             "Logs go to stderr, results to stdout. Docs: README.md and docs/.");
 
   hba::cli::registerInfoCommand(app);
   hba::cli::registerSimulateCommand(app);
@@ -37,25 +73,32 @@ int main(int argc, char** argv) {
   // Threads and log level must be set before any subcommand callback runs.
   std::unique_ptr<tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
-    spdlog::set_pattern("%^[%l]%$ %v");
-    spdlog::set_level(verbose ? spdlog::level::debug
-                              : quiet ? spdlog::level::warn : spdlog::level::info);
+    setUpLogging(verbose, quiet, log_file);
     if (threads > 0) {
       thread_limit = std::make_unique<tbb::global_control>(
           tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     }
   });
 
+  setUpLogging(false, false, "");  // until the flags are known
+  if (argc == 1) {  // `hba` alone: what it can do
+    std::cout << app.help();
+    return hba::cli::kExitSuccess;
+  }
+  if (const auto message = hba::cli::unknownCommand(app, argc, argv)) {
+    spdlog::error("{}", *message);
+    return hba::cli::kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return hba::cli::reportParseError(app, e, argc, argv);
   } catch (const hba::Error& e) {
     spdlog::error("{}", e.what());
-    return 1;
+    return hba::cli::kExitFailure;
   } catch (const std::exception& e) {
     spdlog::error("unexpected failure: {}", e.what());
-    return 1;
+    return hba::cli::kExitFailure;
   }
-  return 0;
+  return hba::cli::kExitSuccess;
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
 
 namespace hba::pyramid {
@@ -31,7 +32,11 @@ void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& know
                        const std::string& where, const std::string& source) {
   for (const auto& entry : node) {
     const std::string key = entry.first.as<std::string>();
-    if (!known.count(key)) bad(source, "unknown setting '" + where + key + "'");
+    if (known.count(key)) continue;
+    const std::vector<std::string> names(known.begin(), known.end());
+    std::string valid;
+    for (const std::string& name : names) valid += (valid.empty() ? "" : ", ") + where + name;
+    bad(source, "unknown setting '" + where + key + "'" + didYouMean(key, names) + "; the settings here are " + valid);
   }
 }
 
