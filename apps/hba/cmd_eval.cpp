@@ -26,9 +26,8 @@ struct EvalArgs {
 Trajectory readTrajectory(const std::string& path, const std::string& format) {
   Trajectory trajectory =
       format.empty() ? io::readPoses(path) : io::readPoses(path, io::poseFormatFromString(format));
-  if (io::stampsFromNanoseconds(trajectory.stamps)) {
-    spdlog::info("{}: the stamps are Unix nanoseconds; read as seconds", path);
-  }
+  const std::string unit = io::stampsToSeconds(trajectory.stamps);
+  if (!unit.empty()) spdlog::info("{}: the stamps are in {}; read as seconds", path, unit);
   return trajectory;
 }
 

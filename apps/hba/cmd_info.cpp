@@ -1,7 +1,6 @@
 // `hba info DIR`: what discovery found in a dataset folder and a summary of
 // its scans and trajectory, without reading whole scans where avoidable
 // (PCD headers and .bin file sizes give the point counts).
-#include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -9,6 +8,8 @@
 #include <cstdint>
 #include <exception>
 #include <iostream>
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>

@@ -129,8 +129,12 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
 nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSource& source,
                                 const io::Dataset& dataset) {
   if (args.no_convention_check) return "skipped (--no-convention-check)";
-  const pyramid::ConventionCheck check = pyramid::checkConventions(source, dataset.trajectory().poses);
-  if (check.verdict != pyramid::ConventionVerdict::AsGiven) throw Error(dataset.posesFile().string() + ": " + check.message);
+  pyramid::GivenConventions given;
+  given.invert_poses = args.data.invert_poses;
+  given.scans_in_world = dataset.scansInWorld();
+  given.extrinsic = !dataset.inputFrame().empty();
+  const pyramid::ConventionCheck check = pyramid::checkConventions(source, dataset.trajectory().poses, given);
+  if (check.verdict != pyramid::ConventionVerdict::AsGiven) throw Error(dataset.root().string() + ": " + check.message);
   if (check.stretches == 0) {
     spdlog::info("convention check: the path has no stretch long enough to tell");
     return "not enough motion to tell";

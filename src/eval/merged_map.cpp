@@ -87,7 +87,10 @@ PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& p
     throw Error("the dataset has " + std::to_string(dataset.size()) + " scans but " +
                 std::to_string(used.size()) + " poses were given");
   }
-  VoxelMerger merger(settings, used.empty() ? Vec3::Zero() : used.front().t);
+  // Relative to the first pose when it is far out (UTM): float coordinates
+  // would lose centimetres there, and the writers then store float64.
+  const bool far = !used.empty() && used.front().t.cwiseAbs().maxCoeff() > 1e4;
+  VoxelMerger merger(settings, far ? used.front().t : Vec3::Zero());
   for (std::size_t i = 0; i < dataset.size(); ++i) {
     merger.add(dataset.loadScan(i), used[i], static_cast<std::uint32_t>(i));
   }

@@ -44,6 +44,11 @@ std::vector<T> pick(const std::vector<T>& values, const std::vector<std::size_t>
 
 }  // namespace
 
+void Dataset::noteStampUnit(const fs::path& file, const std::string& unit) {
+  if (unit.empty()) return;
+  notes_.push_back({DatasetNote::Level::Info, file.string() + ": the stamps are in " + unit + "; read as seconds"});
+}
+
 // The scans' own stamps: --times FILE (must fit), else the names, else a
 // times.txt in DIR that fits (one that does not is ignored, with a warning
 // when nothing else gives stamps).
@@ -62,9 +67,7 @@ std::vector<double> Dataset::scanStamps(std::vector<double> name_stamps, const D
     return name_stamps;
   }
   std::vector<double> stamps = readTimes(path);
-  if (stampsFromNanoseconds(stamps)) {
-    notes_.push_back({DatasetNote::Level::Info, path.string() + ": the stamps are Unix nanoseconds; read as seconds"});
-  }
+  noteStampUnit(path, stampsToSeconds(stamps));
   if (stamps.size() != size()) {
     const std::string problem =
         std::to_string(stamps.size()) + " timestamps for " + std::to_string(size()) + " scans";
@@ -89,6 +92,11 @@ void Dataset::pairScansWithPoses(std::vector<double> name_stamps, const DatasetO
   const bool by_time = trajectory_.hasStamps() && !scan_stamps.empty() &&
                        (scan_source != "times file" || overrides.times_file || trajectory_.size() != size());
   if (by_time) {
+    for (std::size_t i = 1; i < scan_stamps.size(); ++i) {
+      if (scan_stamps[i] > scan_stamps[i - 1]) continue;
+      failAt(times_file_, "the timestamps do not increase at line " + std::to_string(i + 1) +
+                              "; scans cannot be paired with poses by time");
+    }
     const detail::TimeMatch match =
         detail::matchByTime(scan_stamps, trajectory_.stamps, scans_dir_, poses_file_, notes_);
     scan_paths_ = pick(scan_paths_, match.kept_scans);
@@ -186,10 +194,7 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.pose_format_ =
       overrides.pose_format ? *overrides.pose_format : detectPoseFormat(dataset.poses_file_);
   dataset.trajectory_ = readPoses(dataset.poses_file_, dataset.pose_format_);
-  if (stampsFromNanoseconds(dataset.trajectory_.stamps)) {
-    dataset.notes_.push_back({DatasetNote::Level::Info, dataset.poses_file_.string() +
-                                                            ": the stamps are Unix nanoseconds; read as seconds"});
-  }
+  dataset.noteStampUnit(dataset.poses_file_, stampsToSeconds(dataset.trajectory_.stamps));
   dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_,
                              dataset.scan_paths_.front());
   dataset.pairScansWithPoses(std::move(scans.stamps), overrides);

@@ -34,9 +34,10 @@ struct TimeMatch {
   std::vector<std::size_t> kept_scans;    // scans that have a pose, ascending
 };
 // Pairs every scan with the pose nearest in time, within half the median
-// interval between scans. Scans without one are left out (with a warning);
-// more than half left out, or two scans on one pose, is an error naming
-// `scans_dir` and `poses_file`.
+// interval between scans; of two scans nearest to one pose, the closer keeps
+// it. Scans without a pose are left out (with a warning); more than half left
+// out is an error naming `scans_dir` and `poses_file`. The stamps must
+// increase (the caller checks the scans').
 TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<double>& pose_stamps,
                       const std::filesystem::path& scans_dir, const std::filesystem::path& poses_file,
                       Notes& notes);

@@ -60,15 +60,22 @@ TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<
       continue;
     }
     if (!match.pose_of_scan.empty() && match.pose_of_scan.back() == pose) {
-      failAt(scans_dir, fmt::format("two scans ({} and {}) are nearest to one pose of {} (t = {:.6f} s); "
-                                    "the poses are sparser than the scans",
-                                    match.kept_scans.back(), i, poses_file.string(), pose_stamps[pose]));
+      // Two scans nearest to one pose (a pose stamped between them): the
+      // closer one keeps it, the other is left out.
+      if (std::abs(offset) >= offsets.back()) {
+        left_out.push_back(i);
+        continue;
+      }
+      left_out.push_back(match.kept_scans.back());
+      match.pose_of_scan.pop_back();
+      match.kept_scans.pop_back();
+      offsets.pop_back();
     }
     match.pose_of_scan.push_back(pose);
     match.kept_scans.push_back(i);
     offsets.push_back(std::abs(offset));
   }
-  if (match.kept_scans.size() * 2 < scan_stamps.size()) {
+  if (match.kept_scans.empty() || match.kept_scans.size() * 2 < scan_stamps.size()) {
     failAt(scans_dir, fmt::format("only {} of {} scans (named by time, {:.3f} to {:.3f} s) have a pose "
                                   "within {:.3f} s in {} ({:.3f} to {:.3f} s); are both in seconds of the "
                                   "same clock?",
@@ -76,11 +83,12 @@ TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<
                                   scan_stamps.back(), tolerance, poses_file.string(), pose_stamps.front(),
                                   pose_stamps.back()));
   }
+  std::sort(left_out.begin(), left_out.end());
+  std::sort(offsets.begin(), offsets.end());
   notes.push_back({DatasetNote::Level::Info,
-                   fmt::format("scans named by time, paired with the poses of {} by time (median "
-                               "difference {:.4f} s, largest {:.4f} s)",
-                               poses_file.string(), offsets[offsets.size() / 2],
-                               *std::max_element(offsets.begin(), offsets.end()))});
+                   fmt::format("scans paired with the poses of {} by time (median difference {:.4f} s, "
+                               "largest {:.4f} s)",
+                               poses_file.string(), offsets[offsets.size() / 2], offsets.back())});
   if (!left_out.empty()) {
     notes.push_back({DatasetNote::Level::Warning,
                      fmt::format("{} of {} scans have no pose within {:.3f} s and are left out (scans {})",

@@ -56,6 +56,7 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
 
   const bool wide = wanted.type[0] == ScalarType::Float64 || wanted.type[1] == ScalarType::Float64 ||
                     wanted.type[2] == ScalarType::Float64;
+  PointCollector collector(cloud, wide, layout.intensity.has_value());
   std::uint64_t points_read = 0;
   std::uint64_t line_number = 0;
   std::string_view rest = body;
@@ -84,8 +85,9 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
                        std::to_string(layout.words_per_point));
     }
     ++points_read;
-    addFinitePoint(values, layout.intensity.has_value(), wide, cloud);
+    collector.add(values);
   }
+  collector.finish();
   if (points_read != header.points) {
     failAt(path, "truncated: the header declares " + std::to_string(header.points) +
                      " points but the data holds " + std::to_string(points_read));

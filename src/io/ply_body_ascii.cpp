@@ -30,7 +30,7 @@ PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexF
   // Every value takes at least two characters, which bounds a lying count.
   const std::uint64_t most_possible = rest_.size() / (2 * vertex.properties.size()) + 1;
   cloud.reserve(static_cast<std::size_t>(std::min(vertex.count, most_possible)), with_intensity);
-  const bool wide = hasWideCoordinates(vertex, fields);
+  PointCollector collector(cloud, hasWideCoordinates(vertex, fields), with_intensity);
   for (std::uint64_t r = 0; r < vertex.count; ++r) {
     double values[4] = {0, 0, 0, 0};
     for (std::size_t p = 0; p < vertex.properties.size(); ++p) {
@@ -44,8 +44,9 @@ PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexF
         if (fields.index[k] == p) values[k] = parseValue(word, property.type, r);
       }
     }
-    addFinitePoint(values, with_intensity, wide, cloud);
+    collector.add(values);
   }
+  collector.finish();
   return cloud;
 }
 

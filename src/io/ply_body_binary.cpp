@@ -61,7 +61,7 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
   cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(vertex.count, remaining())),
                 with_intensity);
   std::vector<std::size_t> starts(vertex.properties.size());  // in the current record
-  const bool wide = hasWideCoordinates(vertex, fields);
+  PointCollector collector(cloud, hasWideCoordinates(vertex, fields), with_intensity);
   for (std::uint64_t r = 0; r < vertex.count; ++r) {
     const std::size_t record_start = pos_;
     walkRecord(vertex, starts.data());
@@ -71,8 +71,9 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
       values[k] = loadAsDouble(bytes_.data() + record_start + starts[p], vertex.properties[p].type,
                                big_endian_);
     }
-    addFinitePoint(values, with_intensity, wide, cloud);
+    collector.add(values);
   }
+  collector.finish();
   return cloud;
 }
 

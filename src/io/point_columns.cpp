@@ -1,5 +1,6 @@
 #include "point_columns.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace hba::io::detail {
@@ -55,13 +56,15 @@ bool isFloat64(const Column& column) { return column.type == ScalarType::Float64
 
 void appendWide(const PointColumns& c, std::size_t count, PointCloud& cloud) {
   const bool be = c.big_endian;
+  PointCollector collector(cloud, true, c.intensity.has_value());
   for (std::size_t i = 0; i < count; ++i) {
     const double values[4] = {loadAsDouble(c.x.first + i * c.x.stride, c.x.type, be),
                               loadAsDouble(c.y.first + i * c.y.stride, c.y.type, be),
                               loadAsDouble(c.z.first + i * c.z.stride, c.z.type, be),
                               c.intensity ? c.intensity->at(i, be) : 0.0};
-    addFinitePoint(values, c.intensity.has_value(), true, cloud);
+    collector.add(values);
   }
+  collector.finish();
 }
 
 void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) {
@@ -80,22 +83,53 @@ void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) 
 
 }  // namespace
 
-void addFinitePoint(const double (&values)[4], bool with_intensity, bool wide, PointCloud& cloud) {
+PointCollector::PointCollector(PointCloud& cloud, bool wide, bool with_intensity)
+    : cloud_(cloud), wide_(wide), with_intensity_(with_intensity) {}
+
+void PointCollector::add(const double (&values)[4]) {
   const Vec3 p(values[0], values[1], values[2]);
   if (!p.allFinite()) return;
-  constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
-  constexpr double kOnEarth = 1.0e8;  // m; beyond that a stray value, not a place
-  const double distance = p.cwiseAbs().maxCoeff();
-  if (wide && cloud.empty() && cloud.origin.isZero() && distance > kFar && distance < kOnEarth) {
-    cloud.origin = p.array().round().matrix();
+  if (wide_) {
+    wide_points_.push_back(p);
+    if (with_intensity_) wide_intensity_.push_back(static_cast<float>(values[3]));
+    return;
   }
-  const Vec3f relative = (p - cloud.origin).cast<float>();
-  if (!relative.allFinite()) return;  // too large for a float
-  if (with_intensity) {
-    cloud.add(relative, static_cast<float>(values[3]));
+  const Vec3f narrow = p.cast<float>();
+  if (!narrow.allFinite()) return;  // a float64 too large for a float
+  if (with_intensity_) {
+    cloud_.add(narrow, static_cast<float>(values[3]));
   } else {
-    cloud.add(relative);
+    cloud_.add(narrow);
   }
+}
+
+void PointCollector::finish() {
+  if (wide_points_.empty()) return;
+  constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
+  constexpr double kOnEarth = 1.0e8;  // m; beyond that stray values, not a place
+  if (cloud_.empty() && cloud_.origin.isZero()) {
+    Vec3 median;
+    std::vector<double> axis(wide_points_.size());
+    for (int a = 0; a < 3; ++a) {
+      for (std::size_t i = 0; i < wide_points_.size(); ++i) axis[i] = wide_points_[i][a];
+      std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(axis.size() / 2), axis.end());
+      median[a] = axis[axis.size() / 2];
+    }
+    const double distance = median.cwiseAbs().maxCoeff();
+    if (distance > kFar && distance < kOnEarth) cloud_.origin = median.array().round().matrix();
+  }
+  cloud_.reserve(cloud_.size() + wide_points_.size(), with_intensity_);
+  for (std::size_t i = 0; i < wide_points_.size(); ++i) {
+    const Vec3f relative = (wide_points_[i] - cloud_.origin).cast<float>();
+    if (!relative.allFinite()) continue;  // too large for a float
+    if (with_intensity_) {
+      cloud_.add(relative, wide_intensity_[i]);
+    } else {
+      cloud_.add(relative);
+    }
+  }
+  wide_points_.clear();
+  wide_intensity_.clear();
 }
 
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud) {

@@ -5,6 +5,7 @@
 // alike, so every binary reader shares one loop.
 #include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "hba/core/point_cloud.hpp"
 #include "scalar_type.hpp"
@@ -32,11 +33,24 @@ struct PointColumns {
 // inside its buffer. Float64 coordinates keep their precision (addFinitePoint).
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud);
 
-// Appends x y z [intensity] unless a coordinate is NaN or infinite. When the
-// file stores coordinates as float64 (`wide`), the first point further than
-// 10 km from the origin (a map in UTM or ECEF) sets the cloud's origin to its
-// whole metres, and points are kept relative to it: floats would otherwise
-// round them to decimetres.
-void addFinitePoint(const double (&values)[4], bool with_intensity, bool wide, PointCloud& cloud);
+// Collects the points a reader decodes (x y z [intensity]), dropping those
+// with a NaN or infinite coordinate. When the file stores coordinates as
+// float64 (`wide`) they are held in double until finish(), which gives the
+// cloud an origin when the bulk of its points (their per-axis median) lies
+// more than 10 km out (a map in UTM or ECEF): points are then kept relative to
+// it in whole metres, where floats would round them to decimetres. Neither a
+// stray first point nor (0,0,0) placeholders decide the origin.
+class PointCollector {
+ public:
+  PointCollector(PointCloud& cloud, bool wide, bool with_intensity);
+  void add(const double (&values)[4]);
+  void finish();
+
+ private:
+  PointCloud& cloud_;
+  bool wide_, with_intensity_;
+  std::vector<Vec3> wide_points_;
+  std::vector<float> wide_intensity_;
+};
 
 }  // namespace hba::io::detail

@@ -1,6 +1,7 @@
 // Reading trajectories: every line becomes a Pose, with its problems reported
 // as "<file>: line N: ...".
 #include <Eigen/SVD>
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -106,10 +107,24 @@ Trajectory readPoses(const fs::path& path) {
   return trajectoryFromRows(path, rows, detail::formatOfRow(path, rows.front()));
 }
 
-bool stampsFromNanoseconds(std::vector<double>& stamps) {
-  if (stamps.empty() || !(stamps.front() > 1e14)) return false;
-  for (double& stamp : stamps) stamp *= 1e-9;
-  return true;
+std::string stampsToSeconds(std::vector<double>& stamps) {
+  if (stamps.empty()) return "";
+  // Unix time now is 1.7e9 s: its ms, us and ns are three orders apart each.
+  const double first = std::abs(stamps.front());
+  double scale = first > 1e17 ? 1e-9 : first > 1e14 ? 1e-6 : first > 1e11 ? 1e-3 : 1.0;
+  if (scale == 1.0 && stamps.size() > 1) {
+    // Stamps from the start of the recording: the median step tells. Above
+    // 5e6 they are ns (steps of 5 ms or more), above 5e3 us; seconds never
+    // step by hours between scans.
+    std::vector<double> steps;
+    for (std::size_t i = 1; i < stamps.size(); ++i) steps.push_back(std::abs(stamps[i] - stamps[i - 1]));
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    const double step = steps[steps.size() / 2];
+    scale = step > 5e6 ? 1e-9 : step > 5e3 ? 1e-6 : 1.0;
+  }
+  if (scale == 1.0) return "";
+  for (double& stamp : stamps) stamp *= scale;
+  return scale == 1e-9 ? "ns" : scale == 1e-6 ? "us" : "ms";
 }
 
 std::vector<double> readTimes(const fs::path& path) {

@@ -79,17 +79,17 @@ void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& k
 }  // namespace
 
 ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose>& poses,
-                                 const ConventionSettings& s) {
+                                 const GivenConventions& given, const ConventionSettings& s) {
   ConventionCheck check;
   const std::vector<std::vector<std::size_t>> stretches = pickStretches(poses, s);
   check.stretches = stretches.size();
   if (stretches.empty()) return check;
   const std::vector<Mat3> turns = axisRotations();
   std::vector<double> turned(turns.size(), 0.0);  // [0]: as given
-  double inverted = 0.0, world = 0.0, single = 0.0;
+  double inverted = 0.0, world = 0.0, stored = 0.0, single = 0.0;
   for (const std::vector<std::size_t>& frames : stretches) {
     std::vector<KeySet> as_turned(turns.size());
-    KeySet as_inverted, as_world;
+    KeySet as_inverted, as_world, as_stored;
     for (std::size_t i : frames) {
       // Halving the voxel first keeps the counts and makes 26 merges cheap.
       const PointCloud scan = voxel::downsample(scans.load(i), 0.5 * s.voxel);
@@ -101,10 +101,14 @@ ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose
       }
       addVoxels(scan, poses[i].inverse(), s.voxel, as_inverted);
       as_world.insert(own.begin(), own.end());
+      // The source moved scans back by their pose; moving them twice
+      // undoes that: the scans as stored, with their poses.
+      if (given.scans_in_world) addVoxels(scan, poses[i] * poses[i], s.voxel, as_stored);
     }
     for (std::size_t k = 0; k < turns.size(); ++k) turned[k] += static_cast<double>(as_turned[k].size());
     inverted += static_cast<double>(as_inverted.size());
     world += static_cast<double>(as_world.size());
+    stored += static_cast<double>(as_stored.size());
   }
   if (single <= 0.0) return check;
   const auto best_turn = std::min_element(turned.begin() + 1, turned.end());
@@ -113,14 +117,21 @@ ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose
   check.turn = turns[static_cast<std::size_t>(best_turn - turned.begin())];
   check.inverted = inverted / single;
   check.in_world = world / single;
-  const double best_other = std::min({check.inverted, check.in_world, check.turned});
+  check.as_stored = stored / single;
+  const double best_other = std::min({check.inverted, check.in_world, check.turned,
+                                      given.scans_in_world ? check.as_stored : check.as_given});
   if (best_other > s.decisive_ratio * check.as_given) return check;
   const std::string scores = fmt::format(
       "merged over {} stretches of the path, the map occupies {:.2f} scans' worth of {} m voxels with the "
       "poses as given, {:.2f} with each pose inverted, {:.2f} with no poses at all, {:.2f} with the poses "
       "of a body turned against the sensor",
       check.stretches, check.as_given, s.voxel, check.inverted, check.in_world, check.turned);
-  if (check.turned == best_other) {
+  const std::string on_top = given.extrinsic ? " (on top of the --extrinsic or calibration given)" : "";
+  if (given.scans_in_world && check.as_stored == best_other) {
+    check.verdict = ConventionVerdict::ScansNotInWorld;
+    check.message = "the scans line up as stored, in the sensor frame, not moved into the world: " + scores +
+                    fmt::format(", {:.2f} with the scans as stored. Run again without --scans-in-world", check.as_stored);
+  } else if (check.turned == best_other) {
     check.verdict = ConventionVerdict::TurnedBody;
     const std::string turn = extrinsicText(check.turn);
     check.message = isCameraAxes(check.turn)
@@ -130,15 +141,17 @@ ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose
                         : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
                           "against the scans' sensor: " + scores + ". hba needs poses of the scans' sensor: give "
                           "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
-                          "fits best is --extrinsic '" + turn + "' (add your lever arm)";
+                          "fits best is --extrinsic '" + turn + "' (add your lever arm)" + on_top;
   } else if (check.inverted == best_other) {
     check.verdict = ConventionVerdict::PosesInverted;
     check.message = "the poses look inverted (world-to-sensor): " + scores +
-                    ". hba expects sensor-to-world poses (p_world = R p + t); run again with --invert-poses";
+                    ". hba expects sensor-to-world poses (p_world = R p + t); " +
+                    (given.invert_poses ? "run again without --invert-poses" : "run again with --invert-poses");
   } else {
     check.verdict = ConventionVerdict::ScansInWorld;
     check.message = "the scans look already moved into the world frame: " + scores +
                     ". hba expects scans in the sensor frame; run again with --scans-in-world";
+    if (given.scans_in_world) check.message = "the scans still look moved into the world frame after --scans-in-world: " + scores;
   }
   check.message += " (or --no-convention-check to run as given)";
   return check;

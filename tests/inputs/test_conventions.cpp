@@ -96,6 +96,16 @@ TEST_F(Conventions, BodyPosesWithAnExtrinsicGiveTheSensorPosesAndTheBodyPoses) {
   EXPECT_LT(((body.poses[30] * extrinsic).t - sensor[30].t).norm(), 1e-5);
 }
 
+// A convention flag given to conventional data is caught too, and the advice
+// is to drop it.
+TEST_F(Conventions, AStrayConventionFlagIsCaught) {
+  for (const char* flag : {"--invert-poses", "--scans-in-world"}) {
+    const test::CommandResult run = test::runOptimize(dir / "sim", dir / "stray", std::string("--no-render ") + flag, 2);
+    EXPECT_NE(run.exit_code, 0) << flag;
+    EXPECT_NE(run.output.find(std::string("without ") + flag), std::string::npos) << run.output;
+  }
+}
+
 // Poses of a body turned against the sensor (Ouster's sensor frame is its
 // LiDAR frame turned 180 degrees about z): caught, with the turn to give.
 TEST_F(Conventions, PosesOfATurnedBodyAreCaughtWithTheTurn) {

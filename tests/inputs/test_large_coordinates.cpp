@@ -113,6 +113,19 @@ TEST(LargeCoordinates, CloudWithAnOriginRoundTripsInEveryEncoding) {
     io::writePly(dir / "c.ply", cloud, encoding);
     check(io::readPly(dir / "c.ply"), "ply " + std::to_string(static_cast<int>(encoding)));
   }
+  // Neither (0,0,0) placeholders nor a stray point decide the origin: the bulk does.
+  PointCloud messy;
+  messy.origin = kUtmOffset;
+  messy.add(Vec3f((-kUtmOffset).cast<float>()), 0.0f);                      // (0, 0, 0)
+  messy.add(Vec3f((Vec3(5e7, 0, 0) - kUtmOffset).cast<float>()), 0.0f);      // a stray value
+  for (int i = 0; i < 5; ++i) messy.add(Vec3f(0.001f * static_cast<float>(i), 0.25f, 1.5f), 1.0f);
+  for (io::PcdEncoding encoding : {io::PcdEncoding::Ascii, io::PcdEncoding::Binary}) {
+    io::writePcd(dir / "m.pcd", messy, encoding);
+    const PointCloud read = io::readPcd(dir / "m.pcd");
+    EXPECT_LT((read.origin - kUtmOffset).norm(), 5.0);  // the median's whole metres
+    ASSERT_EQ(read.size(), messy.size());
+    EXPECT_LT((read.world(6) - messy.world(6)).norm(), 1e-5);
+  }
   // A float64 cloud near the origin needs no origin.
   PointCloud near;
   near.add(Vec3f(1.0f, 2.0f, 3.0f), 1.0f);

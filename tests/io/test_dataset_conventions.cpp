@@ -102,7 +102,32 @@ TEST(DatasetTimes, NanosecondStampsAreReadAsSeconds) {
   const Dataset d = Dataset::open(dir.path(), overrides);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_NEAR(d.trajectory().stamps[1], 1577836980.1, 1e-6);
-  EXPECT_TRUE(test::anyNoteMentions(d, "nanoseconds"));
+  EXPECT_TRUE(test::anyNoteMentions(d, "in ns"));
+}
+
+TEST(DatasetTimes, StampUnitsAreRecognized) {
+  const auto seconds = [](std::vector<double> stamps, const std::string& unit) {
+    EXPECT_EQ(stampsToSeconds(stamps), unit);
+    return stamps;
+  };
+  EXPECT_NEAR(seconds({1577836980100.0, 1577836980200.0}, "ms")[1], 1577836980.2, 1e-6);
+  EXPECT_NEAR(seconds({1577836980100000.0, 1577836980200000.0}, "us")[1], 1577836980.2, 1e-6);
+  EXPECT_NEAR(seconds({0.0, 1e8, 2e8}, "ns")[2], 0.2, 1e-12);      // ns from the start
+  EXPECT_NEAR(seconds({0.0, 1e5, 2e5}, "us")[2], 0.2, 1e-12);
+  EXPECT_NEAR(seconds({1577836980.1, 1577836980.2}, "")[1], 1577836980.2, 1e-6);
+  EXPECT_NEAR(seconds({0.0, 60.0, 120.0}, "")[2], 120.0, 1e-12);  // sparse keyframes in seconds
+}
+
+TEST(DatasetTimes, TimesThatGoBackwardsCannotBePairedByTime) {
+  test::TempDir dir;
+  test::makeScans(dir / "Scans", {"000000.pcd", "000001.pcd", "000002.pcd"});
+  test::writeText(dir / "stamps.txt", "10.0\n10.2\n10.1\n");
+  test::writeText(dir / "traj.tum", tumLines({10.0, 10.1, 10.2}));
+  DatasetOverrides overrides;
+  overrides.poses_file = dir / "traj.tum";
+  overrides.times_file = dir / "stamps.txt";
+  test::expectErrorMentioning([&] { Dataset::open(dir.path(), overrides); },
+                              {"stamps.txt", "do not increase at line 3"});
 }
 
 TEST(DatasetTimes, TimesFlagSuppliesStampsAndMustMatchTheScans) {

@@ -67,8 +67,9 @@ class VoxelMerger {
 };
 
 // Streams every scan of `dataset` through a VoxelMerger with `poses` (one per
-// scan; the dataset's own trajectory when `poses` is empty). The map's points
-// are relative to the first pose's position (its `origin`). Throws hba::Error.
+// scan; the dataset's own trajectory when `poses` is empty). When the first
+// pose is more than 10 km out, the map's points are relative to its position
+// (the map's `origin`). Throws hba::Error.
 PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
                           const MapSettings& settings);
 

@@ -84,6 +84,7 @@ class Dataset {
                                  std::string& source);
   void pairScansWithPoses(std::vector<double> name_stamps, const DatasetOverrides& overrides);
   void checkStampsIncrease();
+  void noteStampUnit(const std::filesystem::path& file, const std::string& unit);
   void convertPoses(const DatasetOverrides& overrides);
 
   std::string layout_;

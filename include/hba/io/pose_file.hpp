@@ -30,10 +30,11 @@ Trajectory readPoses(const std::filesystem::path& path);  // detected format
 void writePoses(const std::filesystem::path& path, const Trajectory& trajectory,
                 PoseFormat format);
 
-// TUM stamps are seconds, but some exporters write Unix nanoseconds
-// (1.6e18). Stamps beyond 1e14 (three million years in seconds) are taken as
-// nanoseconds and turned into seconds; returns true if it did so.
-bool stampsFromNanoseconds(std::vector<double>& stamps);
+// TUM stamps are seconds, but some exporters write Unix milli-, micro- or
+// nanoseconds (1.7e12, 1.7e15, 1.7e18), or nanoseconds from the start (steps
+// of 1e8). Such stamps are turned into seconds; returns the unit they were
+// in ("ms", "us", "ns"), or "" when they were seconds already.
+std::string stampsToSeconds(std::vector<double>& stamps);
 
 // A times.txt: one timestamp (seconds) a line, as KITTI and FAST-LIO write.
 std::vector<double> readTimes(const std::filesystem::path& path);

@@ -23,6 +23,14 @@ enum class ConventionVerdict {
   PosesInverted, // inverting every pose makes a clearly crisper map
   ScansInWorld,  // the scans line up without any pose
   TurnedBody,    // the poses are of a body turned against the sensor (`turn`)
+  ScansNotInWorld,  // --scans-in-world was given, but the scans as stored line up
+};
+
+// The convention flags the user gave, so the advice can undo them.
+struct GivenConventions {
+  bool invert_poses = false;
+  bool scans_in_world = false;
+  bool extrinsic = false;  // --extrinsic or a KITTI calibration
 };
 
 struct ConventionCheck {
@@ -31,6 +39,7 @@ struct ConventionCheck {
   // mean occupancy of one scan (lower = crisper).
   double as_given = 0.0, inverted = 0.0, in_world = 0.0;
   double turned = 0.0;            // the best of the 23 turned bodies
+  double as_stored = 0.0;         // with --scans-in-world undone (0 unless it was given)
   Mat3 turn = Mat3::Identity();   // its rotation T_body_sensor
   std::size_t stretches = 0;  // stretches with enough motion to tell; 0: nothing checked
   std::string message;        // what is wrong and which flag fixes it (empty when AsGiven)
@@ -47,6 +56,6 @@ struct ConventionSettings {
 
 // Reads at most max_stretches * stretch_scans scans. Throws what the source throws.
 ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose>& poses,
-                                 const ConventionSettings& settings = {});
+                                 const GivenConventions& given = {}, const ConventionSettings& settings = {});
 
 }  // namespace hba::pyramid
