@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "output_dir.hpp"
 #include "number_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
@@ -21,6 +22,7 @@ struct EvalArgs {
   double delta = 1.0;
   double t_max_diff = 0.01;
   double min_matched = 0.5;
+  bool force = false;
 };
 
 Trajectory readTrajectory(const std::string& path, const std::string& format) {
@@ -89,6 +91,7 @@ void run(const EvalArgs& args) {
   options.rpe_delta = args.delta;
   options.rpe_unit = eval::deltaUnitFromString(args.delta_unit);
 
+  if (!args.json.empty()) refuseToReplace(args.json, args.force);
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
   const Trajectory est = readTrajectory(args.est, args.est_format);
   const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
@@ -151,6 +154,7 @@ void registerEvalCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--label", args->label, "Text printed before every output line");
   command->add_option("--json", args->json, "Also write the results as JSON to this file");
+  command->add_flag("--force", args->force, "Replace an existing --json file");
   command->callback([args] { run(*args); });
 }
 

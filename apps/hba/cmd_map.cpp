@@ -21,6 +21,7 @@ struct MapArgs {
   DatasetArgs data;
   std::string output;
   std::string color = "none";
+  bool force = false;
   eval::MapSettings settings;
 };
 
@@ -32,6 +33,7 @@ void run(MapArgs& args) {
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(output, dataset);  // hba never writes into its input
+  refuseToReplace(output, args.force);
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
   const PointCloud map = eval::buildMergedMap(dataset, {}, args.settings);
   if (extension == ".pcd") {
@@ -50,6 +52,7 @@ void registerMapCommand(CLI::App& app) {
   auto* command = app.add_subcommand("map", "Write the merged, voxel-downsampled map of a dataset");
   args->data.addTo(command);
   command->add_option("-o,--output", args->output, "Output map file (.pcd or .ply)")->required();
+  command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
       ->check(nonNegative())
       ->capture_default_str();

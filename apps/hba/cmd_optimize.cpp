@@ -12,6 +12,7 @@
 #include "dataset_args.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/pyramid/convention_check.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
@@ -35,6 +36,7 @@ struct OptimizeArgs {
   std::string ground_truth;
   bool no_render = false;
   bool no_convention_check = false;
+  bool force = false;
 };
 
 double peakMemoryMiB() {
@@ -60,7 +62,7 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
                   const std::vector<Pose>& optimized, const fs::path& out) {
   const std::optional<Trajectory> gt = groundTruth(args, dataset);
   const fs::path png = out / "before_after.png";
-  spdlog::info("drawing {}", png.string());
+  spdlog::info("drawing before_after.png");
   render::writeBeforeAfter(dataset, dataset.trajectory().poses, optimized,
                            gt ? &gt->poses : nullptr, png);
 }
@@ -172,9 +174,13 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
 
   const io::Dataset dataset = args.data.open();
+  refuseOutputInsideInput(args.output, dataset);
+  // Everything is written beside OUT and moved into place at the end: no
+  // half-written folder, no earlier run's files beside this run's.
+  StagingFolder staging(args.output, args.force);
+  const fs::path& out = staging.path();
   const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
   const nlohmann::json conventions = checkConventions(args, source, dataset);
-  const fs::path out = prepareOutputDir(args.output, dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::info("settings: {}", pyramid::settingsToJson(settings).dump());
@@ -186,10 +192,12 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, threads, conventions);
 
-  spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
-               peakMemoryMiB(), out.string());
-  spdlog::info("wrote {}, report.json", fmt::format("{}", fmt::join(written, ", ")));
   if (!args.no_render) writePicture(args, dataset, result.poses, out);
+  staging.commit();
+  spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
+               peakMemoryMiB(), staging.destination().string());
+  spdlog::info("wrote {}, report.json{}", fmt::format("{}", fmt::join(written, ", ")),
+               args.no_render ? "" : ", before_after.png");
 }
 
 }  // namespace
@@ -200,8 +208,10 @@ void registerOptimizeCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "optimize", "Optimize the poses of a sequence (hierarchical BA + pose graph)");
   args->data.addTo(command);
-  command->add_option("-o,--output", args->output, "Output folder (created; never the input)")
+  command->add_option("-o,--output", args->output,
+                      "Output folder (created; never inside the input; a non-empty one needs --force)")
       ->required();
+  command->add_flag("--force", args->force, "Replace a non-empty output folder (as a whole, at the end)");
   command->add_option("--gt", args->ground_truth,
                       "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
       ->check(CLI::ExistingFile);

@@ -18,6 +18,7 @@ namespace {
 struct RenderArgs {
   DatasetArgs data;
   std::string output, compare, gt, crop;
+  bool force = false;
   bool no_side = false;
   render::RenderSettings settings;
 };
@@ -37,6 +38,7 @@ void run(RenderArgs& args) {
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);  // hba never writes into its input
+  refuseToReplace(args.output, args.force);
   std::vector<Pose> gt;
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
@@ -58,6 +60,7 @@ void registerRenderCommand(CLI::App& app) {
                 "--compare draws before and after side by side");
   args->data.addTo(command);
   command->add_option("-o,--output", args->output, "Output picture (.png)")->required();
+  command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--compare", args->compare,
                       "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
       ->check(CLI::ExistingFile);

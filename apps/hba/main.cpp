@@ -13,6 +13,7 @@
 #include "number_checks.hpp"
 #include "usage_errors.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
 
 namespace {
@@ -43,6 +44,8 @@ void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before any thread starts: Ctrl-C then removes unfinished outputs.
+  hba::startInterruptWatcher();
   CLI::App app{"hba: turns a drifting LiDAR sequence into a globally consistent map\n"
                "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
   app.name("hba");

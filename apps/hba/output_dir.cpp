@@ -29,15 +29,9 @@ void refuseOutputInsideInput(const fs::path& output, const io::Dataset& dataset)
   }
 }
 
-fs::path prepareOutputDir(const fs::path& output, const io::Dataset& dataset) {
-  refuseOutputInsideInput(output, dataset);
+void refuseToReplace(const fs::path& output, bool force) {
   std::error_code ec;
-  if (fs::exists(output, ec) && !fs::is_directory(output, ec)) {
-    failAt(output, "exists and is not a folder");
-  }
-  fs::create_directories(output, ec);
-  if (ec) failAt(output, "cannot create the output folder: " + ec.message());
-  return output;
+  if (!force && fs::exists(output, ec)) failAt(output, "exists (use --force to replace it)");
 }
 
 }  // namespace hba::cli

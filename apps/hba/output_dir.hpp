@@ -9,10 +9,8 @@ namespace hba::cli {
 // dataset's folder, its scans folder, or anything inside them.
 void refuseOutputInsideInput(const std::filesystem::path& output, const io::Dataset& dataset);
 
-// Creates the output folder of a command that reads `dataset`. Refuses a
-// folder inside the dataset's folders: hba never writes into its input.
-// Throws hba::Error.
-std::filesystem::path prepareOutputDir(const std::filesystem::path& output,
-                                       const io::Dataset& dataset);
+// The one output rule, for single files: an existing file is replaced only
+// with --force (it is then replaced atomically). Throws hba::Error.
+void refuseToReplace(const std::filesystem::path& output, bool force);
 
 }  // namespace hba::cli

@@ -34,13 +34,13 @@ class Tools:
 
     def optimize(self, dataset, pose_args, output):
         """Returns (Usage of the optimize process, its report.json)."""
-        _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, "--no-render"))
+        _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, "--no-render", "--force"))
         with open(output / "report.json", encoding="utf-8") as report:
             return usage, json.load(report)
 
     def eval(self, ground_truth, estimate, json_path):
         """ATE and RPE (RMSE) of estimate against ground_truth."""
-        self._run(self._hba("eval", "--gt", ground_truth, "--est", estimate, "--json", json_path))
+        self._run(self._hba("eval", "--gt", ground_truth, "--est", estimate, "--json", json_path, "--force"))
         with open(json_path, encoding="utf-8") as file:
             result = json.load(file)
         return {

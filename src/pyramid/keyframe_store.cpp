@@ -51,9 +51,11 @@ KeyframeStore::KeyframeStore(std::size_t count) : count_(count) {
   folder_ = base / (kPrefix + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::create_directories(folder_, ec);
   if (ec) failAt(folder_, "cannot create the keyframe folder: " + ec.message());
+  remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(folder_);
 }
 
 KeyframeStore::~KeyframeStore() {
+  remove_on_interrupt_.reset();
   std::error_code ec;
   fs::remove_all(folder_, ec);
 }

@@ -5,7 +5,9 @@
 // read back window by window, like layer-1 scans.
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 
+#include "hba/core/remove_on_interrupt.hpp"
 #include "hba/pyramid/scan_source.hpp"
 
 namespace hba::pyramid {
@@ -31,6 +33,7 @@ class KeyframeStore : public ScanSource {
 
   std::size_t count_ = 0;
   std::filesystem::path folder_;
+  std::unique_ptr<RemoveOnInterrupt> remove_on_interrupt_;  // Ctrl-C removes the folder too
   mutable ThreadSeconds read_;
 };
 

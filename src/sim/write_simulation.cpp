@@ -8,7 +8,7 @@
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/sim/simulation.hpp"
-#include "staging_folder.hpp"
+#include "hba/core/staging_folder.hpp"
 
 namespace hba::sim {
 namespace fs = std::filesystem;

@@ -151,7 +151,7 @@ TEST_F(Conventions, KittiCameraPosesComeBackInTheCameraFrame) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto ate = [&](const fs::path& truth, const fs::path& est) {
     const test::CommandResult eval = test::runHba("-q eval --gt " + test::quoted(truth) + " --est " +
-                                                  test::quoted(est) + " --json " + test::quoted(dir / "e.json"));
+                                                  test::quoted(est) + " --force --json " + test::quoted(dir / "e.json"));
     EXPECT_EQ(eval.exit_code, 0) << eval.output;
     return nlohmann::json::parse(test::readText(dir / "e.json")).at("ate");
   };

@@ -26,7 +26,7 @@ double ateRmse(const fs::path& gt, const fs::path& est, const fs::path& scratch)
   const fs::path json = scratch / "ate.json";
   const test::CommandResult result =
       test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() +
-                       " --json " + json.string());
+                       " --force --json " + json.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
 }
@@ -143,7 +143,7 @@ TEST_F(OptimizeSimulated, DirectAssignAndSingleBaModesRun) {
   const double before = ateRmse(data() / "gt.txt", data() / "pose.json", dir.path());
   for (const std::string mode : {"--top-down direct-assign", "--layers 1 --iterations 1"}) {
     SCOPED_TRACE(mode);
-    run(hba() + " -q optimize " + data().string() + " -o " + out().string() + " " + mode);
+    run(hba() + " -q optimize " + data().string() + " -o " + out().string() + " --force " + mode);
     EXPECT_LT(ateRmse(data() / "gt.txt", out() / "pose.json", dir.path()), before);
   }
 }
