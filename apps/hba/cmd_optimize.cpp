@@ -183,7 +183,7 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   const nlohmann::json conventions = checkConventions(args, source, dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
-  spdlog::info("settings: {}", pyramid::settingsToJson(settings).dump());
+  spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
   spdlog::info("threads: {}", threads);
 
   const pyramid::HbaResult result =

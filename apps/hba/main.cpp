@@ -3,6 +3,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -11,6 +12,7 @@
 
 #include "commands.hpp"
 #include "number_checks.hpp"
+#include "progress_display.hpp"
 #include "usage_errors.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/remove_on_interrupt.hpp"
@@ -77,6 +79,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
     setUpLogging(verbose, quiet, log_file);
+    hba::cli::installProgressDisplay(!quiet && ::isatty(STDERR_FILENO) != 0);
     if (threads > 0) {
       thread_limit = std::make_unique<tbb::global_control>(
           tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));

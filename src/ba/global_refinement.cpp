@@ -1,5 +1,7 @@
 #include "hba/ba/global_refinement.hpp"
 
+#include "hba/core/progress.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -20,7 +22,9 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
                  const RefinementSettings& settings, const MotionPrior& prior,
                  RefinementResult& result) {
   result.poses = initial;
-  for (int round = 0; round < settings.association_rounds; ++round) {
+  // At most this many rounds: the ETA is an upper bound.
+  Progress progress("refinement", static_cast<std::size_t>(settings.association_rounds), "rounds");
+  for (int round = 0; round < settings.association_rounds; ++round, progress.advance()) {
     const auto start = Clock::now();
     Association association =
         associate(scans, result.poses, settings.planes, settings.reject_ratio);

@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 #include <tbb/parallel_for.h>
+
+#include "hba/core/progress.hpp"
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -91,7 +93,7 @@ std::vector<double> pathBetweenFrames(const Layer& layer, const Window& window) 
 LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,
-                           double keyframe_voxel, StageTimes& times) {
+                           double keyframe_voxel, StageTimes& times, const std::string& progress_label) {
   LayerOutcome outcome;
   outcome.windows.resize(windows.size());
   std::vector<WindowBa> results(windows.size());
@@ -106,6 +108,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
   const LoadSeconds loaded_before = clouds.loadSeconds();
   std::size_t cloud_points = 0;
   std::size_t counted_end = 0;  // frames whose points are counted
+  Progress progress(progress_label, windows.size(), "windows");
   for (std::size_t b0 = 0; b0 < windows.size(); b0 += batch) {
     const std::size_t b1 = std::min(windows.size(), b0 + batch);
     auto start = Clock::now();
@@ -132,6 +135,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
       ba_results[w - b0] =
           ba::optimizeWindow(cloudsOf(window), initial, ba_settings, pathBetweenFrames(layer, window));
       results[w] = summarize(layer, ba_results[w - b0], window, settings);
+      progress.advance();
     });
     times.ba += secondsSince(start);
     for (const ba::BaResult& result : ba_results) {

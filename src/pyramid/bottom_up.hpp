@@ -24,7 +24,7 @@ struct StageTimes {
 LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,
-                           double keyframe_voxel, StageTimes& times);
+                           double keyframe_voxel, StageTimes& times, const std::string& progress_label);
 
 // Layer i+1 from layer i's windows: keyframe j is window j, anchored at its
 // first frame, posed by chaining the windows' optimized relative poses

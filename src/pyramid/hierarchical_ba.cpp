@@ -108,7 +108,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
     const ScanSource& clouds = level == 1 ? scans : *layer.keyframes;
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
     LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
-                                         keyframes.get(), keyframeVoxel(settings, level + 1), times);
+                                         keyframes.get(), keyframeVoxel(settings, level + 1), times,
+                                         "layer " + std::to_string(level));
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.seconds = secondsSince(start);
@@ -124,7 +125,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   const std::vector<Window> all{Window{0, layer.poses.size()}};
   const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
   LayerOutcome top =
-      optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times);
+      optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
+                    "layer " + std::to_string(layers) + " (global BA)");
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;

@@ -108,3 +108,28 @@ TEST_F(CliConventions, LogFileGetsEveryMessageWithTimes) {
 
 }  // namespace
 }  // namespace hba
+
+namespace hba {
+namespace {
+
+// Not a terminal: plain progress lines with the count, the rate and the ETA.
+TEST(CliProgress, PlainLinesWhenNotATerminal) {
+  test::TempDir dir;
+  ASSERT_EQ(runSplit("-q simulate --frames 80 --seed 2 -o " + quoted(dir / "sim"), dir).exit_code, 0);
+  const SplitResult run = runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "out") +
+                                       " --no-render", dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err.find('\r'), std::string::npos) << "no bar outside a terminal";
+  // HBA_PROGRESS_SECONDS=0 (below): a line at every report.
+  const std::string frequent = "HBA_PROGRESS_SECONDS=0 ";
+  const test::CommandResult lines = test::runCommand(frequent + quoted(test::cliPath()) + " optimize " +
+                                                     quoted(dir / "sim") + " -o " + quoted(dir / "out2") +
+                                                     " --no-render");
+  ASSERT_EQ(lines.exit_code, 0) << lines.output;
+  expectContains(lines.output, "[info] layer 1: ");
+  expectContains(lines.output, "/15 windows (");
+  expectContains(lines.output, "windows/s, ETA ");
+}
+
+}  // namespace
+}  // namespace hba
