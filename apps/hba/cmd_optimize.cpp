@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <filesystem>
+#include <iostream>
 #include <optional>
 
 #include "commands.hpp"
@@ -37,6 +38,7 @@ struct OptimizeArgs {
   bool no_render = false;
   bool no_convention_check = false;
   bool force = false;
+  bool print_config = false;
 };
 
 double peakMemoryMiB() {
@@ -169,6 +171,13 @@ void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io
 
 void run(const OptimizeArgs& args, const CLI::App& command) {
   const pyramid::HbaSettings settings = mergeSettings(args, command);
+  if (args.print_config) {
+    std::cout << pyramid::settingsToYaml(settings);
+    return;
+  }
+  // Required unless --print-config (CLI11 cannot say "unless").
+  if (args.data.dir.empty()) throw CLI::RequiredError("DIR");
+  if (args.output.empty()) throw CLI::RequiredError("--output");
   // The -j limit (a tbb::global_control), not the machine's core count.
   const std::size_t threads =
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
@@ -208,9 +217,12 @@ void registerOptimizeCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "optimize", "Optimize the poses of a sequence (hierarchical BA + pose graph)");
   args->data.addTo(command);
+  command->get_option("DIR")->required(false);
   command->add_option("-o,--output", args->output,
-                      "Output folder (created; never inside the input; a non-empty one needs --force)")
-      ->required();
+                      "Output folder (created; never inside the input; a non-empty one needs --force)");
+  command->add_flag("--print-config", args->print_config,
+                    "Print every setting (defaults, --config, flags) as a commented YAML file for "
+                    "--config, and stop");
   command->add_flag("--force", args->force, "Replace a non-empty output folder (as a whole, at the end)");
   command->add_option("--gt", args->ground_truth,
                       "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")

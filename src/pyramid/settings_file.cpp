@@ -3,9 +3,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
@@ -37,6 +39,48 @@ void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& know
     std::string valid;
     for (const std::string& name : names) valid += (valid.empty() ? "" : ", ") + where + name;
     bad(source, "unknown setting '" + where + key + "'" + didYouMean(key, names) + "; the settings here are " + valid);
+  }
+}
+
+// Keys named like the flags of `hba optimize` (--iterations -> iterations),
+// so a setting has one name on the command line and in the file. Giving a
+// setting under both names is an error: which one wins would be a guess.
+void readFlagNamedKeys(const YAML::Node& root, HbaSettings& s, const std::string& source) {
+  const auto both = [&](const char* flag_name, const char* key) {
+    if (root[flag_name] && root[key]) {
+      bad(source, std::string("'") + flag_name + "' and '" + key + "' are the same setting; give one");
+    }
+  };
+  both("iterations", "outer_iterations");
+  both("voxel_scans", "scan_window_voxel");
+  both("pairs", "factor_pairs");
+  read(root, "iterations", s.outer_iterations, source);
+  double voxel = 0.0;
+  read(root, "voxel", voxel, source);
+  if (root["voxel"]) s.scan_window_voxel = s.local.planes.voxel_size = s.global.planes.voxel_size = voxel;
+  read(root, "voxel_scans", s.scan_window_voxel, source);
+  read(root, "voxel_local", s.local.planes.voxel_size, source);
+  read(root, "voxel_global", s.global.planes.voxel_size, source);
+  if (root["final_voxel"]) {
+    read(root, "final_voxel", s.local.final_voxel_size, source);
+    s.global.final_voxel_size = s.local.final_voxel_size;
+  }
+  read(root, "theta_local", s.local.planes.eigen_ratio, source);
+  read(root, "theta_global", s.global.planes.eigen_ratio, source);
+  if (root["reject"]) {
+    read(root, "reject", s.local.reject_ratio, source);
+    s.global.reject_ratio = s.local.reject_ratio;
+  }
+  if (root["ba_iterations"]) {
+    read(root, "ba_iterations", s.local.max_iterations, source);
+    s.global.max_iterations = s.local.max_iterations;
+  }
+  std::string pairs;
+  read(root, "pairs", pairs, source);
+  if (!pairs.empty()) {
+    const auto parsed = factorPairsFromString(pairs);
+    if (!parsed) bad(source, "pairs must be adjacent, all or from_first");
+    s.factor_pairs = *parsed;
   }
 }
 
@@ -129,8 +173,13 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
                        "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
                        "refine_iterations", "refine_rounds", "refine_round_gain",
-                       "motion_prior"},
+                       "motion_prior",
+                       // the command line's names, for the settings that have a flag
+                       "iterations", "voxel", "voxel_scans", "voxel_local", "voxel_global",
+                       "final_voxel", "theta_local", "theta_global", "reject", "ba_iterations",
+                       "pairs"},
                       "", source);
+    readFlagNamedKeys(root, settings, source);
     read(root, "window", settings.window, source);
     read(root, "stride", settings.stride, source);
     read(root, "layers", settings.layers, source);
@@ -235,6 +284,70 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};
+}
+
+namespace {
+
+// "key: value  # comment" with the value in YAML's plain form.
+template <typename T>
+std::string yamlLine(const std::string& indent, const std::string& key, const T& value, const std::string& comment) {
+  std::string text = indent + key + ": ";
+  if constexpr (std::is_same_v<T, bool>) {
+    text += value ? "true" : "false";
+  } else if constexpr (std::is_arithmetic_v<T>) {
+    char digits[32];  // the shortest form that reads back the same
+    text.append(digits, std::to_chars(digits, digits + sizeof(digits), value).ptr);
+  } else {
+    text += value;
+  }
+  if (text.size() < 34) text.resize(34, ' ');
+  return text + "  # " + comment + "\n";
+}
+
+std::string baYaml(const ba::BaSettings& ba, const char* which) {
+  std::string out;
+  out += yamlLine("  ", "voxel_size", ba.planes.voxel_size, "root voxel of the adaptive plane map, m (--voxel-" + std::string(which) + ")");
+  out += yamlLine("  ", "final_voxel_size", ba.final_voxel_size, "coarse to fine down to this voxel, m; 0 = off (--final-voxel)");
+  out += yamlLine("  ", "eigen_ratio", ba.planes.eigen_ratio, "plane test lambda_min / lambda_max (--theta-" + std::string(which) + ")");
+  out += yamlLine("  ", "max_depth", ba.planes.max_depth, "octree levels below the root voxel");
+  out += yamlLine("  ", "min_points", ba.planes.min_points, "fewest points of a plane");
+  out += yamlLine("  ", "max_iterations", ba.max_iterations, "LM iterations per association (--ba-iterations)");
+  out += yamlLine("  ", "association_rounds", ba.association_rounds, "associations at the final voxel");
+  out += yamlLine("  ", "reject_ratio", ba.reject_ratio, "share of the worst planes dropped (--reject)");
+  out += yamlLine("  ", "trust_check", ba.check_fixed_map, "windows that blur the map keep their input poses");
+  return out;
+}
+
+}  // namespace
+
+std::string settingsToYaml(const HbaSettings& s) {
+  std::string out =
+      "# hba optimize settings: every one, at its value (hba optimize --print-config).\n"
+      "# Read back with --config FILE; flags given on the command line override the file.\n"
+      "# A key named like a flag (window for --window, iterations for --iterations, ...) is\n"
+      "# the same setting under the same name. docs/pyramid.md explains them.\n";
+  out += yamlLine("", "window", s.window, "frames per local window, w (--window)");
+  out += yamlLine("", "stride", s.stride, "frames between window starts, s < w (--stride)");
+  out += yamlLine("", "layers", s.layers, "pyramid layers incl. layer 1; 0 = automatic (--layers)");
+  out += yamlLine("", "iterations", s.outer_iterations, "bottom-up + top-down rounds at most (--iterations)");
+  out += yamlLine("", "scan_voxel", s.scan_voxel, "downsampling of the input scans, m (--scan-voxel)");
+  out += yamlLine("", "keyframe_voxel", s.keyframe_voxel, "downsampling of keyframes, m (--keyframe-voxel)");
+  out += yamlLine("", "keyframe_voxel_growth", s.keyframe_voxel_growth, "keyframe voxel factor per layer up");
+  out += yamlLine("", "voxel_scans", s.scan_window_voxel, "root voxel of the layer-1 windows, m; 0 = local (--voxel-scans)");
+  out += yamlLine("", "top_down", toString(s.top_down), "pose_graph or direct_assign (--top-down)");
+  out += yamlLine("", "pairs", toString(s.factor_pairs), "window pairs that become factors: adjacent, all, from_first (--pairs)");
+  out += yamlLine("", "point_sigma", s.information.point_sigma, "point-to-plane noise for the pose-graph weights, m (--point-sigma)");
+  out += yamlLine("", "motion_prior", s.motionPrior(), "hold neighbours weakly at their input relative pose (--no-motion-prior)");
+  out += yamlLine("", "refine", s.refine, "the final sparse BA over every scan (--no-refine)");
+  out += yamlLine("", "refine_voxel", s.refinement.planes.voxel_size, "its root voxel, m (--refine-voxel)");
+  out += yamlLine("", "refine_scan_voxel", s.refine_scan_voxel, "scans held at this density for it, m; 0 = scan_voxel");
+  out += yamlLine("", "refine_max_points", s.refine_max_points, "beyond this many points it runs in blocks");
+  out += yamlLine("", "refine_iterations", s.refinement.lm.max_iterations, "LM iterations per association");
+  out += yamlLine("", "refine_rounds", s.refinement.association_rounds, "associations at most");
+  out += yamlLine("", "refine_round_gain", s.refinement.round_gain, "associate again while a round cuts the cost by this share");
+  out += "local:  # the windows of layers 1 and up\n" + baYaml(s.local, "local");
+  out += "global:  # the one BA of the top layer\n" + baYaml(s.global, "global");
+  return out;
 }
 
 }  // namespace hba::pyramid

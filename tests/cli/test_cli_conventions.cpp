@@ -93,6 +93,20 @@ TEST_F(CliConventions, MistypedSettingGetsASuggestionAndTheValidNames) {
   expectContains(run.err, "stride");
 }
 
+// --print-config writes a complete, commented file that --config reads back.
+TEST_F(CliConventions, PrintedConfigRoundTrips) {
+  const SplitResult printed = runSplit("optimize --print-config --window 12 --no-refine", dir);
+  ASSERT_EQ(printed.exit_code, 0) << printed.err;
+  expectContains(printed.out, "window: 12");
+  expectContains(printed.out, "refine: false");
+  expectContains(printed.out, "# frames per local window, w (--window)");
+  test::writeText(dir / "settings.yaml", printed.out);
+  const SplitResult again = runSplit("optimize --print-config --config " + quoted(dir / "settings.yaml"), dir);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(again.out, printed.out);
+  EXPECT_EQ(runSplit("optimize " + quoted(dir / "sim"), dir).exit_code, 2);  // -o is still required
+}
+
 TEST_F(CliConventions, LogFileGetsEveryMessageWithTimes) {
   const SplitResult run = runSplit("-q --log-file " + quoted(dir / "hba.log") + " mme " + quoted(dir / "sim"), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;

@@ -81,5 +81,50 @@ TEST(SettingsFile, JsonHasEverySetting) {
   EXPECT_EQ(json.at("global").at("eigen_ratio"), 0.1);
 }
 
+// --print-config's YAML reads back to the very same settings.
+TEST(SettingsFile, PrintedYamlReadsBackToTheSameSettings) {
+  HbaSettings changed;
+  changed.window = 14;
+  changed.stride = 6;
+  changed.outer_iterations = 3;
+  changed.scan_voxel = 0.15;
+  changed.scan_window_voxel = 1.5;
+  changed.top_down = TopDownMode::DirectAssign;
+  changed.factor_pairs = FactorPairs::FromFirst;
+  changed.refine = false;
+  changed.setMotionPrior(false);
+  changed.refinement.round_gain = 0.035;
+  changed.local.planes.eigen_ratio = 0.07;
+  changed.global.reject_ratio = 0.1;
+  changed.global.check_fixed_map = false;
+  HbaSettings read;
+  applySettingsYaml(settingsToYaml(changed), "printed", read);
+  EXPECT_EQ(settingsToJson(read), settingsToJson(changed));
+  // Defaults too: nothing is left out of the file.
+  HbaSettings defaults, from_defaults = changed;
+  applySettingsYaml(settingsToYaml(defaults), "printed", from_defaults);
+  EXPECT_EQ(settingsToJson(from_defaults), settingsToJson(defaults));
+}
+
+// Keys named like the flags set the same settings; both names at once is an error.
+TEST(SettingsFile, FlagNamedKeysAreTheSameSettings) {
+  HbaSettings s;
+  applySettingsYaml("iterations: 2\nvoxel: 3\ntheta_local: 0.06\nreject: 0.1\npairs: all\n", "flags", s);
+  EXPECT_EQ(s.outer_iterations, 2);
+  EXPECT_EQ(s.scan_window_voxel, 3.0);
+  EXPECT_EQ(s.local.planes.voxel_size, 3.0);
+  EXPECT_EQ(s.global.planes.voxel_size, 3.0);
+  EXPECT_EQ(s.local.planes.eigen_ratio, 0.06);
+  EXPECT_EQ(s.global.reject_ratio, 0.1);
+  EXPECT_EQ(s.factor_pairs, FactorPairs::AllPairs);
+  try {
+    applySettingsYaml("iterations: 2\nouter_iterations: 3\n", "both.yaml", s);
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'iterations' and 'outer_iterations' are the same setting"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hba::pyramid

@@ -3,7 +3,9 @@
 // (printed at start and stored in report.json).
 //
 // YAML keys (all optional; unknown keys are an error, so typos never pass
-// silently):
+// silently, and get a "did you mean"). Every setting that has a flag may also
+// be named like it (iterations, voxel, voxel_scans, voxel_local, voxel_global,
+// final_voxel, theta_local, theta_global, reject, ba_iterations, pairs):
 //   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel, keyframe_voxel_growth,
 //   top_down: pose_graph | direct_assign, factor_pairs: adjacent | all | from_first,
 //   scan_window_voxel, point_sigma,
@@ -38,5 +40,9 @@ void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings)
 void checkSettings(const HbaSettings& settings);
 
 nlohmann::json settingsToJson(const HbaSettings& settings);
+
+// Every setting as a commented YAML file that applySettingsYaml reads back
+// to the same settings (`hba optimize --print-config`).
+std::string settingsToYaml(const HbaSettings& settings);
 
 }  // namespace hba::pyramid
