@@ -35,8 +35,8 @@ Trajectory readTrajectory(const std::string& path, const std::string& format) {
 
 std::string statsRow(const std::string& prefix, const char* name, const eval::ErrorStats& s) {
   // A space before every number: 123.456789 must not run into its neighbour.
-  return fmt::format("{}{:<14} {:>11.6f} {:>11.6f} {:>11.6f} {:>11.6f}\n", prefix, name, s.rmse, s.mean,
-                     s.median, s.max);
+  return fmt::format("{}{:<14} {:>11.6f} {:>11.6f} {:>11.6f} {:>11.6f} {:>11.6f} {:>11.6f}\n", prefix, name,
+                     s.rmse, s.mean, s.median, s.std, s.min, s.max);
 }
 
 std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
@@ -46,7 +46,8 @@ std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
       r.matched, r.estimate_count, eval::toString(r.association_used), args.align,
       args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
       args.delta_unit);
-  out += fmt::format("{}{:<14} {:>11} {:>11} {:>11} {:>11}\n", prefix, "", "rmse", "mean", "median", "max");
+  out += fmt::format("{}{:<14} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}\n", prefix, "", "rmse", "mean",
+                     "median", "std", "min", "max");
   out += statsRow(prefix, "ATE trans m", r.ate.translation_m);
   out += statsRow(prefix, "ATE rot deg", r.ate.rotation_deg);
   out += statsRow(prefix, "RPE trans m", r.rpe.translation_m);
@@ -55,7 +56,8 @@ std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
 }
 
 nlohmann::json statsJson(const eval::ErrorStats& s) {
-  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median}, {"max", s.max}};
+  return {{"count", s.count}, {"rmse", s.rmse}, {"mean", s.mean}, {"median", s.median},
+          {"std", s.std},     {"min", s.min},   {"max", s.max}};
 }
 
 nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {

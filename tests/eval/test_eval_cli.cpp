@@ -77,7 +77,7 @@ TEST(EvalCli, StampedTumAgainstUnstampedHbaPairsByIndexAndPrintsTheLabel) {
   const CommandResult none = runCommand(base + " --align none --label before");
   ASSERT_EQ(none.exit_code, 0) << none.output;
   EXPECT_EQ(none.output.rfind("before  6 of 6 estimated poses matched by index", 0), 0u) << none.output;
-  EXPECT_TRUE(std::regex_search(none.output, std::regex("\nbefore  ATE trans m +3.000000 +3.000000 +3.000000 +3.000000\n")))
+  EXPECT_TRUE(std::regex_search(none.output, std::regex("\nbefore  ATE trans m +3.000000 +3.000000 +3.000000 +0.000000 +3.000000 +3.000000\n")))
       << none.output;
   const CommandResult se3 = runCommand(base + " --label after");
   ASSERT_EQ(se3.exit_code, 0) << se3.output;

@@ -200,5 +200,14 @@ TEST(ErrorStats, MedianOfEvenCountIsTheMiddleMean) {
   EXPECT_EQ(summarize({}).count, 0u);
 }
 
+// evo's std is numpy's default: divided by n. 1..4: variance 1.25.
+TEST(ErrorStats, StdIsThePopulationStdAndMinIsTheSmallest) {
+  const ErrorStats s = summarize({4.0, 1.0, 3.0, 2.0});
+  EXPECT_DOUBLE_EQ(s.std, std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(s.min, 1.0);
+  // Large equal values: no cancellation (sum_sq/n - mean^2 would not be 0).
+  EXPECT_LT(summarize({1e8 + 0.1, 1e8 + 0.1, 1e8 + 0.1}).std, 1e-6);
+}
+
 }  // namespace
 }  // namespace hba::eval

@@ -10,6 +10,8 @@ struct ErrorStats {
   double rmse = 0.0;
   double mean = 0.0;
   double median = 0.0;  // mean of the two middle values for an even count
+  double std = 0.0;     // population standard deviation (divided by n, as evo's numpy)
+  double min = 0.0;
   double max = 0.0;
 };
 
