@@ -12,12 +12,13 @@
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/render/error_plot.hpp"
 
 namespace hba::cli {
 namespace {
 
 struct EvalArgs {
-  std::string gt, est, gt_format, est_format, label, json;
+  std::string gt, est, gt_format, est_format, label, json, plot;
   std::string align = "se3", assoc = "auto", delta_unit = "frames";
   double delta = 1.0;
   double t_max_diff = 0.01;
@@ -94,6 +95,10 @@ void run(const EvalArgs& args) {
   options.rpe_unit = eval::deltaUnitFromString(args.delta_unit);
 
   if (!args.json.empty()) refuseToReplace(args.json, args.force);
+  if (!args.plot.empty()) {
+    if (std::filesystem::path(args.plot).extension() != ".png") failAt(args.plot, "the plot must be a .png file");
+    refuseToReplace(args.plot, args.force);
+  }
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
   const Trajectory est = readTrajectory(args.est, args.est_format);
   const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
@@ -118,6 +123,19 @@ void run(const EvalArgs& args) {
                  result.estimate_count - result.matched, args.t_max_diff);
   }
   fmt::print("{}", table(args, result));
+  if (!args.plot.empty()) {
+    render::ErrorSeries series;
+    series.x = result.pose_times;
+    series.translation_m = result.ate_translation_m;
+    series.rotation_deg = result.ate_rotation_deg;
+    series.x_label = est.hasStamps() ? "time (s)" : "pose index";
+    series.title = std::filesystem::path(args.est).filename().string();
+    if (est.hasStamps()) {  // seconds from the start, not since 1970
+      for (double& t : series.x) t -= est.stamps.front();
+    }
+    render::writeErrorPlot(series, args.plot);
+    spdlog::info("wrote {}", args.plot);
+  }
   if (!args.json.empty()) {
     writeFileAtomically(args.json, [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
   }
@@ -156,7 +174,8 @@ void registerEvalCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--label", args->label, "Text printed before every output line");
   command->add_option("--json", args->json, "Also write the results as JSON to this file");
-  command->add_flag("--force", args->force, "Replace an existing --json file");
+  command->add_option("--plot", args->plot, "Also draw the ATE over time into this .png");
+  command->add_flag("--force", args->force, "Replace an existing --json or --plot file");
   command->callback([args] { run(*args); });
 }
 

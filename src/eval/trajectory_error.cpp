@@ -106,7 +106,13 @@ TrajectoryEvaluation evaluateTrajectory(const Trajectory& reference, const Traje
   result.alignment = alignTrajectory(matched_reference, matched_estimate, options.alignment);
   for (Pose& p : matched_estimate) p = result.alignment.apply(p);
 
-  result.ate = absoluteErrors(matched_reference, matched_estimate);
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const std::size_t i = pairs.estimate[k];
+    result.pose_times.push_back(estimate.hasStamps() ? estimate.stamps[i] : static_cast<double>(i));
+    addError(relative(matched_reference[k], matched_estimate[k]), result.ate_translation_m,
+             result.ate_rotation_deg);
+  }
+  result.ate = {summarize(result.ate_translation_m), summarize(result.ate_rotation_deg)};
   result.rpe = relativeErrors(matched_reference, matched_estimate,
                               rpePairs(matched_reference, options.rpe_delta, options.rpe_unit));
   return result;

@@ -99,3 +99,39 @@ TEST(EvalCli, ReportsProblemsInsteadOfGuessing) {
 
 }  // namespace
 }  // namespace hba::test
+
+namespace hba::test {
+namespace {
+
+// Big-endian uint32 at `offset` of a file's bytes (PNG header fields).
+std::uint32_t bigEndian(const std::string& bytes, std::size_t offset) {
+  std::uint32_t value = 0;
+  for (std::size_t i = 0; i < 4; ++i) value = value << 8 | static_cast<unsigned char>(bytes[offset + i]);
+  return value;
+}
+
+TEST(EvalCli, PlotsTheErrorOverTime) {
+  TempDir tmp;
+  std::string gt, est;
+  for (int i = 0; i < 50; ++i) {
+    gt += std::to_string(100.0 + 0.1 * i) + " " + std::to_string(i) + " 0 0 0 0 0 1\n";
+    est += std::to_string(100.0 + 0.1 * i) + " " + std::to_string(i) + " " + std::to_string(0.001 * i * i) + " 0 0 0 0 1\n";
+  }
+  writeText(tmp / "gt.txt", gt);
+  writeText(tmp / "est.txt", est);
+  const std::string base = cliPath().string() + " -q eval --gt " + (tmp / "gt.txt").string() + " --est " +
+                           (tmp / "est.txt").string() + " --plot ";
+  const CommandResult run = runCommand(base + (tmp / "ate.png").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string png = readText(tmp / "ate.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(bigEndian(png, 16), 1200u);  // IHDR width
+  EXPECT_EQ(bigEndian(png, 20), 720u);   // IHDR height
+  EXPECT_NE(runCommand(base + (tmp / "ate.png").string()).exit_code, 0);  // exists: needs --force
+  EXPECT_EQ(runCommand(base + (tmp / "ate.png").string() + " --force").exit_code, 0);
+  EXPECT_NE(runCommand(base + (tmp / "ate.jpg").string()).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace hba::test

@@ -200,6 +200,25 @@ TEST(ErrorStats, MedianOfEvenCountIsTheMiddleMean) {
   EXPECT_EQ(summarize({}).count, 0u);
 }
 
+// Per-pose errors for plots: the estimate's stamps and each pose's ATE.
+TEST(TrajectoryErrorPerPose, TimesAndErrorsOfEveryMatchedPose) {
+  Trajectory reference, estimate;
+  for (int i = 0; i < 5; ++i) {
+    reference.poses.push_back(Pose(Quat::Identity(), Vec3(i, 0, 0)));
+    reference.stamps.push_back(10.0 + i);
+    estimate.poses.push_back(Pose(Quat::Identity(), Vec3(i, i == 3 ? 0.5 : 0.0, 0)));
+    estimate.stamps.push_back(10.0 + i);
+  }
+  EvalOptions options;
+  options.alignment = Alignment::None;
+  const TrajectoryEvaluation r = evaluateTrajectory(reference, estimate, options);
+  ASSERT_EQ(r.pose_times.size(), 5u);
+  EXPECT_EQ(r.pose_times[4], 14.0);
+  EXPECT_DOUBLE_EQ(r.ate_translation_m[3], 0.5);
+  EXPECT_DOUBLE_EQ(r.ate_translation_m[2], 0.0);
+  EXPECT_DOUBLE_EQ(r.ate.translation_m.max, 0.5);
+}
+
 // evo's std is numpy's default: divided by n. 1..4: variance 1.25.
 TEST(ErrorStats, StdIsThePopulationStdAndMinIsTheSmallest) {
   const ErrorStats s = summarize({4.0, 1.0, 3.0, 2.0});

@@ -57,6 +57,10 @@ struct TrajectoryEvaluation {
   Similarity alignment;  // maps the estimate onto the reference
   PoseErrors ate;
   PoseErrors rpe;
+  // Per matched pose, in the estimate's order: its time (the estimate's
+  // stamp, else its index) and its ATE, for plots over time.
+  std::vector<double> pose_times;
+  std::vector<double> ate_translation_m, ate_rotation_deg;
 };
 
 // Associates, aligns (the RPE uses the aligned estimate too, which matters
