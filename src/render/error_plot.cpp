@@ -6,16 +6,13 @@
 #include <cmath>
 
 #include "draw.hpp"
+#include "palette.hpp"
 #include "hba/core/error.hpp"
 
 namespace hba::render {
 namespace {
 
-constexpr Rgb kBackground{14, 17, 23};
-constexpr Rgb kPanel{22, 26, 34};
 constexpr Rgb kGrid{48, 54, 66};
-constexpr Rgb kText{225, 228, 235};
-constexpr Rgb kDimText{150, 156, 170};
 constexpr Rgb kTranslation{90, 200, 250};
 constexpr Rgb kRotation{250, 170, 70};
 
@@ -40,7 +37,7 @@ struct Area {
 
 void drawPanel(Image& image, const Area& a, const std::vector<double>& x, const std::vector<double>& y,
                double x_min, double x_max, const std::string& y_label, Rgb color) {
-  fillRect(image, a.left, a.top, a.left + a.width, a.top + a.height, kPanel);
+  fillRect(image, a.left, a.top, a.left + a.width, a.top + a.height, kPanelBackground);
   const double y_max = std::max(1e-12, *std::max_element(y.begin(), y.end()) * 1.08);
   const auto toPixel = [&](double px, double py) {
     return Pixel(a.left + (px - x_min) / (x_max - x_min) * a.width, a.top + a.height - py / y_max * a.height);

@@ -11,15 +11,12 @@
 #include "draw.hpp"
 #include "hba/core/error.hpp"
 #include "hba/render/colormap.hpp"
+#include "palette.hpp"
 #include "point_raster.hpp"
 
 namespace hba::render {
 namespace {
 
-constexpr Rgb kBackground{14, 17, 23};
-constexpr Rgb kPanelBackground{22, 26, 34};
-constexpr Rgb kText{225, 228, 235};
-constexpr Rgb kDimText{150, 156, 170};
 constexpr int kGap = 10;
 constexpr int kTitleBand = 38;
 constexpr int kFooter = 46;
