@@ -72,8 +72,10 @@ StagingFolder::StagingFolder(fs::path destination, bool force)
       failAt(destination_, "the output folder is not empty (use --force to replace it)");
     }
   }
+  // Like mkdir -p: `-o results/run1` creates results/ too.
+  fs::create_directories(destination_.parent_path(), ec);
   if (!fs::is_directory(destination_.parent_path(), ec)) {
-    failAt(destination_, "the parent folder does not exist");
+    failAt(destination_, "cannot create the parent folder" + (ec ? ": " + ec.message() : std::string()));
   }
   lock_path_ = destination_.parent_path() / ("." + destination_.filename().string() + ".lock");
   lock_fd_ = lockFile(lock_path_);

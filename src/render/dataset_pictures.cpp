@@ -3,6 +3,10 @@
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"
+#include "map_change.hpp"
+
+#include <algorithm>
+#include <optional>
 
 namespace hba::render {
 namespace {
@@ -25,6 +29,48 @@ std::vector<Pose> alignedGroundTruth(const std::vector<Pose>& ground_truth, cons
 
 }  // namespace
 
+// The two pictures one above the other, the first's width.
+Image stacked(const Image& upper, const Image& lower) {
+  Image out(upper.width(), upper.height() + lower.height());
+  for (int y = 0; y < upper.height(); ++y) {
+    for (int x = 0; x < upper.width(); ++x) out.set(x, y, upper.at(x, y));
+  }
+  for (int y = 0; y < lower.height(); ++y) {
+    for (int x = 0; x < std::min(upper.width(), lower.width()); ++x) out.set(x, upper.height() + y, lower.at(x, y));
+  }
+  return out;
+}
+
+// Centimetre corrections are invisible at the scale of a whole map: a second
+// row zooms on the square where the planes got thinnest, coloured by their
+// thickness (a doubled wall is thick, a crisp one thin). Nothing when no
+// plane got thinner.
+std::optional<Image> thicknessZoom(const std::vector<MapPanel>& panels, const std::vector<Pose>& path,
+                                   const RenderSettings& settings) {
+  constexpr double kCell = 1.0;  // m: a patch of wall
+  Eigen::AlignedBox3d box;
+  for (const Pose& pose : path) box.extend(pose.t);
+  const double extent = box.isEmpty() ? 0.0 : box.sizes().head<2>().maxCoeff() + 20.0;  // scans reach beyond
+  const double side = std::clamp(extent / 6.0, 6.0, 40.0);
+  std::vector<MapPanel> zoom(2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    zoom[k].map = panels[k].map;
+    zoom[k].values = planeThickness(panels[k].map, kCell);
+    zoom[k].trajectories = panels[k].trajectories;
+  }
+  const std::optional<Box2> region =
+      mostThinnedRegion(zoom[0].map, zoom[0].values, zoom[1].map, zoom[1].values, kCell, side);
+  if (!region) return std::nullopt;
+  zoom[0].title = "initial: plane thickness where it fell most";
+  zoom[1].title = "optimized: plane thickness";
+  RenderSettings z = settings;
+  z.height = settings.height * 7 / 10;
+  z.crop = *region;
+  z.side_view = false;
+  z.value_scale = RenderSettings::ValueScale{0.0, 0.03, "plane thickness 0 cm", "3 cm"};
+  return renderPanels(zoom, z).image;
+}
+
 void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& before,
                       const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
                       const std::filesystem::path& out_png, const RenderSettings& settings) {
@@ -39,7 +85,9 @@ void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& befor
     const std::vector<Pose> gt = alignedGroundTruth(*ground_truth, after);
     for (MapPanel& panel : panels) panel.trajectories.insert(panel.trajectories.begin(), {"ground truth", gt, kGroundTruthColor});
   }
-  writePng(out_png, renderPanels(panels, settings).image);
+  const Image whole = renderPanels(panels, settings).image;
+  const std::optional<Image> zoom = settings.crop ? std::nullopt : thicknessZoom(panels, after, settings);
+  writePng(out_png, zoom ? stacked(whole, *zoom) : whole);
 }
 
 void writeMapPicture(const io::Dataset& dataset, const std::vector<Pose>& poses,

@@ -122,11 +122,12 @@ void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const Top
                  const Rect& area, std::pair<double, double> heights, double voxel) {
   const int size = footprint(voxel, view.pixels_per_meter);
   PointRaster raster(area.width, area.height, size, size);
+  const bool by_value = !panel.values.empty() && panel.values.size() == panel.map.size();
   for (std::size_t i = 0; i < panel.map.size(); ++i) {
     const Vec3 p = panel.map.world(i);
-    if (!inside(box, p.x(), p.y())) continue;
+    if (!inside(box, p.x(), p.y()) || (by_value && panel.values[i] < 0.0f)) continue;
     const auto pixel = view.toPixel(p.x(), p.y());
-    raster.add(pixel.x() - area.left, pixel.y() - area.top, p.z());
+    raster.add(pixel.x() - area.left, pixel.y() - area.top, by_value ? panel.values[i] : p.z());
   }
   raster.paint(image, area.left, area.top, heights.first, heights.second);
   for (const TrajectoryLayer& layer : panel.trajectories) {
@@ -171,7 +172,8 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
            kDimText, 2);
 }
 
-void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights) {
+void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights,
+                const std::optional<RenderSettings::ValueScale>& scale) {
   const int y = image.height() - kFooter + 12;
   int x = kGap + 6;
   std::vector<std::string> seen;
@@ -185,7 +187,8 @@ void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<dou
     }
   }
   // Height bar.
-  const std::string low = "z " + metres(heights.first), high = metres(heights.second);
+  const std::string low = scale ? scale->low_label : "z " + metres(heights.first);
+  const std::string high = scale ? scale->high_label : metres(heights.second);
   drawText(image, x, y + 2, low, kDimText, 2);
   x += textWidth(low, 2) + 8;
   for (int i = 0; i < 200; ++i) fillRect(image, x + i, y + 1, x + i + 1, y + 15, turbo(kColormapLow + (kColormapHigh - kColormapLow) * i / 199.0));
@@ -220,7 +223,9 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
   if (panel_width < 100 || top_height < 100) throw Error("picture too small for its panels");
 
   const Box2 box = viewBox(panels, settings);
-  const auto heights = heightRange(panels, box, 0.02, 0.98);
+  const auto heights = settings.value_scale
+                           ? std::make_pair(settings.value_scale->low, settings.value_scale->high)
+                           : heightRange(panels, box, 0.02, 0.98);
   const auto z_range = heightRange(panels, box, 0.002, 0.998);
   const double scale = std::min(panel_width / (box.xmax - box.xmin), top_height / (box.ymax - box.ymin));
 
@@ -246,7 +251,7 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
       drawSideView(image, panels[k], box, view, side_area, heights, z_range, settings.voxel);
     }
   }
-  drawFooter(image, panels, heights);
+  drawFooter(image, panels, heights, settings.value_scale);
   return picture;
 }
 

@@ -52,6 +52,12 @@ TEST_F(OptimizeSimulated, DriftingSequenceGetsFiveTimesMoreAccurate) {
   for (const char* name : {"pose.json", "poses_kitti.txt", "poses_tum.txt", "report.json"}) {
     EXPECT_TRUE(fs::exists(out() / name)) << name;
   }
+  // The picture has its second row: the zoom where the drift's doubled walls got thin.
+  const std::string png = test::readText(out() / "before_after.png");
+  ASSERT_GT(png.size(), 24u);
+  const auto height = static_cast<unsigned>(static_cast<unsigned char>(png[22])) << 8 |
+                      static_cast<unsigned char>(png[23]);
+  EXPECT_EQ(height, 1100u + 770u);
   const double kitti = ateRmse(data() / "gt.txt", out() / "poses_kitti.txt", dir.path());
   EXPECT_NEAR(kitti, after, 1e-6);
   const nlohmann::json report = readJson(out() / "report.json");

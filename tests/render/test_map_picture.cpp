@@ -8,6 +8,7 @@
 #include "hba/render/colormap.hpp"
 #include "hba/render/map_picture.hpp"
 #include "../eval/synthetic_scans.hpp"
+#include "map_change.hpp"
 #include "hba/io/pose_file.hpp"
 #include "test_support.hpp"
 
@@ -118,6 +119,37 @@ TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
                                     " --crop 1,2 -o " + (tmp / "x.png").string());
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(tmp / "x.png"));
+}
+
+}  // namespace
+}  // namespace hba::render
+
+namespace hba::render {
+namespace {
+
+// A floor over [0, 20) m squared; where x >= 12 it is seen twice, 4 cm apart.
+PointCloud floorMap(bool doubled) {
+  PointCloud map;
+  for (double x = 0.05; x < 20.0; x += 0.1) {
+    for (double y = 0.05; y < 20.0; y += 0.1) {
+      map.add(Vec3f(static_cast<float>(x), static_cast<float>(y), 0.0f));
+      if (doubled && x >= 12.0) map.add(Vec3f(static_cast<float>(x), static_cast<float>(y), 0.04f));
+    }
+  }
+  return map;
+}
+
+TEST(MapChange, DoubledPlanesAreThickAndTheZoomFindsWhereTheyGotThin) {
+  const PointCloud before = floorMap(true), after = floorMap(false);
+  const std::vector<float> thick = planeThickness(before, 1.0), thin = planeThickness(after, 1.0);
+  EXPECT_NEAR(thick.back(), 0.02, 0.002);  // x near 20: doubled
+  EXPECT_LT(thick.front(), 1e-4);          // x near 0: single
+  EXPECT_LT(thin.back(), 1e-4);
+  const std::optional<Box2> region = mostThinnedRegion(before, thick, after, thin, 1.0, 6.0);
+  ASSERT_TRUE(region);
+  EXPECT_GE(region->xmin, 12.0);
+  // The same map twice, or moved rigidly: no zoom.
+  EXPECT_FALSE(mostThinnedRegion(after, thin, after, thin, 1.0, 6.0));
 }
 
 }  // namespace

@@ -30,6 +30,12 @@ struct RenderSettings {
   double voxel = 0.1;            // m, downsampling of each merged map
   std::optional<Box2> crop;      // show only this region (at full resolution)
   bool side_view = true;         // add the side strip under each bird's-eye view
+  // Colour by the panels' `values` on this scale instead of by height.
+  struct ValueScale {
+    double low = 0.0, high = 1.0;
+    std::string low_label, high_label;  // "plane thickness 0 cm", "3 cm"
+  };
+  std::optional<ValueScale> value_scale;
 };
 
 // Distinct trajectory colours, chosen to stand out from the height colours.
@@ -46,6 +52,8 @@ struct TrajectoryLayer {
 struct MapPanel {
   std::string title;
   PointCloud map;  // world frame
+  // One per map point when the settings have a value_scale (< 0: not drawn).
+  std::vector<float> values;
   std::vector<TrajectoryLayer> trajectories;
 };
 

@@ -1,0 +1,90 @@
+#include "map_change.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <unordered_map>
+
+#include "hba/voxel/voxel_key.hpp"
+
+namespace hba::render {
+namespace {
+
+constexpr std::size_t kMinPoints = 10;
+constexpr std::size_t kMinVoxelsPerSquare = 5;
+constexpr double kMinMeanThinning = 0.002;  // m: below it, nothing worth a zoom changed
+constexpr double kPlanarRatio = 0.15;  // lambda_min / lambda_mid below this: a plane
+
+using VoxelMap = std::unordered_map<voxel::VoxelKey, float, voxel::VoxelKeyHash>;
+
+struct Moments {
+  std::size_t count = 0;
+  Vec3 sum = Vec3::Zero();
+  Mat3 outer = Mat3::Zero();
+};
+
+// Thickness per voxel (world grid), -1 where it is no plane.
+VoxelMap voxelThickness(const PointCloud& map, double cell) {
+  std::unordered_map<voxel::VoxelKey, Moments, voxel::VoxelKeyHash> voxels;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const Vec3 local = map.points[i].cast<double>();  // relative to the origin: precise
+    Moments& m = voxels[voxel::VoxelKey::of(map.world(i), cell)];
+    ++m.count;
+    m.sum += local;
+    m.outer += local * local.transpose();
+  }
+  VoxelMap thickness;
+  for (const auto& [key, m] : voxels) {
+    float value = -1.0f;
+    if (m.count >= kMinPoints) {
+      const double n = static_cast<double>(m.count);
+      const Vec3 mean = m.sum / n;
+      const Vec3 eigen =
+          Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / n - mean * mean.transpose(), Eigen::EigenvaluesOnly)
+              .eigenvalues();
+      if (eigen(0) < kPlanarRatio * eigen(1)) value = static_cast<float>(std::sqrt(std::max(0.0, eigen(0))));
+    }
+    thickness.emplace(key, value);
+  }
+  return thickness;
+}
+
+}  // namespace
+
+std::vector<float> planeThickness(const PointCloud& map, double cell) {
+  const VoxelMap thickness = voxelThickness(map, cell);
+  std::vector<float> out(map.size());
+  for (std::size_t i = 0; i < map.size(); ++i) out[i] = thickness.at(voxel::VoxelKey::of(map.world(i), cell));
+  return out;
+}
+
+std::optional<Box2> mostThinnedRegion(const PointCloud& before, const std::vector<float>&,
+                                      const PointCloud& after, const std::vector<float>&, double cell,
+                                      double side) {
+  const VoxelMap was = voxelThickness(before, cell);
+  const VoxelMap is = voxelThickness(after, cell);
+  // Sum of the thinning of the voxels that are planes in both maps, per square.
+  std::unordered_map<voxel::VoxelKey, std::pair<double, std::size_t>, voxel::VoxelKeyHash> squares;
+  for (const auto& [key, now] : is) {
+    const auto then = was.find(key);
+    if (now < 0.0f || then == was.end() || then->second < 0.0f) continue;
+    const Vec3 centre = (Vec3(key.x, key.y, key.z) + Vec3::Constant(0.5)) * cell;
+    voxel::VoxelKey square = voxel::VoxelKey::of(centre, side);
+    square.z = 0;
+    auto& [drop, voxels] = squares[square];
+    drop += then->second - now;
+    ++voxels;
+  }
+  std::optional<Box2> best;
+  double best_drop = 0.0;
+  for (const auto& [square, sum] : squares) {
+    const auto [drop, voxels] = sum;
+    if (voxels < kMinVoxelsPerSquare || drop < kMinMeanThinning * static_cast<double>(voxels)) continue;
+    if (drop <= best_drop) continue;
+    best_drop = drop;
+    best = Box2{square.x * side, square.y * side, (square.x + 1) * side, (square.y + 1) * side};
+  }
+  return best;
+}
+
+}  // namespace hba::render
