@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "hba/core/error.hpp"
+#include "hba/core/progress.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::eval {
@@ -91,8 +92,10 @@ PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& p
   // would lose centimetres there, and the writers then store float64.
   const bool far = !used.empty() && used.front().t.cwiseAbs().maxCoeff() > 1e4;
   VoxelMerger merger(settings, far ? used.front().t : Vec3::Zero());
+  Progress progress("merging the map", dataset.size(), "scans");
   for (std::size_t i = 0; i < dataset.size(); ++i) {
     merger.add(dataset.loadScan(i), used[i], static_cast<std::uint32_t>(i));
+    progress.advance();
   }
   return merger.result();
 }

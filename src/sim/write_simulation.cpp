@@ -8,6 +8,7 @@
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/sim/simulation.hpp"
+#include "hba/core/progress.hpp"
 #include "hba/core/staging_folder.hpp"
 
 namespace hba::sim {
@@ -19,6 +20,7 @@ void writeScans(const Simulation& simulation, const fs::path& scans, const Write
   fs::create_directory(scans);
   const std::size_t frames = simulation.truth.size();
   std::atomic<std::size_t> done{0};
+  Progress progress("simulating", frames, "frames");
   std::mutex progress_mutex;
   // One frame per task: frames cost milliseconds each, so scheduling is free,
   // and each frame's output depends only on (seed, frame).
@@ -28,6 +30,7 @@ void writeScans(const Simulation& simulation, const fs::path& scans, const Write
                         io::writePcd(scans / scanFileName(k, frames), simulateFrame(simulation, k),
                                      io::PcdEncoding::Binary);
                         const std::size_t finished = ++done;
+                        progress.advance();
                         const bool report = options.progress && options.progress_every > 0 &&
                                             finished % options.progress_every == 0;
                         if (report) {
