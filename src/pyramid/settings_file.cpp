@@ -42,6 +42,16 @@ void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& know
   }
 }
 
+// `key`: adjacent | all | from_first (or the command line's from-first).
+void readFactorPairs(const YAML::Node& root, const char* key, FactorPairs& pairs, const std::string& source) {
+  std::string name;
+  read(root, key, name, source);
+  if (name.empty()) return;
+  const auto parsed = factorPairsFromString(name);
+  if (!parsed) bad(source, std::string(key) + " must be adjacent, all or from_first");
+  pairs = *parsed;
+}
+
 // Keys named like the flags of `hba optimize` (--iterations -> iterations),
 // so a setting has one name on the command line and in the file. Giving a
 // setting under both names is an error: which one wins would be a guess.
@@ -75,13 +85,7 @@ void readFlagNamedKeys(const YAML::Node& root, HbaSettings& s, const std::string
     read(root, "ba_iterations", s.local.max_iterations, source);
     s.global.max_iterations = s.local.max_iterations;
   }
-  std::string pairs;
-  read(root, "pairs", pairs, source);
-  if (!pairs.empty()) {
-    const auto parsed = factorPairsFromString(pairs);
-    if (!parsed) bad(source, "pairs must be adjacent, all or from_first");
-    s.factor_pairs = *parsed;
-  }
+  readFactorPairs(root, "pairs", s.factor_pairs, source);
 }
 
 void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
@@ -206,13 +210,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
       if (!parsed) bad(source, "top_down must be pose_graph or direct_assign");
       settings.top_down = *parsed;
     }
-    std::string pairs;
-    read(root, "factor_pairs", pairs, source);
-    if (!pairs.empty()) {
-      const auto parsed = factorPairsFromString(pairs);
-      if (!parsed) bad(source, "factor_pairs must be adjacent, all or from_first");
-      settings.factor_pairs = *parsed;
-    }
+    readFactorPairs(root, "factor_pairs", settings.factor_pairs, source);
     readBa(root["local"], "local", settings.local, source);
     readBa(root["global"], "global", settings.global, source);
   } catch (const YAML::Exception& e) {
