@@ -52,15 +52,15 @@ std::optional<Image> thicknessZoom(const std::vector<MapPanel>& panels, const st
   for (const Pose& pose : path) box.extend(pose.t);
   const double extent = box.isEmpty() ? 0.0 : box.sizes().head<2>().maxCoeff() + 20.0;  // scans reach beyond
   const double side = std::clamp(extent / 6.0, 6.0, 40.0);
+  const PlaneThickness before(panels[0].map, kCell), after(panels[1].map, kCell);
+  const std::optional<Box2> region = mostThinnedRegion(before, after, side);
+  if (!region) return std::nullopt;
   std::vector<MapPanel> zoom(2);
   for (std::size_t k = 0; k < 2; ++k) {
     zoom[k].map = panels[k].map;
-    zoom[k].values = planeThickness(panels[k].map, kCell);
+    zoom[k].values = (k == 0 ? before : after).perPoint(panels[k].map);
     zoom[k].trajectories = panels[k].trajectories;
   }
-  const std::optional<Box2> region =
-      mostThinnedRegion(zoom[0].map, zoom[0].values, zoom[1].map, zoom[1].values, kCell, side);
-  if (!region) return std::nullopt;
   zoom[0].title = "initial: plane thickness where it fell most";
   zoom[1].title = "optimized: plane thickness";
   RenderSettings z = settings;

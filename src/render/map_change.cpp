@@ -15,16 +15,15 @@ constexpr std::size_t kMinVoxelsPerSquare = 5;
 constexpr double kMinMeanThinning = 0.002;  // m: below it, nothing worth a zoom changed
 constexpr double kPlanarRatio = 0.15;  // lambda_min / lambda_mid below this: a plane
 
-using VoxelMap = std::unordered_map<voxel::VoxelKey, float, voxel::VoxelKeyHash>;
-
 struct Moments {
   std::size_t count = 0;
   Vec3 sum = Vec3::Zero();
   Mat3 outer = Mat3::Zero();
 };
 
-// Thickness per voxel (world grid), -1 where it is no plane.
-VoxelMap voxelThickness(const PointCloud& map, double cell) {
+}  // namespace
+
+PlaneThickness::PlaneThickness(const PointCloud& map, double cell) : cell_(cell) {
   std::unordered_map<voxel::VoxelKey, Moments, voxel::VoxelKeyHash> voxels;
   for (std::size_t i = 0; i < map.size(); ++i) {
     const Vec3 local = map.points[i].cast<double>();  // relative to the origin: precise
@@ -33,7 +32,6 @@ VoxelMap voxelThickness(const PointCloud& map, double cell) {
     m.sum += local;
     m.outer += local * local.transpose();
   }
-  VoxelMap thickness;
   for (const auto& [key, m] : voxels) {
     float value = -1.0f;
     if (m.count >= kMinPoints) {
@@ -44,25 +42,23 @@ VoxelMap voxelThickness(const PointCloud& map, double cell) {
               .eigenvalues();
       if (eigen(0) < kPlanarRatio * eigen(1)) value = static_cast<float>(std::sqrt(std::max(0.0, eigen(0))));
     }
-    thickness.emplace(key, value);
+    voxels_.emplace(key, value);
   }
-  return thickness;
 }
 
-}  // namespace
-
-std::vector<float> planeThickness(const PointCloud& map, double cell) {
-  const VoxelMap thickness = voxelThickness(map, cell);
+std::vector<float> PlaneThickness::perPoint(const PointCloud& map) const {
   std::vector<float> out(map.size());
-  for (std::size_t i = 0; i < map.size(); ++i) out[i] = thickness.at(voxel::VoxelKey::of(map.world(i), cell));
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const auto it = voxels_.find(voxel::VoxelKey::of(map.world(i), cell_));
+    out[i] = it == voxels_.end() ? -1.0f : it->second;
+  }
   return out;
 }
 
-std::optional<Box2> mostThinnedRegion(const PointCloud& before, const std::vector<float>&,
-                                      const PointCloud& after, const std::vector<float>&, double cell,
-                                      double side) {
-  const VoxelMap was = voxelThickness(before, cell);
-  const VoxelMap is = voxelThickness(after, cell);
+std::optional<Box2> mostThinnedRegion(const PlaneThickness& before, const PlaneThickness& after, double side) {
+  const double cell = after.cell();
+  const auto& was = before.voxels();
+  const auto& is = after.voxels();
   // Sum of the thinning of the voxels that are planes in both maps, per square.
   std::unordered_map<voxel::VoxelKey, std::pair<double, std::size_t>, voxel::VoxelKeyHash> squares;
   for (const auto& [key, now] : is) {

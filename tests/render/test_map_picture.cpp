@@ -141,15 +141,16 @@ PointCloud floorMap(bool doubled) {
 
 TEST(MapChange, DoubledPlanesAreThickAndTheZoomFindsWhereTheyGotThin) {
   const PointCloud before = floorMap(true), after = floorMap(false);
-  const std::vector<float> thick = planeThickness(before, 1.0), thin = planeThickness(after, 1.0);
+  const PlaneThickness doubled(before, 1.0), single(after, 1.0);
+  const std::vector<float> thick = doubled.perPoint(before), thin = single.perPoint(after);
   EXPECT_NEAR(thick.back(), 0.02, 0.002);  // x near 20: doubled
   EXPECT_LT(thick.front(), 1e-4);          // x near 0: single
   EXPECT_LT(thin.back(), 1e-4);
-  const std::optional<Box2> region = mostThinnedRegion(before, thick, after, thin, 1.0, 6.0);
+  const std::optional<Box2> region = mostThinnedRegion(doubled, single, 6.0);
   ASSERT_TRUE(region);
   EXPECT_GE(region->xmin, 12.0);
   // The same map twice, or moved rigidly: no zoom.
-  EXPECT_FALSE(mostThinnedRegion(after, thin, after, thin, 1.0, 6.0));
+  EXPECT_FALSE(mostThinnedRegion(single, single, 6.0));
 }
 
 }  // namespace
