@@ -109,6 +109,36 @@ class FactoredSystem {
     }
   }
 
+  // H itself (6K x 6K): the frames' diagonal blocks, every plane's
+  // Z^T W Z and the prior's off-diagonal blocks. Row blocks in parallel,
+  // each written by one thread.
+  Eigen::MatrixXd dense() const {
+    const Eigen::Index n = 6 * static_cast<Eigen::Index>(frames_);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
+    tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
+      const auto row = static_cast<Eigen::Index>(6 * i);
+      H.block<6, 6>(row, row) += diagonal_[i];
+      for (std::uint32_t u = index_.frame_begin[i]; u < index_.frame_begin[i + 1]; ++u) {
+        const std::uint32_t k = index_.uses[u];
+        const std::uint32_t p = index_.plane_of[k];
+        const Eigen::Matrix<float, 6, 3> left =
+            Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() *
+            weights_[p].asDiagonal();
+        for (std::uint32_t l = index_.plane_begin[p]; l < index_.plane_begin[p + 1]; ++l) {
+          const auto col = static_cast<Eigen::Index>(6 * index_.frame_of[l]);
+          H.block<6, 6>(row, col) +=
+              (left * Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * l])).cast<double>();
+        }
+      }
+    });
+    for (const PriorBlock& block : prior_) {
+      H.block<6, 6>(6 * static_cast<Eigen::Index>(block.a), 6 * static_cast<Eigen::Index>(block.b)) += block.ab;
+      H.block<6, 6>(6 * static_cast<Eigen::Index>(block.b), 6 * static_cast<Eigen::Index>(block.a)) +=
+          block.ab.transpose();
+    }
+    return H;
+  }
+
   double cost() const { return cost_; }
   const Eigen::VectorXd& gradient() const { return gradient_; }
   // The 6x6 diagonal block of frame i of H (for the preconditioner).
@@ -164,6 +194,20 @@ Eigen::VectorXd dampingScale(const FactoredSystem& system) {
   d = d.cwiseMax(0.0);
   const double floor = std::max(1e-9 * d.maxCoeff(), 1e-12);
   return d.cwiseMax(floor);
+}
+
+// Solves (H + mu D) x = -g for every frame but frame 0 by factoring it;
+// zero if the damped matrix is not positive definite.
+Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd& gradient,
+                                 const Eigen::VectorXd& scale, double mu) {
+  const Eigen::Index n = H.rows() - 6;
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(H.rows());
+  if (n <= 0) return x;
+  Eigen::MatrixXd A = H.bottomRightCorner(n, n);
+  A.diagonal() += mu * scale.tail(n);
+  const Eigen::LLT<Eigen::MatrixXd> llt(A);
+  if (llt.info() == Eigen::Success) x.tail(n) = llt.solve(-gradient.tail(n));
+  return x;
 }
 
 // Solves (H + mu D) x = -g for every frame but frame 0 by preconditioned
@@ -238,15 +282,21 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
   double mu = settings.initial_damping;
   double nu = 2.0;
   std::unique_ptr<FactoredSystem> system;
+  const bool dense = poses.size() <= settings.dense_max_frames;
+  Eigen::MatrixXd H;  // of `system`, when dense
   while (poses.size() > 1 && summary.iterations < settings.max_iterations && cost > 0.0) {
-    if (!system) system = std::make_unique<FactoredSystem>(problem, prior, index, poses);
+    if (!system) {
+      system = std::make_unique<FactoredSystem>(problem, prior, index, poses);
+      if (dense) H = system->dense();
+    }
     Eigen::VectorXd g = system->gradient();
     g.head<6>().setZero();
     if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
     ++summary.iterations;
 
     const Eigen::VectorXd scale = dampingScale(*system);
-    Eigen::VectorXd step = solveDamped(*system, scale, mu, settings);
+    Eigen::VectorXd step = dense ? solveDampedDense(H, g, scale, mu)
+                                 : solveDamped(*system, scale, mu, settings);
     double largest = 0.0;  // of the step, relative to the caps
     for (std::size_t i = 0; i < poses.size(); ++i) {
       largest = std::max({largest, step.segment<3>(6 * i).norm() / settings.max_step_m,

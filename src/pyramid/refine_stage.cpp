@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "consistency.hpp"
+#include "group_refinement.hpp"
 #include "hba/ba/global_refinement.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
@@ -46,14 +48,16 @@ struct Block {
 };
 
 // Loads frames from `first` on until `max_points` are held (at least two
-// frames, unless the sequence ends).
-Block loadBlock(const ScanSource& scans, std::size_t first, std::size_t max_points, double voxel) {
+// frames, unless the sequence ends), and never beyond `last_end`.
+Block loadBlock(const ScanSource& scans, std::size_t first, std::size_t max_points, double voxel,
+                std::size_t last_end = SIZE_MAX) {
   Block block;
   block.first = first;
   block.end = first;
   const std::size_t batch = 64;
-  while (block.end < scans.size() && (block.points < max_points || block.end - first < 2)) {
-    const std::size_t end = std::min(scans.size(), block.end + batch);
+  const std::size_t stop = std::min(scans.size(), last_end);
+  while (block.end < stop && (block.points < max_points || block.end - first < 2)) {
+    const std::size_t end = std::min(stop, block.end + batch);
     std::vector<PointCloud> loaded(end - block.end);
     tbb::parallel_for(block.end, end, [&](std::size_t i) {
       PointCloud& cloud = loaded[i - block.end];
@@ -81,6 +85,53 @@ struct RmsSum {
   double rms() const { return points > 0.0 ? std::sqrt(squares / points) : 0.0; }
 };
 
+// The self-check's figures for one stretch of frames.
+struct RegionFigures {
+  std::size_t first_frame = 0;
+  double input_rms = 0.0;
+  double final_rms = 0.0;
+};
+
+void addRegions(const FixedPlaneMap& fixed, const std::vector<Pose>& input,
+                const std::vector<Pose>& poses, std::size_t first, std::vector<RegionFigures>& out) {
+  const std::vector<double> region_input = fixed.regionRms(input);
+  const std::vector<double> region_final = fixed.regionRms(poses);
+  for (std::size_t k = 0; k < fixed.regions(); ++k) {
+    out.push_back({first + fixed.regionStarts()[k], region_input[k], region_final[k]});
+  }
+}
+
+// A block's input poses, moved rigidly onto `result` at its first frame.
+std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<Pose>& result,
+                            std::size_t first, std::size_t end) {
+  const Pose onto = result[first] * initial[first].inverse();
+  std::vector<Pose> input = slice(initial, first, end);
+  for (Pose& pose : input) pose = onto * pose;
+  return input;
+}
+
+// The final poses measured again on each block's fixed map (the groups
+// moved them after the blocks were checked): figures only.
+double remeasure(const ScanSource& scans, const std::vector<Pose>& initial,
+                 const std::vector<Pose>& result, const std::vector<Block>& spans,
+                 const ba::RefinementSettings& rs, const HbaSettings& settings,
+                 std::vector<RegionFigures>& regions) {
+  RmsSum final_sum;
+  regions.clear();
+  for (const Block& span : spans) {
+    const Block block =
+        loadBlock(scans, span.first, SIZE_MAX, settings.refine_scan_voxel, span.end);
+    std::vector<const PointCloud*> pointers;
+    for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
+    const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
+    const std::vector<Pose> poses = slice(result, block.first, block.end);
+    const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size()));
+    final_sum.add(fixed.rms(poses), fixed.points());
+    addRegions(fixed, input, poses, block.first, regions);
+  }
+  return final_sum.rms();
+}
+
 }  // namespace
 
 std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
@@ -94,19 +145,20 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   RmsSum input_sum, hierarchy_sum, final_sum, refine_before, refine_after;
 
   std::vector<Pose> result = hierarchy;
+  std::vector<RegionFigures> regions;
+  std::vector<Block> spans;  // frames of each block (no clouds)
   std::size_t first = 0;
   std::size_t blocks = 0;
   while (first + 1 < initial.size() || blocks == 0) {
     const Block block = loadBlock(scans, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
+    spans.push_back({block.first, block.end, {}, 0});
     r.scan_points += block.points;
     std::vector<const PointCloud*> pointers;
     for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
     // The input of this block, moved rigidly onto the result at its first
     // frame (the whole input when the block is the sequence).
-    const Pose onto = result[block.first] * initial[block.first].inverse();
-    std::vector<Pose> input = slice(initial, block.first, block.end);
-    for (Pose& pose : input) pose = onto * pose;
+    const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
     const std::vector<Pose> current = slice(result, block.first, block.end);
 
     const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio,
@@ -161,30 +213,39 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
       final_rms = input_rms;
     }
     final_sum.add(final_rms, fixed.points());
-    const std::vector<double> region_input = fixed.regionRms(input);
-    const std::vector<double> region_final = fixed.regionRms(poses);
-    for (std::size_t k = 0; k < fixed.regions(); ++k) {
-      c.region_first_frame.push_back(block.first + fixed.regionStarts()[k]);
-      c.region_input_rms.push_back(region_input[k]);
-      c.region_final_rms.push_back(region_final[k]);
-      // The input's own planes favour the input a little where a loop
-      // closure pulls frames towards earlier scans (hku1's return: +5 %
-      // here while the map's entropy drops): warn only beyond that.
-      if (region_final[k] > region_input[k] * 1.10) {
-        warn(report, fmt::format("frames from {}: less consistent than the input (plane RMS "
-                                 "{:.4f} -> {:.4f} m)",
-                                 c.region_first_frame.back(), region_input[k], region_final[k]));
-      }
-    }
+    addRegions(fixed, input, poses, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
     if (block.end >= initial.size()) break;
     // The next block overlaps this one by a quarter, so that no frame is
     // refined only at a block's edge.
     first = std::max(block.first + 1, block.end - (block.end - block.first) / 4);
   }
+  c.final_rms = final_sum.rms();
+  if (blocks > 1 && settings.refine && settings.refine_groups && report.layers > 1) {
+    // Blocks of consecutive frames cannot see planes shared by passes far
+    // apart in time, nor bends longer than a block: rigid groups of the
+    // blocks' frames are placed as a whole, and the checks measured again.
+    result = refineGroups(scans, initial, result, settings, report);
+    const GroupRefinementReport& g = r.groups;
+    if (g.ran && !g.rejected) {
+      c.final_rms = remeasure(scans, initial, result, spans, rs, settings, regions);
+    }
+  }
+  for (const RegionFigures& region : regions) {
+    c.region_first_frame.push_back(region.first_frame);
+    c.region_input_rms.push_back(region.input_rms);
+    c.region_final_rms.push_back(region.final_rms);
+    // The input's own planes favour the input a little where a loop
+    // closure pulls frames towards earlier scans (hku1's return: +5 %
+    // here while the map's entropy drops): warn only beyond that.
+    if (region.final_rms > region.input_rms * 1.10) {
+      warn(report, fmt::format("frames from {}: less consistent than the input (plane RMS "
+                               "{:.4f} -> {:.4f} m)",
+                               region.first_frame, region.input_rms, region.final_rms));
+    }
+  }
   c.input_rms = input_sum.rms();
   c.hierarchy_rms = hierarchy_sum.rms();
-  c.final_rms = final_sum.rms();
   r.rms_before = refine_before.rms();
   r.rms_after = refine_after.rms();
   r.blocks = blocks;

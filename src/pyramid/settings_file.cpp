@@ -177,6 +177,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
                        "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
                        "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
                        "refine_iterations", "refine_rounds", "refine_round_gain",
+                       "refine_groups", "group_min_frames", "group_max_count", "group_voxel",
                        "motion_prior",
                        // the command line's names, for the settings that have a flag
                        "iterations", "voxel", "voxel_scans", "voxel_local", "voxel_global",
@@ -200,6 +201,10 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
     read(root, "refine_iterations", settings.refinement.lm.max_iterations, source);
     read(root, "refine_rounds", settings.refinement.association_rounds, source);
     read(root, "refine_round_gain", settings.refinement.round_gain, source);
+    read(root, "refine_groups", settings.refine_groups, source);
+    read(root, "group_min_frames", settings.group_min_frames, source);
+    read(root, "group_max_count", settings.group_max_count, source);
+    read(root, "group_voxel", settings.group_voxel, source);
     bool motion_prior = settings.motionPrior();
     read(root, "motion_prior", motion_prior, source);
     settings.setMotionPrior(motion_prior);
@@ -256,6 +261,14 @@ void checkSettings(const HbaSettings& s) {
   if (!(s.refinement.round_gain >= 0.0 && s.refinement.round_gain <= 1.0)) {
     throw Error("setting refine_round_gain must be in [0, 1]");
   }
+  if (s.group_min_frames < 2) throw Error("setting group_min_frames must be >= 2");
+  // The groups' BA is solved densely: (6 x groups)^2 doubles.
+  if (s.group_max_count < 3 || s.group_max_count > 2000) {
+    throw Error("setting group_max_count must be in [3, 2000]");
+  }
+  if (!(s.group_voxel == 0.0 || (s.group_voxel >= 1e-3 && s.group_voxel <= 100.0))) {
+    throw Error("setting group_voxel must be 0 (no downsampling) or in [0.001, 100] m");
+  }
   checkBa(s.local, "local");
   checkBa(s.global, "global");
 }
@@ -279,6 +292,10 @@ nlohmann::json settingsToJson(const HbaSettings& s) {
           {"refine_iterations", s.refinement.lm.max_iterations},
           {"refine_rounds", s.refinement.association_rounds},
           {"refine_round_gain", s.refinement.round_gain},
+          {"refine_groups", s.refine_groups},
+          {"group_min_frames", s.group_min_frames},
+          {"group_max_count", s.group_max_count},
+          {"group_voxel", s.group_voxel},
           {"motion_prior", s.motionPrior()},
           {"local", baToJson(s.local)},
           {"global", baToJson(s.global)}};
@@ -343,6 +360,10 @@ std::string settingsToYaml(const HbaSettings& s) {
   out += yamlLine("", "refine_iterations", s.refinement.lm.max_iterations, "LM iterations per association");
   out += yamlLine("", "refine_rounds", s.refinement.association_rounds, "associations at most");
   out += yamlLine("", "refine_round_gain", s.refinement.round_gain, "associate again while a round cuts the cost by this share");
+  out += yamlLine("", "refine_groups", s.refine_groups, "beyond one block, first place rigid groups of frames as a whole");
+  out += yamlLine("", "group_min_frames", s.group_min_frames, "frames per group at least");
+  out += yamlLine("", "group_max_count", s.group_max_count, "groups at most (larger groups on longer sequences)");
+  out += yamlLine("", "group_voxel", s.group_voxel, "groups' merged clouds downsampled to this, m");
   out += "local:  # the windows of layers 1 and up\n" + baYaml(s.local, "local");
   out += "global:  # the one BA of the top layer\n" + baYaml(s.global, "global");
   return out;

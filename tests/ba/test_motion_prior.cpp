@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <random>
 
 #include "hba/ba/association.hpp"
@@ -147,40 +149,77 @@ TEST(MotionPrior, BarelyMovesAWellConstrainedWindow) {
   EXPECT_LT(relativePoseError(with_prior.poses, window.truth).max_translation, 0.01);
 }
 
-// The sparse solver reaches the same optimum as the dense one.
-TEST(SparseLm, MatchesTheDenseSolver) {
+// One association of a noisy eight-frame window, its motion prior, and
+// the dense LM's optimum on it: what the sparse LM must reach.
+struct SparseLmCase {
+  test::SyntheticWindow window;
+  Association association;
+  MotionPrior prior;
+  std::vector<Pose> dense;
+  LmSummary dense_summary;
+};
+
+SparseLmCase sparseLmCase() {
   SyntheticWindowSpec spec;
   spec.frames = 8;
   spec.noise_sigma = 0.01;
-  const auto window = makeSyntheticWindow(spec);
+  SparseLmCase c{makeSyntheticWindow(spec), {}, {}, {}, {}};
   BaSettings settings;
   settings.planes.voxel_size = 8.0;
-  settings.association_rounds = 1;
-  settings.max_iterations = 0;  // only the association
-  const BaResult associated = optimizeWindow(window.scanPointers(), window.initial, settings);
-  ASSERT_GT(associated.num_planes, 4u);
-
-  const Association association =
-      associate(window.scanPointers(), window.initial, settings.planes, 0.0);
-  const MotionPrior prior = neighbourPrior(window.initial, {}, MotionPriorSettings{});
-  std::vector<Pose> dense = window.initial;
-  std::vector<Pose> sparse = window.initial;
+  c.association = associate(c.window.scanPointers(), c.window.initial, settings.planes, 0.0);
+  EXPECT_GT(c.association.problem.numPlanes(), 4u);
+  c.prior = neighbourPrior(c.window.initial, {}, MotionPriorSettings{});
+  c.dense = c.window.initial;
   LmSettings dense_settings;
   dense_settings.max_iterations = 50;
   dense_settings.relative_cost_tolerance = 1e-14;
+  c.dense_summary = solveLevenbergMarquardt(c.association.problem, c.dense, dense_settings, c.prior);
+  return c;
+}
+
+void expectSameOptimum(const SparseLmCase& c, const std::vector<Pose>& sparse, const LmSummary& s) {
+  EXPECT_LT(s.final_cost, 0.05 * s.initial_cost);
+  EXPECT_NEAR(s.final_cost, c.dense_summary.final_cost, 1e-6 * c.dense_summary.initial_cost);
+  const auto gap = relativePoseError(sparse, c.dense);
+  EXPECT_LT(gap.max_translation, 1e-4);
+  EXPECT_LT(gap.max_angle_deg, 1e-3);
+  EXPECT_EQ(sparse[0].t, c.window.initial[0].t);  // gauge
+}
+
+// The sparse solver reaches the same optimum as the dense one.
+TEST(SparseLm, MatchesTheDenseSolver) {
+  const SparseLmCase c = sparseLmCase();
+  std::vector<Pose> sparse = c.window.initial;
   SparseLmSettings sparse_settings;
   sparse_settings.max_iterations = 50;
   sparse_settings.relative_cost_tolerance = 1e-14;
   sparse_settings.cg_max_iterations = 500;
   sparse_settings.cg_relative_tolerance = 1e-12;
-  const LmSummary d = solveLevenbergMarquardt(association.problem, dense, dense_settings, prior);
-  const LmSummary s = solveSparseLevenbergMarquardt(association.problem, sparse, sparse_settings, prior);
-  EXPECT_LT(s.final_cost, 0.05 * s.initial_cost);
-  EXPECT_NEAR(s.final_cost, d.final_cost, 1e-6 * d.initial_cost);
-  const auto gap = relativePoseError(sparse, dense);
-  EXPECT_LT(gap.max_translation, 1e-4);
-  EXPECT_LT(gap.max_angle_deg, 1e-3);
-  EXPECT_EQ(sparse[0].t, window.initial[0].t);  // gauge
+  const LmSummary s = solveSparseLevenbergMarquardt(c.association.problem, sparse, sparse_settings, c.prior);
+  expectSameOptimum(c, sparse, s);
+}
+
+// With few frames the factored system is formed and factored instead of
+// iterated: exact steps reach the optimum in a few iterations even where
+// one conjugate-gradient step per iteration (the setting it overrides)
+// could not.
+TEST(SparseLm, FormedSystemGivesExactSteps) {
+  const SparseLmCase c = sparseLmCase();
+  SparseLmSettings settings;
+  settings.max_iterations = 8;
+  settings.relative_cost_tolerance = 1e-14;
+  settings.cg_max_iterations = 1;
+  settings.dense_max_frames = 8;
+  std::vector<Pose> formed = c.window.initial;
+  const LmSummary s = solveSparseLevenbergMarquardt(c.association.problem, formed, settings, c.prior);
+  expectSameOptimum(c, formed, s);
+
+  settings.dense_max_frames = 7;  // one frame too many: conjugate gradients, one step each
+  std::vector<Pose> iterated = c.window.initial;
+  const LmSummary i = solveSparseLevenbergMarquardt(c.association.problem, iterated, settings, c.prior);
+  EXPECT_GT(i.final_cost - c.dense_summary.final_cost, 1e-6 * c.dense_summary.initial_cost);
+  std::printf("cost above the optimum: formed %.3g, iterated %.3g\n",
+              s.final_cost - c.dense_summary.final_cost, i.final_cost - c.dense_summary.final_cost);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 // preconditioner. Memory and time per iteration grow with the number of
 // observations, not with the square or cube of the frame count. Frame 0 is
 // held fixed (gauge). Deterministic for any thread count.
+#include <cstddef>
 #include <vector>
 
 #include "hba/ba/lm_solver.hpp"
@@ -30,6 +31,11 @@ struct SparseLmSettings {
   // (nearly) free must not be thrown away along the free direction.
   double max_step_m = 0.5;
   double max_step_deg = 5.0;
+  // Up to this many frames the damped system is formed and factored
+  // instead (exact steps, (6K)^2 memory): for few unknowns whose weak,
+  // long-range modes conjugate gradients reach only slowly (the rigid
+  // groups of a long sequence). 0: always conjugate gradients.
+  std::size_t dense_max_frames = 0;
 };
 
 // Optimizes `poses` in place on the plane cost plus `prior`.

@@ -46,8 +46,23 @@ struct IterationReport {
 };
 
 // The final refinement over every layer-1 frame.
+// The coarse, whole-sequence half of the refinement (group_refinement.hpp).
+struct GroupRefinementReport {
+  bool ran = false;
+  std::size_t groups = 0;
+  std::size_t frames_per_group = 0;
+  std::size_t points = 0;  // in the groups' merged clouds
+  std::size_t planes = 0;
+  double rms_before = 0.0;  // m, on the groups' planes found at the start
+  double rms_after = 0.0;
+  bool rejected = false;  // blurrier: the groups kept their start poses
+  double largest_move_m = 0.0;  // of a group
+  double seconds = 0.0;
+};
+
 struct RefinementReport {
   bool ran = false;
+  GroupRefinementReport groups;
   std::size_t blocks = 0;  // consecutive, overlapping stretches of frames (memory bound)
   std::size_t scan_points = 0;  // points held, summed over blocks (at refine_scan_voxel)
   std::size_t planes = 0;

@@ -1,0 +1,139 @@
+#include "group_refinement.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "consistency.hpp"
+#include "hba/ba/global_refinement.hpp"
+#include "hba/core/progress.hpp"
+#include "hba/core/stopwatch.hpp"
+#include "hba/voxel/downsample.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+// Frames [first, end) of one group.
+struct GroupSpan {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
+std::vector<GroupSpan> planGroups(std::size_t frames, std::size_t size) {
+  std::vector<GroupSpan> groups;
+  for (std::size_t first = 0; first < frames; first += size) {
+    groups.push_back({first, std::min(frames, first + size)});
+  }
+  // A short last group would be held by few planes: it joins the one before.
+  if (groups.size() > 1 && groups.back().end - groups.back().first < size / 2) {
+    groups[groups.size() - 2].end = groups.back().end;
+    groups.pop_back();
+  }
+  return groups;
+}
+
+// The group's scans in the frame of its first scan (with the relative
+// poses of `poses`), merged and downsampled.
+PointCloud mergeGroup(const ScanSource& scans, const std::vector<Pose>& poses, GroupSpan group,
+                      double voxel) {
+  const Pose to_group = poses[group.first].inverse();
+  PointCloud merged;
+  for (std::size_t i = group.first; i < group.end; ++i) {
+    const PointCloud scan = scans.load(i);
+    const Pose relative = to_group * poses[i];
+    const Eigen::Matrix3f R = relative.R().cast<float>();
+    const Vec3f t = relative.t.cast<float>();
+    merged.points.reserve(merged.points.size() + scan.size());
+    for (const Vec3f& p : scan.points) merged.points.push_back(R * p + t);
+  }
+  return voxel > 0.0 ? voxel::downsample(merged, voxel) : merged;
+}
+
+}  // namespace
+
+std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t min_frames) {
+  const std::size_t groups = std::max<std::size_t>(max_groups, 1);
+  return std::max({min_frames, std::size_t{1}, (frames + groups - 1) / groups});
+}
+
+std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>& input,
+                               const std::vector<Pose>& current, const HbaSettings& settings,
+                               HbaReport& report) {
+  const auto start = Clock::now();
+  GroupRefinementReport& g = report.refinement.groups;
+  const std::size_t size = groupSize(current.size(), settings.group_max_count,
+                                     settings.group_min_frames);
+  const std::vector<GroupSpan> groups = planGroups(current.size(), size);
+  if (groups.size() < 3) return current;  // nothing a block would not see
+
+  std::vector<PointCloud> clouds(groups.size());
+  {
+    Progress progress("merging groups", groups.size(), "groups");
+    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t k) {
+      clouds[k] = mergeGroup(scans, current, groups[k], settings.group_voxel);
+      progress.advance();
+    });
+  }
+  std::vector<const PointCloud*> pointers;
+  std::vector<Pose> start_poses;
+  std::vector<Pose> reference;
+  std::vector<double> path;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    pointers.push_back(&clouds[k]);
+    g.points += clouds[k].size();
+    start_poses.push_back(current[groups[k].first]);
+    reference.push_back(input[groups[k].first]);
+    if (k > 0) {
+      double length = 0.0;
+      for (std::size_t i = groups[k - 1].first; i < groups[k].first; ++i) {
+        length += (input[i + 1].t - input[i].t).norm();
+      }
+      path.push_back(length);
+    }
+  }
+  g.ran = true;
+  g.groups = groups.size();
+  g.frames_per_group = size;
+  spdlog::info("refinement: {} frames tied into {} groups of {} ({} points at {} m)",
+               current.size(), groups.size(), size, g.points, settings.group_voxel);
+
+  ba::RefinementSettings rs = settings.refinementBa();
+  // Few unknowns, whose weak long-range modes are the point: exact steps.
+  rs.lm.dense_max_frames = groups.size();
+  const ba::RefinementResult refined = ba::refineGlobally(pointers, start_poses, rs, path, reference);
+  report.seconds_voxelize += refined.seconds_associate;
+  report.seconds_solve += refined.seconds_solve;
+
+  // The groups' own planes at their start poses judge the result.
+  const FixedPlaneMap fixed(pointers, start_poses, rs.planes, rs.reject_ratio, 1);
+  g.planes = fixed.planes();
+  g.rms_before = fixed.rms(start_poses);
+  g.rms_after = fixed.rms(refined.poses);
+  g.seconds = secondsSince(start);
+  if (!(g.rms_after <= g.rms_before * 1.005)) {
+    g.rejected = true;
+    const std::string message = fmt::format(
+        "refinement: placing the {} groups made their map blurrier (plane RMS {:.4f} -> {:.4f} "
+        "m): keeping the hierarchy's placement",
+        groups.size(), g.rms_before, g.rms_after);
+    spdlog::warn("{}", message);
+    report.warnings.push_back(message);
+    return current;
+  }
+  std::vector<Pose> out(current.size());
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    const Pose move = refined.poses[k] * start_poses[k].inverse();
+    for (std::size_t i = groups[k].first; i < groups[k].end; ++i) {
+      out[i] = move * current[i];
+      g.largest_move_m = std::max(g.largest_move_m, (out[i].t - current[i].t).norm());
+    }
+  }
+  spdlog::info("refinement: groups placed, plane RMS {:.4f} -> {:.4f} m on their {} planes, "
+               "largest move {:.3f} m, {:.1f} s",
+               g.rms_before, g.rms_after, g.planes, g.largest_move_m, g.seconds);
+  return out;
+}
+
+}  // namespace hba::pyramid

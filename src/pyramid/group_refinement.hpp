@@ -1,0 +1,32 @@
+#pragma once
+// The coarse half of the refinement, for sequences longer than one
+// refinement block (docs/pyramid.md, "Long sequences"): after the blocks,
+// consecutive frames are tied into rigid groups, each group's scans merged
+// into one cloud, and one plane BA over all groups (solved exactly: few
+// unknowns) places them. It sees what blocks of consecutive frames cannot:
+// planes shared by passes far apart in time (a second lap over the first)
+// and the sequence's long, weak bends.
+#include <cstddef>
+#include <vector>
+
+#include "hba/core/pose.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/scan_source.hpp"
+#include "hba/pyramid/settings.hpp"
+
+namespace hba::pyramid {
+
+// Frames per group for a sequence of `frames`: enough that there are at
+// most `max_groups` groups, and never fewer than `min_frames`.
+std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t min_frames);
+
+// Moves the groups of `current` rigidly to fit one plane BA over all of
+// them; the relative poses inside a group are kept. `input` gives the
+// motion prior's reference (the odometry's steps between groups). Returns
+// `current` unchanged, with a warning, if the groups' map would get
+// blurrier. Fills report.refinement.groups.
+std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>& input,
+                               const std::vector<Pose>& current, const HbaSettings& settings,
+                               HbaReport& report);
+
+}  // namespace hba::pyramid
