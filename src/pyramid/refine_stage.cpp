@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "consistency.hpp"
 #include "group_refinement.hpp"
@@ -225,10 +226,23 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     // Blocks of consecutive frames cannot see planes shared by passes far
     // apart in time, nor bends longer than a block: rigid groups of the
     // blocks' frames are placed as a whole, and the checks measured again.
-    result = refineGroups(scans, initial, result, settings, report);
-    const GroupRefinementReport& g = r.groups;
+    std::vector<Pose> grouped = refineGroups(scans, initial, result, settings, report);
+    GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
-      c.final_rms = remeasure(scans, initial, result, spans, rs, settings, regions);
+      std::vector<RegionFigures> grouped_regions;
+      const double grouped_rms = remeasure(scans, initial, grouped, spans, rs, settings, grouped_regions);
+      // The output is never less consistent than the input (as for each block).
+      if (grouped_rms <= input_sum.rms() * 1.005) {
+        result = std::move(grouped);
+        c.final_rms = grouped_rms;
+        regions = std::move(grouped_regions);
+      } else {
+        g.rejected = true;
+        warn(report, fmt::format("refinement: the groups' placement made the map less consistent "
+                                 "than the input (plane RMS {:.4f} -> {:.4f} m on the input's "
+                                 "planes): keeping the blocks' result",
+                                 input_sum.rms(), grouped_rms));
+      }
     }
   }
   for (const RegionFigures& region : regions) {

@@ -55,7 +55,9 @@ struct GroupRefinementReport {
   std::size_t planes = 0;
   double rms_before = 0.0;  // m, on the groups' planes found at the start
   double rms_after = 0.0;
-  bool rejected = false;  // blurrier: the groups kept their start poses
+  // Blurrier on the groups' planes, or less consistent than the input on
+  // the self-check's: the blocks' result is kept.
+  bool rejected = false;
   double largest_move_m = 0.0;  // of a group
   double seconds = 0.0;
 };
