@@ -105,6 +105,14 @@ std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>&
   const ba::RefinementResult refined = ba::refineGlobally(pointers, start_poses, rs, path, reference);
   report.seconds_voxelize += refined.seconds_associate;
   report.seconds_solve += refined.seconds_solve;
+  if (refined.still_sliding > 0) {
+    const std::string message = fmt::format(
+        "refinement: {} pairs of neighbouring groups still move apart beyond what odometry "
+        "plausibly gets wrong, though held",
+        refined.still_sliding);
+    spdlog::warn("{}", message);
+    report.warnings.push_back(message);
+  }
 
   // The groups' own planes at their start poses judge the result.
   const FixedPlaneMap fixed(pointers, start_poses, rs.planes, rs.reject_ratio, 1);
@@ -116,7 +124,7 @@ std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>&
     g.rejected = true;
     const std::string message = fmt::format(
         "refinement: placing the {} groups made their map blurrier (plane RMS {:.4f} -> {:.4f} "
-        "m): keeping the hierarchy's placement",
+        "m): keeping the blocks' result",
         groups.size(), g.rms_before, g.rms_after);
     spdlog::warn("{}", message);
     report.warnings.push_back(message);
