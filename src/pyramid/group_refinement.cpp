@@ -45,7 +45,8 @@ PointCloud mergeGroup(const ScanSource& scans, const std::vector<Pose>& poses, G
     const Pose relative = to_group * poses[i];
     const Eigen::Matrix3f R = relative.R().cast<float>();
     const Vec3f t = relative.t.cast<float>();
-    merged.points.reserve(merged.points.size() + scan.size());
+    // No exact reserve per scan: that reallocates on every scan of a
+    // 40-frame group; geometric growth copies each point about twice.
     for (const Vec3f& p : scan.points) merged.points.push_back(R * p + t);
   }
   return voxel > 0.0 ? voxel::downsample(merged, voxel) : merged;
