@@ -86,6 +86,12 @@ struct RmsSum {
   double rms() const { return points > 0.0 ? std::sqrt(squares / points) : 0.0; }
 };
 
+// Frames [first, end) of one block.
+struct FrameSpan {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
 // The self-check's figures for one stretch of frames.
 struct RegionFigures {
   std::size_t first_frame = 0;
@@ -114,12 +120,12 @@ std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<
 // The final poses measured again on each block's fixed map (the groups
 // moved them after the blocks were checked): figures only.
 double remeasure(const ScanSource& scans, const std::vector<Pose>& initial,
-                 const std::vector<Pose>& result, const std::vector<Block>& spans,
+                 const std::vector<Pose>& result, const std::vector<FrameSpan>& spans,
                  const ba::RefinementSettings& rs, const HbaSettings& settings,
                  std::vector<RegionFigures>& regions) {
   RmsSum final_sum;
   regions.clear();
-  for (const Block& span : spans) {
+  for (const FrameSpan& span : spans) {
     const Block block =
         loadBlock(scans, span.first, SIZE_MAX, settings.refine_scan_voxel, span.end);
     std::vector<const PointCloud*> pointers;
@@ -147,13 +153,13 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
 
   std::vector<Pose> result = hierarchy;
   std::vector<RegionFigures> regions;
-  std::vector<Block> spans;  // frames of each block (no clouds)
+  std::vector<FrameSpan> spans;  // of each block
   std::size_t first = 0;
   std::size_t blocks = 0;
   while (first + 1 < initial.size() || blocks == 0) {
     const Block block = loadBlock(scans, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
-    spans.push_back({block.first, block.end, {}, 0});
+    spans.push_back({block.first, block.end});
     r.scan_points += block.points;
     std::vector<const PointCloud*> pointers;
     for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);

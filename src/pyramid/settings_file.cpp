@@ -360,7 +360,7 @@ std::string settingsToYaml(const HbaSettings& s) {
   out += yamlLine("", "refine_iterations", s.refinement.lm.max_iterations, "LM iterations per association");
   out += yamlLine("", "refine_rounds", s.refinement.association_rounds, "associations at most");
   out += yamlLine("", "refine_round_gain", s.refinement.round_gain, "associate again while a round cuts the cost by this share");
-  out += yamlLine("", "refine_groups", s.refine_groups, "beyond one block, first place rigid groups of frames as a whole");
+  out += yamlLine("", "refine_groups", s.refine_groups, "beyond one block, then place rigid groups of frames as a whole");
   out += yamlLine("", "group_min_frames", s.group_min_frames, "frames per group at least");
   out += yamlLine("", "group_max_count", s.group_max_count, "groups at most (larger groups on longer sequences)");
   out += yamlLine("", "group_voxel", s.group_voxel, "groups' merged clouds downsampled to this, m");

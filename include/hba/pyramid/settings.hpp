@@ -68,11 +68,12 @@ struct HbaSettings {
   // Blocks lose the planes shared across them (hku1 in four blocks: MME
   // -3.008 instead of -3.037), so the budget is generous.
   std::size_t refine_max_points = 20'000'000;
-  // A sequence longer than one block is first refined coarsely as a whole
-  // (docs/pyramid.md, "Long sequences"): consecutive frames are tied into
-  // rigid groups (at least `group_min_frames`, at most `group_max_count`
-  // groups), each group's scans merged and downsampled to `group_voxel`,
-  // and one plane BA places the groups; the blocks then refine the frames.
+  // A sequence longer than one block is, after the blocks, refined
+  // coarsely as a whole (docs/pyramid.md, "Long sequences"): consecutive
+  // frames are tied into rigid groups (at least `group_min_frames`, at most
+  // `group_max_count` groups), each group's scans merged with the blocks'
+  // relative poses and downsampled to `group_voxel`, and one plane BA
+  // places the groups.
   bool refine_groups = true;
   std::size_t group_min_frames = 10;
   std::size_t group_max_count = 500;
