@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/motion_prior.hpp"
@@ -11,6 +13,7 @@
 #include "hba/ba/window_ba.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
+#include "random_planes.hpp"
 #include "synthetic_window.hpp"
 
 namespace hba::ba {
@@ -220,6 +223,40 @@ TEST(SparseLm, FormedSystemGivesExactSteps) {
   EXPECT_GT(i.final_cost - c.dense_summary.final_cost, 1e-6 * c.dense_summary.initial_cost);
   std::printf("cost above the optimum: formed %.3g, iterated %.3g\n",
               s.final_cost - c.dense_summary.final_cost, i.final_cost - c.dense_summary.final_cost);
+}
+
+// The product H x sums planes in chunks fixed by the problem's size, not by
+// the threads: one and two threads take identical steps. The problem is
+// large enough (30 000 observations) to be cut into several chunks.
+TEST(SparseLm, SameStepsForAnyThreadCount) {
+  std::mt19937 rng(7);
+  const int frames = 40;
+  const std::vector<Pose> truth = test::randomPoses(rng, frames, 5.0);
+  std::vector<PlaneObservation> planes;
+  for (int p = 0; p < 3000; ++p) {
+    const auto first = static_cast<std::uint32_t>(p % (frames - 10));
+    std::vector<std::uint32_t> seen;
+    for (std::uint32_t f = first; f < first + 10; ++f) seen.push_back(f);
+    planes.push_back(test::randomPlane(rng, truth, seen, 6, 0.01).observation);
+  }
+  const PlaneProblem problem(std::move(planes), frames);
+  std::vector<Pose> start = truth;
+  for (std::size_t i = 1; i < start.size(); ++i) {
+    start[i] = Pose(so3Exp(0.002 * test::randomUnit(rng)) * start[i].R(), start[i].t + 0.02 * test::randomUnit(rng));
+  }
+  auto solve = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::vector<Pose> poses = start;
+    const LmSummary s = solveSparseLevenbergMarquardt(problem, poses, SparseLmSettings{});
+    EXPECT_LT(s.final_cost, 0.5 * s.initial_cost);
+    return poses;
+  };
+  const std::vector<Pose> one = solve(1);
+  const std::vector<Pose> two = solve(2);
+  for (int i = 0; i < frames; ++i) {
+    EXPECT_EQ(one[i].t, two[i].t) << "frame " << i;
+    EXPECT_EQ(one[i].q.coeffs(), two[i].q.coeffs()) << "frame " << i;
+  }
 }
 
 }  // namespace
