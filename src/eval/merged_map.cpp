@@ -39,11 +39,9 @@ void VoxelMerger::add(const PointCloud& scan, const Pose& pose, std::uint32_t sc
       slot = static_cast<std::uint32_t>(cells_.size());
       cells_.emplace_back();
     } else {
-      const auto [it, inserted] =
-          index_.try_emplace(voxel::VoxelKey::of(world, settings_.voxel),
-                             static_cast<std::uint32_t>(cells_.size()));
+      bool inserted = false;
+      slot = index_.insert(voxel::VoxelKey::of(world, settings_.voxel), inserted);
       if (inserted) cells_.emplace_back();
-      slot = it->second;
     }
     Cell& cell = cells_[slot];
     const Vec3 local = world - origin_;

@@ -3,9 +3,12 @@
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"
+#include "before_after_maps.hpp"
 #include "map_change.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <optional>
 
 namespace hba::render {
@@ -44,21 +47,24 @@ Image stacked(const Image& upper, const Image& lower) {
 // Centimetre corrections are invisible at the scale of a whole map: a second
 // row zooms on the square where the planes got thinnest, coloured by their
 // thickness (a doubled wall is thick, a crisp one thin). Nothing when no
-// plane got thinner.
-std::optional<Image> thicknessZoom(const std::vector<MapPanel>& panels, const std::vector<Pose>& path,
+// plane got thinner. Its points come from the scans taken near the square.
+std::optional<Image> thicknessZoom(const io::Dataset& dataset, const std::array<const std::vector<Pose>*, 2>& poses,
+                                   const BeforeAfterMaps& maps, const std::vector<MapPanel>& panels,
                                    const RenderSettings& settings) {
-  constexpr double kCell = 1.0;  // m: a patch of wall
   Eigen::AlignedBox3d box;
-  for (const Pose& pose : path) box.extend(pose.t);
+  for (const Pose& pose : *poses[1]) box.extend(pose.t);
   const double extent = box.isEmpty() ? 0.0 : box.sizes().head<2>().maxCoeff() + 20.0;  // scans reach beyond
   const double side = std::clamp(extent / 6.0, 6.0, 40.0);
-  const PlaneThickness before(panels[0].map, kCell), after(panels[1].map, kCell);
+  const PlaneThickness before(maps.moments[0]), after(maps.moments[1]);
   const std::optional<Box2> region = mostThinnedRegion(before, after, side);
   if (!region) return std::nullopt;
+  // Scans within a few tens of metres give the square its dense points.
+  constexpr double kReach = 40.0;
+  std::array<PointCloud, 2> fine = squareMaps(dataset, poses, settings.voxel, *region, kReach);
   std::vector<MapPanel> zoom(2);
   for (std::size_t k = 0; k < 2; ++k) {
-    zoom[k].map = panels[k].map;
-    zoom[k].values = (k == 0 ? before : after).perPoint(panels[k].map);
+    zoom[k].values = (k == 0 ? before : after).perPoint(fine[k]);
+    zoom[k].map = std::move(fine[k]);
     zoom[k].trajectories = panels[k].trajectories;
   }
   zoom[0].title = "initial: plane thickness where it fell most";
@@ -74,19 +80,31 @@ std::optional<Image> thicknessZoom(const std::vector<MapPanel>& panels, const st
 void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& before,
                       const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
                       const std::filesystem::path& out_png, const RenderSettings& settings) {
+  const std::array<const std::vector<Pose>*, 2> poses{&before, &after};
   std::vector<MapPanel> panels(2);
   panels[0].title = "initial poses";
-  panels[0].map = mergedMap(dataset, before, settings);
   panels[0].trajectories.push_back({"initial", before, kInitialColor});
   panels[1].title = "optimized poses";
-  panels[1].map = mergedMap(dataset, after, settings);
   panels[1].trajectories.push_back({"optimized", after, kOptimizedColor});
   if (ground_truth) {
     const std::vector<Pose> gt = alignedGroundTruth(*ground_truth, after);
     for (MapPanel& panel : panels) panel.trajectories.insert(panel.trajectories.begin(), {"ground truth", gt, kGroundTruthColor});
   }
-  const Image whole = renderPanels(panels, settings).image;
-  const std::optional<Image> zoom = settings.crop ? std::nullopt : thicknessZoom(panels, after, settings);
+  if (settings.crop) {  // one region at full resolution, no zoom row
+    std::array<PointCloud, 2> fine = squareMaps(dataset, poses, settings.voxel, *settings.crop,
+                                                std::numeric_limits<double>::infinity());
+    for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
+    writePng(out_png, renderPanels(panels, settings).image);
+    return;
+  }
+  constexpr double kThicknessCell = 1.0;  // m: a patch of wall
+  // Two panels side by side: each about half the picture's width.
+  BeforeAfterMaps maps = streamBeforeAfter(dataset, poses, settings.voxel, settings.width / 2, kThicknessCell);
+  for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
+  RenderSettings overview = settings;
+  overview.voxel = maps.overview_voxel;  // the points' footprint
+  const Image whole = renderPanels(panels, overview).image;
+  const std::optional<Image> zoom = thicknessZoom(dataset, poses, maps, panels, settings);
   writePng(out_png, zoom ? stacked(whole, *zoom) : whole);
 }
 

@@ -10,39 +10,62 @@
 namespace hba::render {
 namespace {
 
-constexpr std::size_t kMinPoints = 10;
+constexpr double kMinPoints = 10.0;
 constexpr std::size_t kMinVoxelsPerSquare = 5;
 constexpr double kMinMeanThinning = 0.002;  // m: below it, nothing worth a zoom changed
 constexpr double kPlanarRatio = 0.15;  // lambda_min / lambda_mid below this: a plane
 
-struct Moments {
-  std::size_t count = 0;
-  Vec3 sum = Vec3::Zero();
-  Mat3 outer = Mat3::Zero();
-};
-
 }  // namespace
 
-PlaneThickness::PlaneThickness(const PointCloud& map, double cell) : cell_(cell) {
-  std::unordered_map<voxel::VoxelKey, Moments, voxel::VoxelKeyHash> voxels;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    const Vec3 local = map.points[i].cast<double>();  // relative to the origin: precise
-    Moments& m = voxels[voxel::VoxelKey::of(map.world(i), cell)];
-    ++m.count;
-    m.sum += local;
-    m.outer += local * local.transpose();
+void CellMoments::add(const Vec3& world) {
+  const voxel::VoxelKey key = voxel::VoxelKey::of(world, cell_);
+  const Vec3 local = world - Vec3(static_cast<double>(key.x), static_cast<double>(key.y),
+                                  static_cast<double>(key.z)) * cell_;
+  Moments& m = at(key);
+  m.count += 1.0;
+  m.sum += local;
+  m.outer += local * local.transpose();
+}
+
+CellMoments::Moments& CellMoments::at(const voxel::VoxelKey& key) {
+  bool inserted = false;
+  const std::uint32_t i = index_.insert(key, inserted);
+  if (inserted) {
+    keys_.push_back(key);
+    moments_.emplace_back();
   }
-  for (const auto& [key, m] : voxels) {
+  return moments_[i];
+}
+
+void CellMoments::merge(const CellMoments& other) {
+  for (std::size_t i = 0; i < other.size(); ++i) {
+    const Moments& theirs = other.moments(i);
+    Moments& m = at(other.key(i));
+    m.count += theirs.count;
+    m.sum += theirs.sum;
+    m.outer += theirs.outer;
+  }
+}
+
+PlaneThickness::PlaneThickness(const PointCloud& map, double cell)
+    : PlaneThickness([&] {
+        CellMoments moments(cell);
+        for (std::size_t i = 0; i < map.size(); ++i) moments.add(map.world(i));
+        return moments;
+      }()) {}
+
+PlaneThickness::PlaneThickness(const CellMoments& moments) : cell_(moments.cell()) {
+  for (std::size_t i = 0; i < moments.size(); ++i) {
+    const CellMoments::Moments& m = moments.moments(i);
     float value = -1.0f;
     if (m.count >= kMinPoints) {
-      const double n = static_cast<double>(m.count);
-      const Vec3 mean = m.sum / n;
+      const Vec3 mean = m.sum / m.count;
       const Vec3 eigen =
-          Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / n - mean * mean.transpose(), Eigen::EigenvaluesOnly)
+          Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / m.count - mean * mean.transpose(), Eigen::EigenvaluesOnly)
               .eigenvalues();
       if (eigen(0) < kPlanarRatio * eigen(1)) value = static_cast<float>(std::sqrt(std::max(0.0, eigen(0))));
     }
-    voxels_.emplace(key, value);
+    voxels_.emplace(moments.key(i), value);
   }
 }
 

@@ -8,9 +8,37 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/render/map_picture.hpp"
+#include "hba/voxel/voxel_index.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::render {
+
+// Point moments per `cell` voxel of the world grid, each relative to its
+// cell's corner (precise far from the world origin); sums of many scans'
+// points, so that plane thickness needs no merged map in memory.
+class CellMoments {
+ public:
+  struct Moments {
+    double count = 0.0;
+    Vec3 sum = Vec3::Zero();
+    Mat3 outer = Mat3::Zero();
+  };
+  explicit CellMoments(double cell) : cell_(cell) {}
+  double cell() const { return cell_; }
+  void add(const Vec3& world);
+  void merge(const CellMoments& other);
+  // Cells in the order first touched.
+  std::size_t size() const { return keys_.size(); }
+  const voxel::VoxelKey& key(std::size_t i) const { return keys_[i]; }
+  const Moments& moments(std::size_t i) const { return moments_[i]; }
+
+ private:
+  Moments& at(const voxel::VoxelKey& key);
+  double cell_;
+  voxel::VoxelIndex index_;
+  std::vector<voxel::VoxelKey> keys_;
+  std::vector<Moments> moments_;
+};
 
 // The thickness (m) of a map's planes, per `cell` voxel of the world grid:
 // the square root of the smallest eigenvalue of the covariance of the
@@ -20,6 +48,7 @@ namespace hba::render {
 class PlaneThickness {
  public:
   PlaneThickness(const PointCloud& map, double cell);
+  explicit PlaneThickness(const CellMoments& moments);
   double cell() const { return cell_; }
   // The thickness of each point's voxel, in the map's order.
   std::vector<float> perPoint(const PointCloud& map) const;

@@ -11,6 +11,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/dataset.hpp"
+#include "hba/voxel/voxel_index.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::eval {
@@ -62,7 +63,7 @@ class VoxelMerger {
   Vec3 origin_;
   bool has_intensity_ = true;  // false once a scan without intensity arrives
   // The grid of hba::voxel::downsample, so both agree on what a voxel is.
-  std::unordered_map<voxel::VoxelKey, std::uint32_t, voxel::VoxelKeyHash> index_;  // -> cells_ slot
+  voxel::VoxelIndex index_;  // key -> cells_ slot
   std::vector<Cell> cells_;
 };
 
