@@ -34,6 +34,7 @@ def simulated(sensor, frames, variant):
 
 
 HKU1 = Scenario("hku1", "real", HKU1_FRAMES, "real")
+NCLT = Scenario("nclt", "real", 1141, "real")
 
 
 def scenario_set(quick):
@@ -57,15 +58,17 @@ class Inputs:
 
 
 class DataStore:
-    def __init__(self, root, tools, hku1_dir, log):
+    def __init__(self, root, tools, hku1_dir, log, real_dirs=None):
         self.root = Path(root)
         self.tools = tools
-        self.hku1_dir = Path(hku1_dir)
+        # Real sequences by scenario name (hku1's folder unless given).
+        self.real_dirs = {"hku1": Path(hku1_dir), **{k: Path(v) for k, v in (real_dirs or {}).items()}}
         self.log = log
 
     def inputs(self, scenario):
         if scenario.variant == "real":
-            return Inputs(self.hku1_dir, self.hku1_dir / "odom_poses.txt", False)
+            folder = self.real_dirs[scenario.name]
+            return Inputs(folder, folder / "odom_poses.txt", False)
         scans = self._simulated(f"sim-{scenario.sensor}-{scenario.frames}",
                                 self._flags(scenario, []))
         if scenario.variant == "drift":

@@ -32,9 +32,10 @@ class Tools:
     def simulate(self, flags, output):
         self._run(self.simulate_argv(flags, output))
 
-    def optimize(self, dataset, pose_args, output):
+    def optimize(self, dataset, pose_args, output, render=False):
         """Returns (Usage of the optimize process, its report.json)."""
-        _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, "--no-render", "--force"))
+        picture = [] if render else ["--no-render"]
+        _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, *picture, "--force"))
         with open(output / "report.json", encoding="utf-8") as report:
             return usage, json.load(report)
 

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "test_support.hpp"
 
 namespace {
@@ -57,6 +59,34 @@ TEST(BenchmarkHarness, FailsLoudlyWhenOptimizedPosesAreWorseThanTheInitialOnes) 
   const std::string report = hba::test::readText(dir / "BENCHMARKS.md");
   EXPECT_NE(report.find("ACCURACY REGRESSION**"), std::string::npos) << report;
   EXPECT_TRUE(fs::is_regular_file(dir / "results" / "results.json"));
+}
+
+// Two builds side by side (scripts/bench/compare_builds.py): here the real
+// tool against one that ruins its poses. Both are timed in one sitting, the
+// table gives the ratios, and the broken build's accuracy shows in it.
+TEST(BenchmarkHarness, ComparesTwoBuildsInOneSitting) {
+  if (!pythonAvailable()) GTEST_SKIP() << "python3 is not installed";
+  hba::test::TempDir dir;
+  const auto run = runCommand(
+      "env HBA_REAL_TOOL=" + hba::test::cliPath().string() +
+      " python3 " HBA_SOURCE_DIR "/scripts/bench/compare_builds.py --only sim-livox-100-drift"
+      " --runs 2 --render --jobs 1 --hba-a " + hba::test::cliPath().string() +
+      " --hba-b " HBA_SOURCE_DIR "/tests/bench/corrupting_hba.sh --label-a good --label-b broken"
+      " --io-floor " HBA_IO_FLOOR_PATH " --data-dir " + (dir / "data").string() +
+      " --output " + (dir / "compare.md").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string table = hba::test::readText(dir / "compare.md");
+  EXPECT_NE(table.find("| `sim-livox-100-drift` | 100 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("broken/good"), std::string::npos) << table;
+  EXPECT_NE(table.find("picture / no picture"), std::string::npos) << table;
+  const std::string raw = hba::test::readText(dir / "compare.json");
+  // Two runs of each build, interleaved, and the broken build's error far larger.
+  const auto json = nlohmann::json::parse(raw);
+  const auto& record = json["records"]["sim-livox-100-drift"]["builds"];
+  ASSERT_EQ(record["good"]["runs"].size(), 2u);
+  ASSERT_EQ(record["broken"]["runs"].size(), 2u);
+  EXPECT_GT(record["broken"]["runs"][0]["ate_m"].get<double>(),
+            10.0 * record["good"]["runs"][0]["ate_m"].get<double>());
 }
 
 }  // namespace
