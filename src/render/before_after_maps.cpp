@@ -18,7 +18,7 @@ namespace hba::render {
 namespace {
 
 constexpr std::size_t kChunk = 25;    // consecutive scans merged together first
-constexpr std::size_t kInFlight = 8;  // scans read ahead of the merge: cores busy, little memory
+constexpr std::size_t kInFlight = 8;  // chunks read ahead of the merge: cores busy, little memory
 
 // Reads `indices` with `read` (anything per scan) in parallel, and hands
 // the results to `merge` one by one in index order while later scans are
@@ -116,8 +116,8 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
     for (const Pose& pose : *set) box.extend(pose.t.head<2>());
   }
   const double span = box.isEmpty() ? 0.0 : box.sizes().maxCoeff() + 2.0 * reach;
-  // Three voxels a pixel: coarser, their centres land 1 or 2 to a pixel in
-  // stripes, which the density shading shows as a grid.
+  // Two voxels a pixel: at one or coarser, their centres land 1 or 2 to a
+  // pixel in stripes, which the density shading shows as a grid.
   return std::max(voxel, span / (2.0 * std::max(pixels, 1)));
 }
 

@@ -29,8 +29,8 @@ struct BeforeAfterMaps {
 double sensorReach(const io::Dataset& dataset);
 
 // The overview's voxel: `voxel`, or coarser where the map (the
-// trajectories' extent plus `reach` either side) is so large that a third
-// of one of `pixels` across it is coarser: a picture shows no finer.
+// trajectories' extent plus `reach` either side) is so large that half of
+// one of `pixels` across it is coarser: a picture shows no finer.
 double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, double reach, double voxel,
                      int pixels);
 
