@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "bottom_up.hpp"
@@ -12,6 +13,7 @@
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "refine_stage.hpp"
+#include "spilled_scan_source.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
@@ -233,7 +235,11 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
-  HbaResult result = runNearOrigin(scans, translated(initial, -origin), settings);
+  // The refinement reads every scan again (and its groups and the
+  // self-check once more): each is parsed and downsampled once, then kept.
+  std::unique_ptr<SpilledScanSource> spilled;
+  if (settings.refine) spilled = std::make_unique<SpilledScanSource>(scans);
+  HbaResult result = runNearOrigin(spilled ? *spilled : scans, translated(initial, -origin), settings);
   result.poses = translated(result.poses, origin);
   return result;
 }

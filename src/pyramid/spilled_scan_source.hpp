@@ -1,0 +1,34 @@
+#pragma once
+// A scan source that reads and downsamples each scan once: the first load of
+// a scan goes to the source it wraps and is kept on disk (a KeyframeStore in
+// $TMPDIR, removed at the end); later loads read it back. The refinement,
+// its rigid groups and the re-measured self-check read every scan again
+// after the pyramid did, and reading a kept scan costs a fraction of parsing
+// and downsampling it. The clouds come back bit for bit.
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "hba/pyramid/scan_source.hpp"
+#include "keyframe_store.hpp"
+
+namespace hba::pyramid {
+
+class SpilledScanSource : public ScanSource {
+ public:
+  // Throws hba::Error if the temporary folder cannot be made.
+  explicit SpilledScanSource(const ScanSource& inner);
+  std::size_t size() const override { return inner_.size(); }
+  // Thread-safe. Throws hba::Error (a full disk).
+  PointCloud load(std::size_t i) const override;
+  LoadSeconds loadSeconds() const override;
+
+ private:
+  enum : int { kNotKept = 0, kKeeping = 1, kKept = 2 };
+  const ScanSource& inner_;
+  KeyframeStore store_;
+  std::unique_ptr<std::atomic<int>[]> state_;
+  mutable std::vector<char> has_intensity_;  // written before its state turns kKept
+};
+
+}  // namespace hba::pyramid
