@@ -4,6 +4,7 @@
 #include <tbb/parallel_pipeline.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -135,11 +136,14 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
   // Consecutive scans overlap: each chunk of them is merged on its own (in
   // parallel), so that the maps, merged in order, take a few points a scan.
   using Part = std::array<PointCloud, 2>;
+  std::atomic<std::size_t> chunk_voxels{0};
   const std::function<Part(std::size_t)> read = [&](std::size_t chunk) {
     const std::size_t first = chunk * kChunk;
     const std::size_t end = std::min(dataset.size(), first + kChunk);
-    std::array<PicturePoints, 2> local{PicturePoints(maps.overview_voxel, origin),
-                                       PicturePoints(maps.overview_voxel, origin)};
+    // Room for a chunk's voxels as the last chunk had them: no regrowing.
+    const std::size_t expected = chunk_voxels.load(std::memory_order_relaxed);
+    std::array<PicturePoints, 2> local{PicturePoints(maps.overview_voxel, origin, expected),
+                                       PicturePoints(maps.overview_voxel, origin, expected)};
     for (std::size_t i = first; i < end; ++i) {
       const PointCloud scan = voxel::downsample(dataset.loadScan(i), voxel);
       // Coarser only where that halves the points at least.
@@ -147,7 +151,8 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
           maps.overview_voxel >= 1.5 * voxel ? voxel::downsample(scan, maps.overview_voxel) : scan;
       for (std::size_t k = 0; k < 2; ++k) local[k].add(coarse, (*poses[k])[i]);
     }
-    return Part{local[0].cloud(), local[1].cloud()};
+    chunk_voxels.store(std::max(local[0].size(), local[1].size()), std::memory_order_relaxed);
+    return Part{local[0].take(), local[1].take()};
   };
   const std::function<void(std::size_t, Part&)> merge = [&](std::size_t, Part& part) {
     // Each map in scan order.
@@ -161,8 +166,7 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
   // averaged), in cells holding a few of them across.
   const double cell = std::max(moments_cell, 4.0 * maps.overview_voxel);
   auto finish = [&](std::size_t k) {
-    maps.overview[k] = overview[k].cloud();
-    overview[k] = PicturePoints(maps.overview_voxel, origin);  // its memory back
+    maps.overview[k] = overview[k].take();
     maps.moments[k] = CellMoments(cell);
     for (std::size_t i = 0; i < maps.overview[k].size(); ++i) maps.moments[k].add(maps.overview[k].world(i));
   };

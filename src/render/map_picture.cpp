@@ -31,11 +31,20 @@ double quantile(std::vector<double> values, double q) {
 
 // The region to show: the crop, else where most map points and every
 // trajectory are (extreme 0.5 % of points ignored: stray returns), plus a margin.
+// Every how many points a quantile looks at: at most about a million in
+// all (the picture's framing, not a measurement; and no large copies).
+std::size_t quantileStride(const std::vector<MapPanel>& panels) {
+  std::size_t points = 0;
+  for (const MapPanel& panel : panels) points += panel.map.size();
+  return std::max<std::size_t>(1, points / 1'000'000);
+}
+
 Box2 viewBox(const std::vector<MapPanel>& panels, const RenderSettings& settings) {
   if (settings.crop) return *settings.crop;
   std::vector<double> xs, ys;
+  const std::size_t stride = quantileStride(panels);
   for (const MapPanel& panel : panels) {
-    for (std::size_t i = 0; i < panel.map.size(); ++i) {
+    for (std::size_t i = 0; i < panel.map.size(); i += stride) {
       const Vec3 p = panel.map.world(i);
       xs.push_back(p.x());
       ys.push_back(p.y());
@@ -65,8 +74,9 @@ bool inside(const Box2& box, double x, double y) {
 std::pair<double, double> heightRange(const std::vector<MapPanel>& panels, const Box2& box, double low_q,
                                       double high_q) {
   std::vector<double> zs;
+  const std::size_t stride = quantileStride(panels);
   for (const MapPanel& panel : panels) {
-    for (std::size_t i = 0; i < panel.map.size(); ++i) {
+    for (std::size_t i = 0; i < panel.map.size(); i += stride) {
       const Vec3 p = panel.map.world(i);
       if (inside(box, p.x(), p.y())) zs.push_back(p.z());
     }

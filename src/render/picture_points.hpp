@@ -1,13 +1,14 @@
 #pragma once
 // The points a picture draws (private to render): one per occupied voxel,
-// the first that fell in it, kept beside a flat hash set of packed voxel
-// keys. About 40 bytes a voxel where a merged map with centroids takes over
-// 100: pictures of long sequences stay small.
+// the first that fell in it, numbered by a flat index of packed voxel keys.
+// About 40 bytes a voxel where a merged map with centroids takes over 100:
+// pictures of long sequences stay small.
 #include <cstdint>
 #include <vector>
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/voxel/voxel_index.hpp"
 
 namespace hba::render {
 
@@ -15,27 +16,20 @@ class PicturePoints {
  public:
   // Points are kept relative to `origin` (float precision near it); voxels
   // more than 2^20 voxels from it in any axis are left out.
-  PicturePoints(double voxel, const Vec3& origin);
+  // `expected`: voxels to make room for at once (a guess; it grows as needed).
+  PicturePoints(double voxel, const Vec3& origin, std::size_t expected = 0);
   // `cloud` (relative to its own origin) moved into the world by `pose`.
   void add(const PointCloud& cloud, const Pose& pose);
   std::size_t size() const { return points_.size(); }
-  // The points, with origin() as their PointCloud::origin.
-  PointCloud cloud() const;
+  // The points, with the constructor's `origin` as their PointCloud::origin,
+  // moved out: the set is empty afterwards and its memory freed.
+  PointCloud take();
 
  private:
-  // The number of `key`'s voxel; a new one gets size() and `inserted`.
-  std::uint32_t insert(std::uint64_t key, bool& inserted);
-  void grow();
-
-  double voxel_;
+  double inverse_voxel_;
   Vec3 origin_;
-  struct Slot {
-    std::uint64_t key = 0;  // packed key + 1; 0 = empty
-    std::uint32_t number = 0;
-  };
-  std::vector<Slot> slots_;
-  std::size_t mask_ = 0;
-  std::vector<Vec3f> points_;  // relative to origin_, in the order first hit
+  voxel::PackedVoxelIndex index_;  // packed voxel key -> number
+  std::vector<Vec3f> points_;      // relative to origin_, in the order first hit
 };
 
 }  // namespace hba::render

@@ -1,6 +1,6 @@
 #pragma once
-// Numbers the distinct voxel keys in the order they are first seen: an
-// open-addressing table (linear probing, grown by doubling at half load),
+// Numbers the distinct keys in the order they are first seen: an
+// open-addressing table (linear probing, grown by doubling at 70 % load),
 // flat in memory. For maps that grow scan by scan, where a node-based hash
 // map spends its time in allocation and cache misses.
 #include <cstdint>
@@ -10,12 +10,13 @@
 
 namespace hba::voxel {
 
-class VoxelIndex {
+template <typename Key, typename Hash>
+class FlatIndex {
  public:
   // The number of `key`: an existing one, or size() before the call (then
   // `inserted` is set).
-  std::uint32_t insert(const VoxelKey& key, bool& inserted) {
-    if (2 * (count_ + 1) > slots_.size()) grow();
+  std::uint32_t insert(const Key& key, bool& inserted) {
+    if (10 * (count_ + 1) > 7 * slots_.size()) grow();
     std::size_t s = home(key);
     while (slots_[s].number != kEmpty) {
       if (slots_[s].key == key) {
@@ -29,27 +30,23 @@ class VoxelIndex {
     return static_cast<std::uint32_t>(count_++);
   }
 
-  // The number of `key`, or -1 when it was never inserted.
-  std::int64_t find(const VoxelKey& key) const {
-    if (slots_.empty()) return -1;
-    for (std::size_t s = home(key); slots_[s].number != kEmpty; s = (s + 1) & mask_) {
-      if (slots_[s].key == key) return slots_[s].number;
-    }
-    return -1;
-  }
-
   std::size_t size() const { return count_; }
+
+  // Room for `keys` keys without growing.
+  void reserve(std::size_t keys) {
+    while (10 * keys > 7 * slots_.size()) grow();
+  }
 
  private:
   static constexpr std::uint32_t kEmpty = 0xffffffffu;
   struct Slot {
-    VoxelKey key;
+    Key key{};
     std::uint32_t number = kEmpty;
   };
 
-  std::size_t home(const VoxelKey& key) const {
-    // Fibonacci hashing spreads the low-quality key hash over the table.
-    const std::uint64_t h = static_cast<std::uint64_t>(VoxelKeyHash{}(key)) * 0x9E3779B97F4A7C15ULL;
+  std::size_t home(const Key& key) const {
+    // Fibonacci hashing spreads a low-quality hash over the table.
+    const std::uint64_t h = static_cast<std::uint64_t>(Hash{}(key)) * 0x9E3779B97F4A7C15ULL;
     return static_cast<std::size_t>(h >> 20) & mask_;
   }
 
@@ -69,5 +66,15 @@ class VoxelIndex {
   std::size_t mask_ = 0;
   std::size_t count_ = 0;
 };
+
+// Voxel keys as they are (24 bytes): any coordinates.
+using VoxelIndex = FlatIndex<VoxelKey, VoxelKeyHash>;
+
+// Keys packed into 64 bits by the caller (16-byte slots): for the many
+// voxels of a picture.
+struct PackedKeyHash {
+  std::size_t operator()(std::uint64_t key) const { return static_cast<std::size_t>(key); }
+};
+using PackedVoxelIndex = FlatIndex<std::uint64_t, PackedKeyHash>;
 
 }  // namespace hba::voxel
