@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <utility>
 
 #include "bottom_up.hpp"
@@ -13,7 +12,6 @@
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "refine_stage.hpp"
-#include "spilled_scan_source.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
@@ -235,11 +233,7 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
-  // The refinement reads every scan again (and its groups and the
-  // self-check once more): each is parsed and downsampled once, then kept.
-  std::unique_ptr<SpilledScanSource> spilled;
-  if (settings.refine) spilled = std::make_unique<SpilledScanSource>(scans);
-  HbaResult result = runNearOrigin(spilled ? *spilled : scans, translated(initial, -origin), settings);
+  HbaResult result = runNearOrigin(scans, translated(initial, -origin), settings);
   result.poses = translated(result.poses, origin);
   return result;
 }

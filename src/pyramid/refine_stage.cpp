@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 
 #include "consistency.hpp"
 #include "group_refinement.hpp"
+#include "spilled_scan_source.hpp"
 #include "hba/ba/global_refinement.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
@@ -156,8 +158,14 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   std::vector<FrameSpan> spans;  // of each block
   std::size_t first = 0;
   std::size_t blocks = 0;
+  // A sequence longer than one block is read again: the blocks overlap, and
+  // the groups and the re-measured self-check read every scan once more.
+  // From the second block on, each scan is parsed and downsampled once and
+  // then kept on disk; a sequence of one block reads its scans once here.
+  std::unique_ptr<SpilledScanSource> spilled;
+  const ScanSource* source = &scans;
   while (first + 1 < initial.size() || blocks == 0) {
-    const Block block = loadBlock(scans, first, settings.refine_max_points, settings.refine_scan_voxel);
+    const Block block = loadBlock(*source, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
     spans.push_back({block.first, block.end});
     r.scan_points += block.points;
@@ -223,6 +231,10 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     addRegions(fixed, input, poses, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
     if (block.end >= initial.size()) break;
+    if (!spilled) {
+      spilled = std::make_unique<SpilledScanSource>(scans);
+      source = spilled.get();
+    }
     // The next block overlaps this one by a quarter, so that no frame is
     // refined only at a block's edge.
     first = std::max(block.first + 1, block.end - (block.end - block.first) / 4);
@@ -232,11 +244,11 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     // Blocks of consecutive frames cannot see planes shared by passes far
     // apart in time, nor bends longer than a block: rigid groups of the
     // blocks' frames are placed as a whole, and the checks measured again.
-    std::vector<Pose> grouped = refineGroups(scans, initial, result, settings, report);
+    std::vector<Pose> grouped = refineGroups(*source, initial, result, settings, report);
     GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
       std::vector<RegionFigures> grouped_regions;
-      const double grouped_rms = remeasure(scans, initial, grouped, spans, rs, settings, grouped_regions);
+      const double grouped_rms = remeasure(*source, initial, grouped, spans, rs, settings, grouped_regions);
       // The output is never less consistent than the input (as for each block).
       if (grouped_rms <= input_sum.rms() * 1.005) {
         result = std::move(grouped);

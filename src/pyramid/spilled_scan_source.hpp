@@ -1,10 +1,10 @@
 #pragma once
 // A scan source that reads and downsamples each scan once: the first load of
 // a scan goes to the source it wraps and is kept on disk (a KeyframeStore in
-// $TMPDIR, removed at the end); later loads read it back. The refinement,
-// its rigid groups and the re-measured self-check read every scan again
-// after the pyramid did, and reading a kept scan costs a fraction of parsing
-// and downsampling it. The clouds come back bit for bit.
+// $TMPDIR, removed at the end); later loads read it back. A refinement of
+// several blocks reads its scans several times (overlapping blocks, rigid
+// groups, the re-measured self-check), and reading a kept scan costs a
+// fraction of parsing and downsampling it. The clouds come back bit for bit.
 #include <atomic>
 #include <memory>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // The points a picture draws (private to render): one per occupied voxel,
 // the first that fell in it, numbered by a flat index of packed voxel keys.
-// About 40 bytes a voxel where a merged map with centroids takes over 100:
+// 35-60 bytes a voxel where a merged map with centroids takes over 100:
 // pictures of long sequences stay small.
 #include <cstdint>
 #include <vector>
