@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <tbb/parallel_for.h>
 
 #include "hba/core/relative_pose_error.hpp"
@@ -210,6 +211,25 @@ Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd
   return x;
 }
 
+// The inverse of a symmetric 6x6 block where it is positive definite and
+// well conditioned; otherwise the inverse of its absolute eigenvalues,
+// floored. The exact Hessian's blocks can be indefinite far from the
+// optimum: inverting their clamped diagonal instead gave preconditioned
+// steps of 1e13 m that only the step cap stopped, and left the result to
+// rounding (BENCHMARKS.md, session 7).
+Mat6 positiveInverse(const Mat6& block) {
+  const Eigen::LDLT<Mat6> ldlt(block);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+    const Vec6 pivots = ldlt.vectorD();
+    if (pivots.minCoeff() > 1e-9 * pivots.maxCoeff()) return ldlt.solve(Mat6::Identity());
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(block);
+  const Vec6 magnitude = eig.eigenvalues().cwiseAbs();
+  const double floor = std::max(1e-9 * magnitude.maxCoeff(), 1e-300);
+  return eig.eigenvectors() * magnitude.cwiseMax(floor).cwiseInverse().asDiagonal() *
+         eig.eigenvectors().transpose();
+}
+
 // Solves (H + mu D) x = -g for every frame but frame 0 by preconditioned
 // conjugate gradients; stops early at negative curvature (far from the
 // optimum the exact Hessian can be indefinite) with the last good iterate.
@@ -228,12 +248,7 @@ Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd&
   for (std::size_t i = 0; i < frames; ++i) {
     Mat6 block = system.block(i);
     block.diagonal() += mu * scale.segment<6>(6 * i);
-    const Eigen::LDLT<Mat6> ldlt(block);
-    if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
-      inverse[i] = ldlt.solve(Mat6::Identity());
-    } else {
-      inverse[i] = block.diagonal().cwiseMax(1e-12).cwiseInverse().asDiagonal();
-    }
+    inverse[i] = positiveInverse(block);
   }
   auto precondition = [&](const Eigen::VectorXd& r) {
     Eigen::VectorXd z(n);

@@ -23,7 +23,7 @@ ba::BaSettings HbaSettings::globalBa() const { return withPointSigma(global, inf
 ba::RefinementSettings HbaSettings::refinementBa() const {
   ba::RefinementSettings out = refinement;
   out.motion_prior.point_sigma = information.point_sigma;
-  out.slide_prior = localBa().motion_prior;
+  out.slide_prior = out.motion_prior;
   return out;
 }
 

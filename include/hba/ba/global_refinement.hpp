@@ -25,9 +25,9 @@ struct RefinementSettings {
   int association_rounds = 6;
   double round_gain = 0.02;
   // Neighbouring frames whose relative pose leaves the reference's by more
-  // than `slide_sigmas` sigmas of `slide_prior` (the windows' looser prior:
-  // what odometry can plausibly be wrong by) slid where the planes do not
-  // hold them: the prior between them (and two pairs either side) is made
+  // than `slide_sigmas` sigmas of `slide_prior` (hba optimize: the
+  // refinement's own prior) slid where the planes do not hold them
+  // firmly: the prior between them (and two pairs either side) is made
   // `hold_factor` times stiffer and the refinement solved again, at most
   // `max_holds` times; pairs still sliding then stay held (`still_sliding`).
   MotionPriorSettings slide_prior;
