@@ -51,6 +51,28 @@ struct ObservationIndex {
   }
 };
 
+// Plane ranges of about equal observation counts for the product H x:
+// enough for two cores to share (up to 64), few enough that their partial
+// sums (6 floats per frame each) stay within 16 MB and a chunk holds at
+// least a few thousand observations. Depends on the sizes only.
+std::vector<std::size_t> productChunks(const ObservationIndex& index, std::size_t planes,
+                                       std::size_t frames) {
+  const std::size_t observations = index.frame_of.size();
+  const std::size_t by_memory = (std::size_t{4} << 20) / std::max<std::size_t>(6 * frames, 1);
+  const std::size_t chunks = std::clamp<std::size_t>(
+      std::min({std::size_t{64}, by_memory, observations / 4096}), 1, 64);
+  std::vector<std::size_t> begin{0};
+  for (std::size_t c = 1; c < chunks; ++c) {
+    const std::size_t target = observations * c / chunks;
+    // The first plane whose observations start at or after the target.
+    const auto it = std::lower_bound(index.plane_begin.begin() + static_cast<long>(begin.back()),
+                                     index.plane_begin.begin() + static_cast<long>(planes), target);
+    begin.push_back(static_cast<std::size_t>(it - index.plane_begin.begin()));
+  }
+  begin.push_back(planes);
+  return begin;
+}
+
 // The linearized objective at one set of poses, kept factored: per frame
 // the gradient and the 6x6 diagonal block, per observation the 3x6 block of
 // its plane's Z (single precision, flat: it only feeds the conjugate-
@@ -62,6 +84,7 @@ class FactoredSystem {
       : index_(index), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
     const std::size_t planes = problem.numPlanes();
+    chunk_begin_ = productChunks(index, planes, frames_);
     z_.resize(18 * index.frame_of.size());
     weights_.resize(planes);
     gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
@@ -146,27 +169,38 @@ class FactoredSystem {
   Mat6 block(std::size_t i) const { return diagonal_[i] + own_[i]; }
   std::size_t frames() const { return frames_; }
 
-  // y = H x = blockdiag(D) x + sum over planes Z^T W Z x.
+  // y = H x = blockdiag(D) x + sum over planes Z^T W Z x, in one pass over
+  // the observations (they are the bulk of the memory, read once a
+  // product). Planes are cut into fixed chunks, each summing into its own
+  // vector; the chunks are then added in order: the same result for any
+  // thread count.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const {
     const Eigen::VectorXf xf = x.cast<float>();
-    const std::size_t planes = weights_.size();
-    std::vector<Eigen::Vector3f> wz(planes);
-    tbb::parallel_for(std::size_t{0}, planes, [&](std::size_t p) {
-      Eigen::Vector3f z = Eigen::Vector3f::Zero();
-      for (std::uint32_t k = index_.plane_begin[p]; k < index_.plane_begin[p + 1]; ++k) {
-        z.noalias() += Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]) *
-                       xf.segment<6>(6 * index_.frame_of[k]);
+    const auto n = static_cast<Eigen::Index>(6 * frames_);
+    const std::size_t chunks = chunk_begin_.size() - 1;
+    std::vector<Eigen::VectorXf> partial(chunks);
+    tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+      Eigen::VectorXf& out = partial[c];
+      out.setZero(n);
+      for (std::size_t p = chunk_begin_[c]; p < chunk_begin_[c + 1]; ++p) {
+        const std::uint32_t k0 = index_.plane_begin[p];
+        const std::uint32_t k1 = index_.plane_begin[p + 1];
+        Eigen::Vector3f z = Eigen::Vector3f::Zero();
+        for (std::uint32_t k = k0; k < k1; ++k) {
+          z.noalias() += Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]) *
+                         xf.segment<6>(6 * index_.frame_of[k]);
+        }
+        const Eigen::Vector3f wz = weights_[p].cwiseProduct(z);
+        for (std::uint32_t k = k0; k < k1; ++k) {
+          out.segment<6>(6 * index_.frame_of[k]).noalias() +=
+              Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() * wz;
+        }
       }
-      wz[p] = weights_[p].cwiseProduct(z);
     });
-    Eigen::VectorXd y(x.size());
+    Eigen::VectorXd y(n);
     tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
       Eigen::Matrix<float, 6, 1> sum = Eigen::Matrix<float, 6, 1>::Zero();
-      for (std::uint32_t u = index_.frame_begin[i]; u < index_.frame_begin[i + 1]; ++u) {
-        const std::uint32_t k = index_.uses[u];
-        sum.noalias() += Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() *
-                         wz[index_.plane_of[k]];
-      }
+      for (const Eigen::VectorXf& part : partial) sum += part.segment<6>(6 * i);
       y.segment<6>(6 * i) = diagonal_[i] * x.segment<6>(6 * i) + sum.cast<double>();
     });
     for (const PriorBlock& block : prior_) {
@@ -179,6 +213,7 @@ class FactoredSystem {
  private:
   const ObservationIndex& index_;
   std::size_t frames_ = 0;
+  std::vector<std::size_t> chunk_begin_;  // planes of chunk c: [chunk_begin_[c], chunk_begin_[c+1])
   std::vector<float> z_;  // 3x6 column-major per observation
   std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;

@@ -225,9 +225,9 @@ TEST(SparseLm, FormedSystemGivesExactSteps) {
               s.final_cost - c.dense_summary.final_cost, i.final_cost - c.dense_summary.final_cost);
 }
 
-// The product H x sums in an order fixed by the problem, not by the
-// threads: one and two threads take identical steps on a problem large
-// enough (30 000 observations) for the threads to share its planes.
+// The product H x sums planes in chunks fixed by the problem's size, not by
+// the threads: one and two threads take identical steps on a problem large
+// enough (30 000 observations) to be cut into several chunks.
 TEST(SparseLm, SameStepsForAnyThreadCount) {
   std::mt19937 rng(7);
   const int frames = 40;
