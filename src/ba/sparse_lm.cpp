@@ -246,25 +246,6 @@ Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd
   return x;
 }
 
-// The inverse of a symmetric 6x6 block where it is positive definite and
-// well conditioned; otherwise the inverse of its absolute eigenvalues,
-// floored. The exact Hessian's blocks can be indefinite far from the
-// optimum: inverting their clamped diagonal instead gave preconditioned
-// steps of 1e13 m that only the step cap stopped, and left the result to
-// rounding (BENCHMARKS.md, session 7).
-Mat6 positiveInverse(const Mat6& block) {
-  const Eigen::LDLT<Mat6> ldlt(block);
-  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
-    const Vec6 pivots = ldlt.vectorD();
-    if (pivots.minCoeff() > 1e-9 * pivots.maxCoeff()) return ldlt.solve(Mat6::Identity());
-  }
-  const Eigen::SelfAdjointEigenSolver<Mat6> eig(block);
-  const Vec6 magnitude = eig.eigenvalues().cwiseAbs();
-  const double floor = std::max(1e-9 * magnitude.maxCoeff(), 1e-300);
-  return eig.eigenvectors() * magnitude.cwiseMax(floor).cwiseInverse().asDiagonal() *
-         eig.eigenvectors().transpose();
-}
-
 // Solves (H + mu D) x = -g for every frame but frame 0 by preconditioned
 // conjugate gradients; stops early at negative curvature (far from the
 // optimum the exact Hessian can be indefinite) with the last good iterate.
@@ -319,6 +300,23 @@ Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd&
 }
 
 }  // namespace
+
+// The exact Hessian's blocks can be indefinite far from the optimum:
+// inverting their clamped diagonal instead gave preconditioned steps of
+// 1e13 m that only the step cap stopped, and left the result to rounding
+// (BENCHMARKS.md, session 7).
+Mat6 positiveInverse(const Mat6& block) {
+  const Eigen::LDLT<Mat6> ldlt(block);
+  if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {
+    const Vec6 pivots = ldlt.vectorD();
+    if (pivots.minCoeff() > 1e-9 * pivots.maxCoeff()) return ldlt.solve(Mat6::Identity());
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(block);
+  const Vec6 magnitude = eig.eigenvalues().cwiseAbs();
+  const double floor = std::max(1e-9 * magnitude.maxCoeff(), 1e-300);
+  return eig.eigenvectors() * magnitude.cwiseMax(floor).cwiseInverse().asDiagonal() *
+         eig.eigenvectors().transpose();
+}
 
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                         const SparseLmSettings& settings,

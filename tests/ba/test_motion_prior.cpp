@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
 #include <cstdio>
 
 #include <random>
@@ -257,6 +260,40 @@ TEST(SparseLm, SameStepsForAnyThreadCount) {
     EXPECT_EQ(one[i].t, two[i].t) << "frame " << i;
     EXPECT_EQ(one[i].q.coeffs(), two[i].q.coeffs()) << "frame " << i;
   }
+}
+
+// The preconditioner's block inverse: exact for a well-conditioned positive
+// block; for an indefinite or nearly singular one, positive definite and
+// bounded (the clamped diagonal it replaces turned a negative pivot into
+// 1e12 and a step into 1e13 m).
+TEST(SparseLm, PreconditionerBlocksArePositiveAndBounded) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> g(0.0, 1.0);
+  Eigen::Matrix<double, 6, 6> A;
+  for (int r = 0; r < 6; ++r) {
+    for (int c = 0; c < 6; ++c) A(r, c) = g(rng);
+  }
+  const Mat6 positive = A * A.transpose() + Mat6::Identity();
+  EXPECT_LT((positiveInverse(positive) * positive - Mat6::Identity()).norm(), 1e-9);
+
+  // Eigenvalues 5, 2, 1, 0.5, -0.3 and -4 (negative diagonal entries too).
+  const Eigen::HouseholderQR<Mat6> qr(A);
+  const Mat6 Q = qr.householderQ();
+  Vec6 lambda;
+  lambda << 5.0, 2.0, 1.0, 0.5, -0.3, -4.0;
+  const Mat6 indefinite = Q * lambda.asDiagonal() * Q.transpose();
+  const Mat6 inverse = positiveInverse(indefinite);
+  const Eigen::SelfAdjointEigenSolver<Mat6> eig(inverse);
+  EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+  EXPECT_NEAR(eig.eigenvalues().maxCoeff(), 1.0 / 0.3, 1e-9);  // 1 / |smallest magnitude|
+  EXPECT_LT((inverse - Q * lambda.cwiseAbs().cwiseInverse().asDiagonal() * Q.transpose()).norm(), 1e-9);
+
+  // Nearly singular: one direction 1e-14 of the others; bounded by the floor.
+  lambda << 1.0, 1.0, 1.0, 1.0, 1.0, 1e-14;
+  const Mat6 singular = Q * lambda.asDiagonal() * Q.transpose();
+  const Mat6 bounded = positiveInverse(singular);
+  EXPECT_TRUE(bounded.allFinite());
+  EXPECT_LE(Eigen::SelfAdjointEigenSolver<Mat6>(bounded).eigenvalues().maxCoeff(), 1.0001e9);
 }
 
 }  // namespace

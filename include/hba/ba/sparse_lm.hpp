@@ -38,6 +38,13 @@ struct SparseLmSettings {
   std::size_t dense_max_frames = 0;
 };
 
+// The preconditioner's inverse of one frame's damped 6x6 block: the exact
+// inverse where the block is positive definite and well conditioned (its
+// smallest LDLT pivot above 1e-9 of the largest); otherwise the inverse of
+// its absolute eigenvalues, floored at 1e-9 of the largest. Always
+// positive definite and finite.
+Mat6 positiveInverse(const Mat6& block);
+
 // Optimizes `poses` in place on the plane cost plus `prior`.
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                         const SparseLmSettings& settings,
