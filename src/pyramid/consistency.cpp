@@ -63,6 +63,13 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
   return costs;
 }
 
+std::size_t FixedPlaneMap::bytes() const {
+  return clusters_.capacity() * sizeof(CompactCluster) +
+         (plane_begin_.capacity() + plane_region_.capacity() + region_starts_.capacity()) *
+             sizeof(std::size_t) +
+         (plane_points_.capacity() + region_points_.capacity()) * sizeof(double);
+}
+
 double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {
   if (!(points_ > 0.0)) return 0.0;
   double cost = 0.0;

@@ -32,6 +32,8 @@ class FixedPlaneMap {
   std::vector<double> regionRms(const std::vector<Pose>& poses) const;
   // First frame of each region.
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
+  // Memory held (bytes).
+  std::size_t bytes() const;
 
  private:
   // A frame's cluster of one plane in single precision (44 bytes instead

@@ -119,24 +119,49 @@ std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<
   return input;
 }
 
+// Each block's fixed map, kept for the re-measured self-check when the
+// maps together fit in `kKeptMapBytes` (about 44 bytes a plane cluster:
+// 270 MB for 1000 HDL-32 frames); a block whose map was not kept is read and
+// its map found again (the same scans and poses give the same map).
+constexpr std::size_t kKeptMapBytes = std::size_t{512} << 20;
+
+struct BlockMaps {
+  std::vector<std::unique_ptr<FixedPlaneMap>> maps;  // per block; null: not kept
+  std::size_t bytes = 0;
+  void offer(std::unique_ptr<FixedPlaneMap> map) {
+    if (bytes + map->bytes() <= kKeptMapBytes) {
+      bytes += map->bytes();
+      maps.push_back(std::move(map));
+    } else {
+      maps.emplace_back();
+    }
+  }
+};
+
 // The final poses measured again on each block's fixed map (the groups
 // moved them after the blocks were checked): figures only.
 double remeasure(const ScanSource& scans, const std::vector<Pose>& initial,
                  const std::vector<Pose>& result, const std::vector<FrameSpan>& spans,
-                 const ba::RefinementSettings& rs, const HbaSettings& settings,
-                 std::vector<RegionFigures>& regions) {
+                 const BlockMaps& kept, const ba::RefinementSettings& rs,
+                 const HbaSettings& settings, std::vector<RegionFigures>& regions) {
   RmsSum final_sum;
   regions.clear();
-  for (const FrameSpan& span : spans) {
-    const Block block =
-        loadBlock(scans, span.first, SIZE_MAX, settings.refine_scan_voxel, span.end);
-    std::vector<const PointCloud*> pointers;
-    for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
-    const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
-    const std::vector<Pose> poses = slice(result, block.first, block.end);
-    const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size()));
+  for (std::size_t b = 0; b < spans.size(); ++b) {
+    const FrameSpan& span = spans[b];
+    const std::vector<Pose> input = inputOnto(initial, result, span.first, span.end);
+    const std::vector<Pose> poses = slice(result, span.first, span.end);
+    std::unique_ptr<FixedPlaneMap> found;
+    if (!kept.maps[b]) {
+      const Block block =
+          loadBlock(scans, span.first, SIZE_MAX, settings.refine_scan_voxel, span.end);
+      std::vector<const PointCloud*> pointers;
+      for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
+      found = std::make_unique<FixedPlaneMap>(pointers, input, rs.planes, rs.reject_ratio,
+                                              regionCount(input.size()));
+    }
+    const FixedPlaneMap& fixed = kept.maps[b] ? *kept.maps[b] : *found;
     final_sum.add(fixed.rms(poses), fixed.points());
-    addRegions(fixed, input, poses, block.first, regions);
+    addRegions(fixed, input, poses, span.first, regions);
   }
   return final_sum.rms();
 }
@@ -159,11 +184,21 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   std::size_t first = 0;
   std::size_t blocks = 0;
   // A sequence longer than one block is read again: the blocks overlap, and
-  // the groups and the re-measured self-check read every scan once more.
-  // From the second block on, each scan is parsed and downsampled once and
-  // then kept on disk; a sequence of one block reads its scans once here.
+  // the groups (and the re-measured self-check, for maps not kept) read
+  // every scan once more. There each scan is parsed and downsampled once
+  // and then kept on disk; a sequence of one block reads its scans once here.
+  // Layer 1 counted the scans' points at a finer voxel: more than a block
+  // there means a second block, so scans are kept from the first on (else
+  // from the second block, should one follow after all).
   std::unique_ptr<SpilledScanSource> spilled;
   const ScanSource* source = &scans;
+  const bool several_blocks = !report.layer_reports.empty() &&
+                              report.layer_reports.front().cloud_points > settings.refine_max_points;
+  if (several_blocks && settings.refine && report.layers > 1) {
+    spilled = std::make_unique<SpilledScanSource>(scans);
+    source = spilled.get();
+  }
+  BlockMaps kept_maps;
   while (first + 1 < initial.size() || blocks == 0) {
     const Block block = loadBlock(*source, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
@@ -176,8 +211,9 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
     const std::vector<Pose> current = slice(result, block.first, block.end);
 
-    const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio,
-                              regionCount(input.size()));
+    auto fixed_map = std::make_unique<FixedPlaneMap>(pointers, input, rs.planes, rs.reject_ratio,
+                                                     regionCount(input.size()));
+    const FixedPlaneMap& fixed = *fixed_map;
     const double input_rms = fixed.rms(input);
     const double current_rms = fixed.rms(current);
     c.planes += fixed.planes();
@@ -230,6 +266,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     final_sum.add(final_rms, fixed.points());
     addRegions(fixed, input, poses, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
+    kept_maps.offer(std::move(fixed_map));
     if (block.end >= initial.size()) break;
     if (!spilled) {
       spilled = std::make_unique<SpilledScanSource>(scans);
@@ -248,7 +285,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
       std::vector<RegionFigures> grouped_regions;
-      const double grouped_rms = remeasure(*source, initial, grouped, spans, rs, settings, grouped_regions);
+      const double grouped_rms = remeasure(*source, initial, grouped, spans, kept_maps, rs, settings, grouped_regions);
       // The output is never less consistent than the input (as for each block).
       if (grouped_rms <= input_sum.rms() * 1.005) {
         result = std::move(grouped);
