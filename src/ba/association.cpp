@@ -11,19 +11,31 @@
 namespace hba::ba {
 namespace {
 
-// Two-pass mean and scatter of one run of points (exactly symmetric result).
+// Mean and scatter of one run of points, in one pass of sums relative to
+// its first point (the points lie in one voxel: no cancellation), made
+// exactly symmetric.
 PointCluster clusterOf(const PointCloud& scan, const voxel::PointRef* begin,
                        const voxel::PointRef* end) {
+  const Vec3 origin = scan.points[begin->index].cast<double>();
+  Vec3 sum = Vec3::Zero();
+  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
+  for (const voxel::PointRef* r = begin; r != end; ++r) {
+    const Vec3 d = scan.points[r->index].cast<double>() - origin;
+    sum += d;
+    xx += d.x() * d.x();
+    xy += d.x() * d.y();
+    xz += d.x() * d.z();
+    yy += d.y() * d.y();
+    yz += d.y() * d.z();
+    zz += d.z() * d.z();
+  }
   PointCluster cluster;
   cluster.count = static_cast<double>(end - begin);
-  for (const voxel::PointRef* r = begin; r != end; ++r) {
-    cluster.mean += scan.points[r->index].cast<double>();
-  }
-  cluster.mean /= cluster.count;
-  for (const voxel::PointRef* r = begin; r != end; ++r) {
-    const Vec3 d = scan.points[r->index].cast<double>() - cluster.mean;
-    cluster.scatter.noalias() += d * d.transpose();
-  }
+  const Vec3 offset = sum / cluster.count;
+  cluster.mean = origin + offset;
+  cluster.scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  cluster.scatter -= cluster.count * offset * offset.transpose();
+  cluster.scatter = 0.5 * (cluster.scatter + cluster.scatter.transpose()).eval();
   return cluster;
 }
 
@@ -81,9 +93,9 @@ Association associate(const std::vector<const PointCloud*>& scans, const std::ve
   // planes are not dropped merely for having many points.
   const FrameTransforms frames(poses);
   std::vector<double> residual(observations.size());
-  for (std::size_t p = 0; p < observations.size(); ++p) {
+  tbb::parallel_for(std::size_t{0}, observations.size(), [&](std::size_t p) {
     residual[p] = planeCost(observations[p], frames) / observations[p].pointCount();
-  }
+  });
   Association out;
   std::vector<PlaneObservation> kept;
   for (std::size_t p : keepBestPlanes(residual, reject_ratio)) {

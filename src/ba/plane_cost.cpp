@@ -31,14 +31,16 @@ struct WorldCluster {
 };
 
 struct WorldPlane {
-  std::vector<WorldCluster> frames;
+  std::vector<WorldCluster, Eigen::aligned_allocator<WorldCluster>> frames;
   double n = 0.0;
   Mat3 scatter = Mat3::Zero();
 };
 
-WorldPlane toWorld(const PlaneObservation& plane, const FrameTransforms& frames) {
-  WorldPlane world;
+// Fills `world` (its storage reused: one per thread, no allocation per plane).
+void toWorld(const PlaneObservation& plane, const FrameTransforms& frames, WorldPlane& world) {
   world.frames.resize(plane.clusters.size());
+  world.n = 0.0;
+  world.scatter.setZero();
   // Centroids relative to the first one: no large absolute coordinates are
   // squared, so kilometre-scale translations lose no precision.
   Vec3 reference = Vec3::Zero();
@@ -62,6 +64,10 @@ WorldPlane toWorld(const PlaneObservation& plane, const FrameTransforms& frames)
     world.scatter += wc.sw + wc.n * wc.offset * wc.offset.transpose();
   }
   world.scatter = 0.5 * (world.scatter + world.scatter.transpose()).eval();
+}
+
+WorldPlane& threadWorldPlane() {
+  thread_local WorldPlane world;
   return world;
 }
 
@@ -92,7 +98,9 @@ FrameTransforms::FrameTransforms(const std::vector<Pose>& poses) {
 }
 
 Mat3 planeScatter(const PlaneObservation& plane, const FrameTransforms& frames) {
-  return toWorld(plane, frames).scatter;
+  WorldPlane& world = threadWorldPlane();
+  toWorld(plane, frames, world);
+  return world.scatter;
 }
 
 double planeCost(const PlaneObservation& plane, const FrameTransforms& frames) {
@@ -102,8 +110,9 @@ double planeCost(const PlaneObservation& plane, const FrameTransforms& frames) {
   return std::max(l1, 0.0);  // rounding can make a perfect plane slightly negative
 }
 
-PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTransforms& frames) {
-  const WorldPlane world = toWorld(plane, frames);
+void planeTerms(const PlaneObservation& plane, const FrameTransforms& frames, PlaneTerms& terms) {
+  WorldPlane& world = threadWorldPlane();
+  toWorld(plane, frames, world);
   const Eigen::SelfAdjointEigenSolver<Mat3> eig(world.scatter);
   const Vec3 lambda = eig.eigenvalues();
   const Vec3 u = eig.eigenvectors().col(0);
@@ -112,12 +121,11 @@ PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTran
   const Mat3 hat_u = hat(u);
   const std::size_t F = world.frames.size();
 
-  PlaneLinearization lin;
-  lin.cost = std::max(lambda(0), 0.0);
-  lin.gradient.setZero(6 * F);
-  lin.Z.setZero(3, 6 * F);
-  lin.diagonal.assign(F, Mat6::Zero());
-  lin.weights << (world.n > 0.0 ? -2.0 / world.n : 0.0),
+  terms.cost = std::max(lambda(0), 0.0);
+  terms.gradient.resize(F);
+  terms.z.resize(F);
+  terms.diagonal.resize(F);
+  terms.weights << (world.n > 0.0 ? -2.0 / world.n : 0.0),
       eigenGapWeight(lambda(0), lambda(1), lambda(2)),
       eigenGapWeight(lambda(0), lambda(2), lambda(2));
 
@@ -128,8 +136,8 @@ PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTran
     const Vec3 y = P * u;
     const double ug = u.dot(g);
 
-    lin.gradient.segment<3>(6 * a) = 2.0 * ug * u;
-    lin.gradient.segment<3>(6 * a + 3) = 2.0 * y.cross(u);
+    terms.gradient[a].head<3>() = 2.0 * ug * u;
+    terms.gradient[a].tail<3>() = 2.0 * y.cross(u);
 
     // Columns: A_a u1 for the 6 coordinates of this frame.
     Eigen::Matrix<double, 3, 6> W;
@@ -137,14 +145,15 @@ PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTran
     W.rightCols<3>() = P.transpose() * hat_u - hat(y);
 
     const Vec3 rbar_x_u = wc.rbar.cross(u);
-    lin.Z.block<1, 3>(0, 6 * a) = wc.n * u.transpose();
-    lin.Z.block<1, 3>(0, 6 * a + 3) = wc.n * rbar_x_u.transpose();
-    lin.Z.block<1, 6>(1, 6 * a) = u2.transpose() * W;
-    lin.Z.block<1, 6>(2, 6 * a) = u3.transpose() * W;
+    Eigen::Matrix<double, 3, 6>& Z = terms.z[a];
+    Z.block<1, 3>(0, 0) = wc.n * u.transpose();
+    Z.block<1, 3>(0, 3) = wc.n * rbar_x_u.transpose();
+    Z.row(1) = u2.transpose() * W;
+    Z.row(2) = u3.transpose() * W;
 
     // 2 * sum over the frame's points of j j^T, j = (u, r x u) ...
     const Mat3 second_moment = wc.sw + wc.n * wc.rbar * wc.rbar.transpose();
-    Mat6& D = lin.diagonal[a];
+    Mat6& D = terms.diagonal[a];
     D.topLeftCorner<3, 3>() = 2.0 * wc.n * u * u.transpose();
     D.topRightCorner<3, 3>() = 2.0 * wc.n * u * rbar_x_u.transpose();
     D.bottomLeftCorner<3, 3>() = D.topRightCorner<3, 3>().transpose();
@@ -153,6 +162,22 @@ PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTran
     D.bottomRightCorner<3, 3>() +=
         y * u.transpose() + u * y.transpose() - 2.0 * u.dot(y) * Mat3::Identity();
   }
+}
+
+PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTransforms& frames) {
+  thread_local PlaneTerms terms;
+  planeTerms(plane, frames, terms);
+  const std::size_t F = terms.z.size();
+  PlaneLinearization lin;
+  lin.cost = terms.cost;
+  lin.weights = terms.weights;
+  lin.gradient.resize(6 * static_cast<Eigen::Index>(F));
+  lin.Z.resize(3, 6 * static_cast<Eigen::Index>(F));
+  for (std::size_t a = 0; a < F; ++a) {
+    lin.gradient.segment<6>(6 * static_cast<Eigen::Index>(a)) = terms.gradient[a];
+    lin.Z.middleCols<6>(6 * static_cast<Eigen::Index>(a)) = terms.z[a];
+  }
+  lin.diagonal.assign(terms.diagonal.begin(), terms.diagonal.end());
   return lin;
 }
 

@@ -1,5 +1,6 @@
 #include "hba/ba/plane_problem.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -9,7 +10,7 @@
 namespace hba::ba {
 
 PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames)
-    : planes_(std::move(planes)), num_frames_(num_frames), uses_(num_frames) {
+    : planes_(std::move(planes)), num_frames_(num_frames) {
   for (std::size_t p = 0; p < planes_.size(); ++p) {
     const auto& clusters = planes_[p].clusters;
     for (std::size_t a = 0; a < clusters.size(); ++a) {
@@ -22,7 +23,6 @@ PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num
         throw Error("plane problem: plane " + std::to_string(p) +
                     " lists its frames out of order or twice");
       }
-      uses_[clusters[a].frame].emplace_back(p, a);
     }
   }
 }
@@ -42,36 +42,66 @@ double PlaneProblem::cost(const std::vector<Pose>& poses) const {
   return total;
 }
 
+namespace {
+
+// Planes are linearized and summed in fixed chunks, each into its own dense
+// gradient and Hessian, and the chunks are added in order: the same sums
+// for any thread count, no per-plane storage, and each chunk's Hessian stays
+// in cache (a window's is 29 kB). Chunks are bounded by their memory (64 MB
+// in all) and hold at least 16 planes.
+std::vector<std::size_t> chunkBegins(std::size_t planes, std::size_t unknowns) {
+  const std::size_t bytes = unknowns * unknowns * sizeof(double) + 1;
+  const std::size_t by_memory = (std::size_t{64} << 20) / bytes;
+  const std::size_t chunks = std::clamp<std::size_t>(std::min(by_memory, planes / 16), 1, 64);
+  std::vector<std::size_t> begin;
+  for (std::size_t c = 0; c <= chunks; ++c) begin.push_back(planes * c / chunks);
+  return begin;
+}
+
+// Adds one plane's cost, gradient and the blocks on and right of the
+// diagonal of its Hessian (clusters ascend by frame).
+void addPlane(const PlaneObservation& plane, const PlaneTerms& terms, Linearization& out) {
+  out.cost += terms.cost;
+  const auto& clusters = plane.clusters;
+  for (std::size_t a = 0; a < clusters.size(); ++a) {
+    const auto i = static_cast<Eigen::Index>(6 * clusters[a].frame);
+    out.gradient.segment<6>(i) += terms.gradient[a];
+    out.hessian.block<6, 6>(i, i) += terms.diagonal[a];
+    const Eigen::Matrix<double, 6, 3> left = terms.z[a].transpose() * terms.weights.asDiagonal();
+    for (std::size_t b = a; b < clusters.size(); ++b) {
+      const auto j = static_cast<Eigen::Index>(6 * clusters[b].frame);
+      out.hessian.block<6, 6>(i, j).noalias() += left * terms.z[b];
+    }
+  }
+}
+
+}  // namespace
+
 Linearization PlaneProblem::linearize(const std::vector<Pose>& poses) const {
   const FrameTransforms frames(poses);
-  std::vector<PlaneLinearization> per_plane(planes_.size());
-  tbb::parallel_for(std::size_t{0}, planes_.size(),
-                    [&](std::size_t p) { per_plane[p] = linearizePlane(planes_[p], frames); });
+  const auto n = static_cast<Eigen::Index>(6 * num_frames_);
+  const std::vector<std::size_t> begin = chunkBegins(planes_.size(), static_cast<std::size_t>(n));
+  const std::size_t chunks = begin.size() - 1;
 
-  Linearization out;
-  out.gradient.setZero(6 * num_frames_);
-  out.hessian.setZero(6 * num_frames_, 6 * num_frames_);
-  for (const PlaneLinearization& lin : per_plane) out.cost += lin.cost;
-
-  // Block row i gathers, in plane order, every plane that sees frame i; only
-  // the pairs of frames that share a plane are touched. Rows are disjoint, so
-  // threads never write the same entry and the sums have a fixed order.
-  // Clusters come in ascending frame order, so b >= a gives the blocks on and
-  // right of the diagonal; the rest is their mirror image (half the work).
-  tbb::parallel_for(std::size_t{0}, num_frames_, [&](std::size_t i) {
-    for (const auto& [p, a] : uses_[i]) {
-      const PlaneLinearization& lin = per_plane[p];
-      const auto& clusters = planes_[p].clusters;
-      out.gradient.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
-      out.hessian.block<6, 6>(6 * i, 6 * i) += lin.diagonal[a];
-      const Eigen::Matrix<double, 6, 3> left =
-          lin.Z.middleCols<6>(6 * a).transpose() * lin.weights.asDiagonal();
-      for (std::size_t b = a; b < clusters.size(); ++b) {
-        const std::size_t j = clusters[b].frame;
-        out.hessian.block<6, 6>(6 * i, 6 * j).noalias() += left * lin.Z.middleCols<6>(6 * b);
-      }
+  std::vector<Linearization> partial(chunks);
+  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
+    Linearization& part = partial[c];
+    part.gradient.setZero(n);
+    part.hessian.setZero(n, n);
+    thread_local PlaneTerms terms;
+    for (std::size_t p = begin[c]; p < begin[c + 1]; ++p) {
+      planeTerms(planes_[p], frames, terms);
+      addPlane(planes_[p], terms, part);
     }
   });
+
+  Linearization out = std::move(partial.front());
+  for (std::size_t c = 1; c < chunks; ++c) {
+    out.cost += partial[c].cost;
+    out.gradient += partial[c].gradient;
+    out.hessian += partial[c].hessian;
+    partial[c] = Linearization{};  // free as we go: a global BA's are large
+  }
   out.hessian.triangularView<Eigen::StrictlyLower>() = out.hessian.transpose();
   return out;
 }

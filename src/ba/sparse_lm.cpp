@@ -51,14 +51,16 @@ struct ObservationIndex {
   }
 };
 
-// Plane ranges of about equal observation counts for the product H x:
-// enough for two cores to share (up to 64), few enough that their partial
-// sums (6 floats per frame each) stay within 16 MB and a chunk holds at
-// least a few thousand observations. Depends on the sizes only.
-std::vector<std::size_t> productChunks(const ObservationIndex& index, std::size_t planes,
-                                       std::size_t frames) {
+// Plane ranges of about equal observation counts, each summing into its
+// own partial result of `partial_bytes`: enough for two cores to share (up
+// to 64), few enough that the partials stay within `budget` bytes and a
+// chunk holds at least a few thousand observations. Depends on the sizes
+// only, so sums taken chunk by chunk in order are the same for any thread
+// count.
+std::vector<std::size_t> planeChunks(const ObservationIndex& index, std::size_t planes,
+                                     std::size_t partial_bytes, std::size_t budget) {
   const std::size_t observations = index.frame_of.size();
-  const std::size_t by_memory = (std::size_t{4} << 20) / std::max<std::size_t>(6 * frames, 1);
+  const std::size_t by_memory = budget / std::max<std::size_t>(partial_bytes, 1);
   const std::size_t chunks = std::clamp<std::size_t>(
       std::min({std::size_t{64}, by_memory, observations / 4096}), 1, 64);
   std::vector<std::size_t> begin{0};
@@ -73,6 +75,14 @@ std::vector<std::size_t> productChunks(const ObservationIndex& index, std::size_
   return begin;
 }
 
+// One chunk of planes' sums per frame.
+struct FrameSums {
+  double cost = 0.0;
+  Eigen::VectorXd gradient;
+  Mat6List diagonal;
+  Mat6List own;
+};
+
 // The linearized objective at one set of poses, kept factored: per frame
 // the gradient and the 6x6 diagonal block, per observation the 3x6 block of
 // its plane's Z (single precision, flat: it only feeds the conjugate-
@@ -84,41 +94,48 @@ class FactoredSystem {
       : index_(index), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
     const std::size_t planes = problem.numPlanes();
-    chunk_begin_ = productChunks(index, planes, frames_);
+    // H x sums 6 floats a frame per chunk (16 MB in all).
+    chunk_begin_ = planeChunks(index, planes, 6 * sizeof(float) * frames_, std::size_t{16} << 20);
     z_.resize(18 * index.frame_of.size());
     weights_.resize(planes);
     gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
     diagonal_.assign(frames_, Mat6::Zero());
     own_.assign(frames_, Mat6::Zero());
-    // Planes in chunks, so that the full linearizations (gradient and
-    // diagonal blocks per observation) of only one chunk are alive at once;
-    // their sums go to the frames in plane order (deterministic).
-    constexpr std::size_t kChunk = 256;
-    std::vector<PlaneLinearization> chunk;
-    for (std::size_t c0 = 0; c0 < planes; c0 += kChunk) {
-      const std::size_t c1 = std::min(planes, c0 + kChunk);
-      chunk.assign(c1 - c0, PlaneLinearization{});
-      tbb::parallel_for(c0, c1, [&](std::size_t p) {
-        PlaneLinearization& lin = chunk[p - c0];
-        lin = linearizePlane(problem.planes()[p], transforms);
-        weights_[p] = lin.weights.cast<float>();
+    // Planes linearized in parallel chunks, each summing into its own
+    // per-frame gradient and blocks (64 MB in all); the chunks are then
+    // added in order (deterministic). No plane's full linearization is kept.
+    const std::vector<std::size_t> build = planeChunks(
+        index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{64} << 20);
+    std::vector<FrameSums> partial(build.size() - 1);
+    tbb::parallel_for(std::size_t{0}, partial.size(), [&](std::size_t c) {
+      FrameSums& sums = partial[c];
+      sums.gradient.setZero(6 * static_cast<Eigen::Index>(frames_));
+      sums.diagonal.assign(frames_, Mat6::Zero());
+      sums.own.assign(frames_, Mat6::Zero());
+      thread_local PlaneTerms terms;
+      for (std::size_t p = build[c]; p < build[c + 1]; ++p) {
+        planeTerms(problem.planes()[p], transforms, terms);
+        weights_[p] = terms.weights.cast<float>();
+        sums.cost += terms.cost;
         const std::size_t first = index.plane_begin[p];
-        for (std::size_t a = 0; a < problem.planes()[p].clusters.size(); ++a) {
-          Eigen::Map<Eigen::Matrix<float, 3, 6>> stored(&z_[18 * (first + a)]);
-          stored = lin.Z.middleCols<6>(6 * a).cast<float>();
-        }
-      });
-      for (std::size_t p = c0; p < c1; ++p) {
-        const PlaneLinearization& lin = chunk[p - c0];
         const auto& clusters = problem.planes()[p].clusters;
-        cost_ += lin.cost;
         for (std::size_t a = 0; a < clusters.size(); ++a) {
           const std::size_t i = clusters[a].frame;
-          gradient_.segment<6>(6 * i) += lin.gradient.segment<6>(6 * a);
-          const Eigen::Matrix<double, 3, 6> Za = lin.Z.middleCols<6>(6 * a);
-          diagonal_[i] += lin.diagonal[a];
-          own_[i] += Za.transpose() * lin.weights.asDiagonal() * Za;
+          const Eigen::Matrix<double, 3, 6>& Za = terms.z[a];
+          Eigen::Map<Eigen::Matrix<float, 3, 6>> stored(&z_[18 * (first + a)]);
+          stored = Za.cast<float>();
+          sums.gradient.segment<6>(6 * static_cast<Eigen::Index>(i)) += terms.gradient[a];
+          sums.diagonal[i] += terms.diagonal[a];
+          sums.own[i].noalias() += Za.transpose() * terms.weights.asDiagonal() * Za;
         }
+      }
+    });
+    for (const FrameSums& sums : partial) {
+      cost_ += sums.cost;
+      gradient_ += sums.gradient;
+      for (std::size_t i = 0; i < frames_; ++i) {
+        diagonal_[i] += sums.diagonal[i];
+        own_[i] += sums.own[i];
       }
     }
     for (const RelativePosePrior& term : prior.terms()) {

@@ -47,7 +47,8 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
   const ba::FrameTransforms frames(poses);
   std::vector<double> costs(planes());
   tbb::parallel_for(std::size_t{0}, costs.size(), [&](std::size_t p) {
-    ba::PlaneObservation plane;
+    thread_local ba::PlaneObservation plane;  // reused: no allocation per plane
+    plane.clusters.clear();
     for (std::size_t k = plane_begin_[p]; k < plane_begin_[p + 1]; ++k) {
       const CompactCluster& c = clusters_[k];
       ba::FrameCluster fc;

@@ -1,6 +1,7 @@
 #include "cell_assignment.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "hba/voxel/voxel_key.hpp"
@@ -96,6 +97,12 @@ CellAssignment assignKeys(const std::vector<Key>& keys, std::size_t points_per_c
   CellAssignment out;
   out.cell_of_point.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
+    // Scans come ring by ring: a point mostly shares the cell of the one
+    // before it, which then needs no lookup.
+    if (i > 0 && keys[i] == keys[i - 1]) {
+      out.cell_of_point[i] = out.cell_of_point[i - 1];
+      continue;
+    }
     if (i + kLookahead < n) table.prefetch(keys[i + kLookahead]);
     const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
     const std::uint32_t cell = table.find(keys[i], next);
@@ -133,7 +140,18 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
 
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
                            std::size_t points_per_cell) {
-  const auto keyOf = [&](std::size_t i) { return VoxelKey::of(points[i].cast<double>(), size); };
+  // Dividing by a power of two is multiplying by its exact inverse: the same
+  // keys as VoxelKey::of, without three divisions a point (plane voxels are
+  // 4 m halved; scan voxels like 0.1 m keep the division).
+  int exponent = 0;
+  const bool power_of_two = std::frexp(size, &exponent) == 0.5;
+  const double inverse = 1.0 / size;
+  const auto keyOf = [&](std::size_t i) {
+    const Vec3 p = points[i].cast<double>();
+    if (!power_of_two) return VoxelKey::of(p, size);
+    return VoxelKey{VoxelKey::cell(p.x() * inverse), VoxelKey::cell(p.y() * inverse),
+                    VoxelKey::cell(p.z() * inverse)};
+  };
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     std::vector<VoxelKey> keys(points.size());

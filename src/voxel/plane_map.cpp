@@ -56,19 +56,28 @@ struct IdSpan {
   std::size_t size() const { return static_cast<std::size_t>(end - begin); }
 };
 
-// Eigenvalues (ascending) of the covariance of the points `ids`.
+// Eigenvalues (ascending) of the covariance of the points `ids`, in one
+// pass of sums relative to the first point: a cell is a few metres wide, so
+// the shifted sums lose nothing to cancellation.
 Vec3 covarianceEigenvalues(const WorldPoints& world, IdSpan ids) {
-  Vec3 mean = Vec3::Zero();
+  const Vec3 origin = world.position[*ids.begin].cast<double>();
+  Vec3 sum = Vec3::Zero();
+  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
   for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
-    mean += world.position[*id].cast<double>();
+    const Vec3 d = world.position[*id].cast<double>() - origin;
+    sum += d;
+    xx += d.x() * d.x();
+    xy += d.x() * d.y();
+    xz += d.x() * d.z();
+    yy += d.y() * d.y();
+    yz += d.y() * d.z();
+    zz += d.z() * d.z();
   }
-  mean /= static_cast<double>(ids.size());
-  Mat3 cov = Mat3::Zero();
-  for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
-    const Vec3 d = world.position[*id].cast<double>() - mean;
-    cov.noalias() += d * d.transpose();
-  }
-  cov /= static_cast<double>(ids.size());
+  const double n = static_cast<double>(ids.size());
+  const Vec3 mean = sum / n;
+  Mat3 cov;
+  cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+  cov = cov / n - mean * mean.transpose();
   return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
 }
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include <tbb/global_control.h>
+
 #include "hba/ba/plane_cost.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/error.hpp"
@@ -116,6 +118,51 @@ TEST(PlaneProblem, AssembledDerivativesMatchFiniteDifferences) {
   EXPECT_LT(relativeError(lin.gradient, numericGradient(cost, poses, 1e-6)), 1e-5);
   EXPECT_LT(relativeError(lin.hessian, numericHessian(cost, poses, 1e-4)), 1e-5);
   EXPECT_LT((lin.hessian - lin.hessian.transpose()).norm(), 1e-12 * lin.hessian.norm());
+}
+
+// Many planes: linearize() sums them in chunks, each into its own Hessian.
+// The result must be the plain sum of every plane's own dense Hessian, and
+// bit for bit the same on one thread as on two.
+TEST(PlaneProblem, ChunkedAssemblyIsThePlanesSumForAnyThreadCount) {
+  std::mt19937 rng(17);
+  const int frames = 8;
+  const std::vector<Pose> poses = randomPoses(rng, frames, 4.0);
+  std::vector<PlaneObservation> planes;
+  for (int p = 0; p < 400; ++p) {
+    std::vector<std::uint32_t> seen;
+    for (std::uint32_t f = 0; f < static_cast<std::uint32_t>(frames); ++f) {
+      if ((p + f) % 3 != 0) seen.push_back(f);
+    }
+    planes.push_back(randomPlane(rng, poses, seen, 8, 0.02).observation);
+  }
+  const PlaneProblem problem(planes, frames);
+
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(6 * frames, 6 * frames);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(6 * frames);
+  for (const PlaneObservation& plane : planes) {
+    const PlaneLinearization lin = linearizePlane(plane, FrameTransforms(poses));
+    const Eigen::MatrixXd local = lin.denseHessian();
+    for (std::size_t a = 0; a < plane.clusters.size(); ++a) {
+      const auto i = static_cast<Eigen::Index>(6 * plane.clusters[a].frame);
+      g.segment<6>(i) += lin.gradient.segment<6>(6 * static_cast<Eigen::Index>(a));
+      for (std::size_t b = 0; b < plane.clusters.size(); ++b) {
+        const auto j = static_cast<Eigen::Index>(6 * plane.clusters[b].frame);
+        H.block<6, 6>(i, j) += local.block<6, 6>(6 * static_cast<Eigen::Index>(a),
+                                                 6 * static_cast<Eigen::Index>(b));
+      }
+    }
+  }
+  auto linearizeWith = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return problem.linearize(poses);
+  };
+  const Linearization one = linearizeWith(1);
+  const Linearization two = linearizeWith(2);
+  EXPECT_LT(relativeError(one.hessian, H), 1e-12);
+  EXPECT_LT(relativeError(one.gradient, g), 1e-12);
+  EXPECT_EQ(one.hessian, two.hessian);
+  EXPECT_EQ(one.gradient, two.gradient);
+  EXPECT_EQ(one.cost, two.cost);
 }
 
 // linearize() builds half the Hessian from the frame order, so a plane whose

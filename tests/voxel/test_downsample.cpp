@@ -11,6 +11,23 @@
 namespace hba::voxel {
 namespace {
 
+TEST(VoxelKey, CellIsFloorForEverySignIntegersAndLimits) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1e6, 1e6);
+  std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 1e-300, -1e-300,
+                                std::nextafter(-1.0, 0.0), std::nextafter(1.0, 0.0),
+                                -4503599627370495.5, 4503599627370495.5, 3.0e18, -3.0e18};
+  for (int i = 0; i < 100000; ++i) values.push_back(u(rng));
+  for (int i = -50; i <= 50; ++i) values.push_back(i);
+  for (double v : values) {
+    EXPECT_EQ(VoxelKey::cell(v), static_cast<std::int64_t>(std::floor(v))) << v;
+  }
+  // Beyond int64 and NaN: an edge cell, never an overflowing conversion.
+  EXPECT_EQ(VoxelKey::cell(1e30), VoxelKey::cell(5e18));
+  EXPECT_EQ(VoxelKey::cell(-1e30), VoxelKey::cell(-5e18));
+  EXPECT_EQ(VoxelKey::cell(std::nan("")), VoxelKey::cell(-1e30));
+}
+
 TEST(Downsample, KeepsOneCentroidPerVoxelInFirstSeenOrder) {
   PointCloud cloud;
   cloud.add(Vec3f(1.2f, 0.1f, 0.1f), 10.f);   // voxel (1,0,0)

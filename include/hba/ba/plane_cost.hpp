@@ -59,4 +59,16 @@ struct PlaneLinearization {
 
 PlaneLinearization linearizePlane(const PlaneObservation& plane, const FrameTransforms& frames);
 
+// The same derivatives per cluster a, in storage that is reused from plane
+// to plane (no allocation once it has grown): gradient[a] and diagonal[a]
+// as above, z[a] the 3x6 columns 6a .. 6a+5 of Z.
+struct PlaneTerms {
+  double cost = 0.0;
+  Vec3 weights = Vec3::Zero();
+  std::vector<Vec6, Eigen::aligned_allocator<Vec6>> gradient;
+  std::vector<Eigen::Matrix<double, 3, 6>, Eigen::aligned_allocator<Eigen::Matrix<double, 3, 6>>> z;
+  std::vector<Mat6, Eigen::aligned_allocator<Mat6>> diagonal;
+};
+void planeTerms(const PlaneObservation& plane, const FrameTransforms& frames, PlaneTerms& terms);
+
 }  // namespace hba::ba

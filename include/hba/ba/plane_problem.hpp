@@ -38,9 +38,6 @@ class PlaneProblem {
  private:
   std::vector<PlaneObservation> planes_;
   std::size_t num_frames_ = 0;
-  // For each frame, the (plane, cluster index) pairs that observe it, in
-  // plane order: the Hessian is assembled block-row by block-row from these.
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> uses_;
 };
 
 }  // namespace hba::ba

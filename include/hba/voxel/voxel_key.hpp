@@ -25,7 +25,10 @@ struct VoxelKey {
     constexpr double kLimit = 4.0e18;  // well inside int64
     if (!(v > -kLimit)) return static_cast<std::int64_t>(-kLimit);
     if (!(v < kLimit)) return static_cast<std::int64_t>(kLimit);
-    return static_cast<std::int64_t>(std::floor(v));
+    // floor without a libm call (not inlined without SSE4.1): truncate, then
+    // step down for negative non-integers. Same result as std::floor.
+    const auto truncated = static_cast<std::int64_t>(v);
+    return static_cast<double>(truncated) > v ? truncated - 1 : truncated;
   }
 
   bool operator==(const VoxelKey& o) const { return x == o.x && y == o.y && z == o.z; }
