@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hba/ba/plane_problem.hpp"
+#include "hba/core/shifted_moments.hpp"
 
 namespace hba::ba {
 namespace {
@@ -16,25 +17,13 @@ namespace {
 // exactly symmetric.
 PointCluster clusterOf(const PointCloud& scan, const voxel::PointRef* begin,
                        const voxel::PointRef* end) {
-  const Vec3 origin = scan.points[begin->index].cast<double>();
-  Vec3 sum = Vec3::Zero();
-  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
-  for (const voxel::PointRef* r = begin; r != end; ++r) {
-    const Vec3 d = scan.points[r->index].cast<double>() - origin;
-    sum += d;
-    xx += d.x() * d.x();
-    xy += d.x() * d.y();
-    xz += d.x() * d.z();
-    yy += d.y() * d.y();
-    yz += d.y() * d.z();
-    zz += d.z() * d.z();
-  }
+  ShiftedMoments moments(scan.points[begin->index].cast<double>());
+  for (const voxel::PointRef* r = begin; r != end; ++r) moments.add(scan.points[r->index].cast<double>());
   PointCluster cluster;
   cluster.count = static_cast<double>(end - begin);
-  const Vec3 offset = sum / cluster.count;
-  cluster.mean = origin + offset;
-  cluster.scatter << xx, xy, xz, xy, yy, yz, xz, yz, zz;
-  cluster.scatter -= cluster.count * offset * offset.transpose();
+  const Vec3 offset = moments.offsetSum() / cluster.count;
+  cluster.mean = moments.origin() + offset;
+  cluster.scatter = moments.outerSum() - cluster.count * offset * offset.transpose();
   cluster.scatter = 0.5 * (cluster.scatter + cluster.scatter.transpose()).eval();
   return cluster;
 }

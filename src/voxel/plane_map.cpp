@@ -11,6 +11,7 @@
 
 #include "cell_assignment.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/shifted_moments.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
@@ -60,24 +61,13 @@ struct IdSpan {
 // pass of sums relative to the first point: a cell is a few metres wide, so
 // the shifted sums lose nothing to cancellation.
 Vec3 covarianceEigenvalues(const WorldPoints& world, IdSpan ids) {
-  const Vec3 origin = world.position[*ids.begin].cast<double>();
-  Vec3 sum = Vec3::Zero();
-  double xx = 0.0, xy = 0.0, xz = 0.0, yy = 0.0, yz = 0.0, zz = 0.0;
+  ShiftedMoments moments(world.position[*ids.begin].cast<double>());
   for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
-    const Vec3 d = world.position[*id].cast<double>() - origin;
-    sum += d;
-    xx += d.x() * d.x();
-    xy += d.x() * d.y();
-    xz += d.x() * d.z();
-    yy += d.y() * d.y();
-    yz += d.y() * d.z();
-    zz += d.z() * d.z();
+    moments.add(world.position[*id].cast<double>());
   }
   const double n = static_cast<double>(ids.size());
-  const Vec3 mean = sum / n;
-  Mat3 cov;
-  cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
-  cov = cov / n - mean * mean.transpose();
+  const Vec3 mean = moments.offsetSum() / n;
+  const Mat3 cov = moments.outerSum() / n - mean * mean.transpose();
   return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
