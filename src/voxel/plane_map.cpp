@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -57,18 +58,22 @@ struct IdSpan {
   std::size_t size() const { return static_cast<std::size_t>(end - begin); }
 };
 
-// Eigenvalues (ascending) of the covariance of the points `ids`, in one
-// pass of sums relative to the first point: a cell is a few metres wide, so
-// the shifted sums lose nothing to cancellation.
-Vec3 covarianceEigenvalues(const WorldPoints& world, IdSpan ids) {
+// Eigenvalues (ascending) of the covariance of `n` points from their sums
+// relative to the first point: a cell is a few metres wide, so the shifted
+// sums lose nothing to cancellation.
+Vec3 covarianceEigenvalues(const ShiftedMoments& moments, std::size_t count) {
+  const double n = static_cast<double>(count);
+  const Vec3 mean = moments.offsetSum() / n;
+  const Mat3 cov = moments.outerSum() / n - mean * mean.transpose();
+  return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+ShiftedMoments momentsOf(const WorldPoints& world, IdSpan ids) {
   ShiftedMoments moments(world.position[*ids.begin].cast<double>());
   for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
     moments.add(world.position[*id].cast<double>());
   }
-  const double n = static_cast<double>(ids.size());
-  const Vec3 mean = moments.offsetSum() / n;
-  const Mat3 cov = moments.outerSum() / n - mean * mean.transpose();
-  return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+  return moments;
 }
 
 int countFrames(const WorldPoints& world, IdSpan ids) {
@@ -81,41 +86,65 @@ int countFrames(const WorldPoints& world, IdSpan ids) {
   return frames;
 }
 
+// Room for reordering the largest cell during a split.
+struct SplitScratch {
+  std::vector<std::uint32_t> ids;
+  std::vector<std::uint8_t> octant;
+  void reserve(std::size_t n) {
+    if (ids.size() < n) {
+      ids.resize(n);
+      octant.resize(n);
+    }
+  }
+};
+
 class OctreeSplitter {
  public:
   OctreeSplitter(const WorldPoints& world, const PlaneSettings& settings)
       : world_(world), settings_(settings) {}
 
-  // Tests the cell [corner, corner + edge)^3 holding `ids`; appends its planes.
-  // Splitting reorders `ids` in place (stable, so each octant stays ascending);
-  // `scratch` must hold at least ids.size() entries.
-  void visit(IdSpan ids, const Vec3& corner, double edge, int depth, std::uint32_t* scratch,
-             std::vector<PlaneFeature>& out) const {
+  // Tests the cell [corner, corner + edge)^3 holding `ids` (whose sums are
+  // `moments`, when known); appends its planes. Splitting reorders `ids` in
+  // place (stable, so each octant stays ascending); `scratch` must hold at
+  // least ids.size() entries.
+  void visit(IdSpan ids, const ShiftedMoments* moments, const Vec3& corner, double edge,
+             int depth, SplitScratch& scratch, std::vector<PlaneFeature>& out) const {
     if (static_cast<int>(ids.size()) < settings_.min_points) return;
-    if (passesPlaneTest(covarianceEigenvalues(world_, ids), settings_)) {
+    const Vec3 eigenvalues = moments ? covarianceEigenvalues(*moments, ids.size())
+                                     : covarianceEigenvalues(momentsOf(world_, ids), ids.size());
+    if (passesPlaneTest(eigenvalues, settings_)) {
       if (countFrames(world_, ids) >= settings_.min_frames) out.push_back(toFeature(ids, depth));
       return;
     }
     if (depth >= settings_.max_depth) return;
     const double half = 0.5 * edge;
     const Vec3 center = corner + Vec3::Constant(half);
-    const auto octantOf = [&](std::uint32_t id) {
-      const Vec3f& p = world_.position[id];
-      return (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) |
-             (p.z() >= center.z() ? 4 : 0);
-    };
+    // One pass over the points: each one's octant (kept for the reordering)
+    // and each octant's sums, taken in id order from its first point, as
+    // the octant would take them itself.
+    std::array<std::optional<ShiftedMoments>, 8> octants;
     std::array<std::size_t, 9> start{};
-    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) ++start[octantOf(*id) + 1];
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const Vec3f& p = world_.position[ids.begin[k]];
+      const int o = (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) |
+                    (p.z() >= center.z() ? 4 : 0);
+      scratch.octant[k] = static_cast<std::uint8_t>(o);
+      ++start[o + 1];
+      const Vec3 q = p.cast<double>();
+      if (!octants[o]) octants[o].emplace(q);
+      octants[o]->add(q);
+    }
     for (int o = 0; o < 8; ++o) start[o + 1] += start[o];
     std::array<std::size_t, 8> fill{};
     std::copy(start.begin(), start.end() - 1, fill.begin());
-    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) scratch[fill[octantOf(*id)]++] = *id;
-    std::copy(scratch, scratch + ids.size(), ids.begin);
+    for (std::size_t k = 0; k < ids.size(); ++k) scratch.ids[fill[scratch.octant[k]]++] = ids.begin[k];
+    std::copy(scratch.ids.begin(), scratch.ids.begin() + static_cast<long>(ids.size()), ids.begin);
     for (int o = 0; o < 8; ++o) {
       const Vec3 child_corner = corner + half * Vec3((o & 1) ? 1 : 0, (o & 2) ? 1 : 0,
                                                      (o & 4) ? 1 : 0);
-      visit({ids.begin + start[o], ids.begin + start[o + 1]}, child_corner, half, depth + 1,
-            scratch, out);
+      const ShiftedMoments* known = octants[o] ? &*octants[o] : nullptr;
+      visit({ids.begin + start[o], ids.begin + start[o + 1]}, known, child_corner, half,
+            depth + 1, scratch, out);
     }
   }
 
@@ -191,7 +220,7 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
   std::vector<std::vector<PlaneFeature>> per_voxel(order.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-    std::vector<std::uint32_t> scratch;
+    SplitScratch scratch;
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const std::size_t cell = order[i];
       const VoxelKey& key = keys[cell];
@@ -200,8 +229,8 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
                                                      static_cast<double>(key.z));
       const IdSpan ids{members.ids.data() + members.begin[cell],
                        members.ids.data() + members.begin[cell + 1]};
-      if (scratch.size() < ids.size()) scratch.resize(ids.size());
-      splitter.visit(ids, corner, settings.voxel_size, 0, scratch.data(), per_voxel[i]);
+      scratch.reserve(ids.size());
+      splitter.visit(ids, nullptr, corner, settings.voxel_size, 0, scratch, per_voxel[i]);
     }
   });
 
