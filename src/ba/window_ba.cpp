@@ -33,12 +33,19 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
   }
 }
 
-std::vector<double> planeRms(const PlaneProblem& problem, const std::vector<Pose>& poses) {
-  std::vector<double> rms = problem.planeCosts(poses);
-  for (std::size_t p = 0; p < rms.size(); ++p) {
-    rms[p] = std::sqrt(rms[p] / problem.planes()[p].pointCount());
+// The per-plane costs' sum, in plane order (as PlaneProblem::cost).
+double sumOf(const std::vector<double>& costs) {
+  double total = 0.0;
+  for (double c : costs) total += c;
+  return total;
+}
+
+// RMS point-to-plane distance of each plane, from its cost.
+std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> costs) {
+  for (std::size_t p = 0; p < costs.size(); ++p) {
+    costs[p] = std::sqrt(costs[p] / problem.planes()[p].pointCount());
   }
-  return rms;
+  return costs;
 }
 
 std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
@@ -116,17 +123,21 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     }
   }
   const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
-  result.final_cost = last.problem.cost(result.poses);
+  // Each plane's cost at the result and at the input, once for the totals
+  // and the RMS figures.
+  const std::vector<double> final_costs = last.problem.planeCosts(result.poses);
+  const std::vector<double> initial_costs = last.problem.planeCosts(initial);
+  result.final_cost = sumOf(final_costs);
   Linearization final_lin = last.problem.linearize(result.poses);
   prior.addTo(final_lin, result.poses);
   result.hessian = std::move(final_lin.hessian);
-  result.last_association_initial_cost = last.problem.cost(initial);
+  result.last_association_initial_cost = sumOf(initial_costs);
   result.num_planes = last.problem.numPlanes();
   for (const PlaneObservation& plane : last.problem.planes()) {
     result.num_plane_points += static_cast<std::size_t>(plane.pointCount());
   }
-  result.plane_rms_initial = planeRms(last.problem, initial);
-  result.plane_rms_final = planeRms(last.problem, result.poses);
+  result.plane_rms_initial = planeRms(last.problem, initial_costs);
+  result.plane_rms_final = planeRms(last.problem, final_costs);
   result.plane_point_indices = pointIndicesPerFrame(last.features, scans);
   return result;
 }
