@@ -6,6 +6,8 @@
 #include <cmath>
 #include <unordered_set>
 
+#include <tbb/parallel_for.h>
+
 #include "hba/voxel/downsample.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
@@ -90,15 +92,23 @@ ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose
   for (const std::vector<std::size_t>& frames : stretches) {
     std::vector<KeySet> as_turned(turns.size());
     KeySet as_inverted, as_world, as_stored;
-    for (std::size_t i : frames) {
-      // Halving the voxel first keeps the counts and makes 26 merges cheap.
-      const PointCloud scan = voxel::downsample(scans.load(i), 0.5 * s.voxel);
+    // Halving the voxel first keeps the counts and makes 26 merges cheap.
+    std::vector<PointCloud> clouds(frames.size());
+    tbb::parallel_for(std::size_t{0}, frames.size(), [&](std::size_t f) {
+      clouds[f] = voxel::downsample(scans.load(frames[f]), 0.5 * s.voxel);
+    });
+    // Each alternative merges into its own set: the turns in parallel.
+    tbb::parallel_for(std::size_t{0}, turns.size(), [&](std::size_t k) {
+      for (std::size_t f = 0; f < frames.size(); ++f) {
+        addVoxels(clouds[f], poses[frames[f]] * Pose(turns[k], Vec3::Zero()), s.voxel, as_turned[k]);
+      }
+    });
+    for (std::size_t f = 0; f < frames.size(); ++f) {
+      const std::size_t i = frames[f];
+      const PointCloud& scan = clouds[f];
       KeySet own;
       addVoxels(scan, Pose::identity(), s.voxel, own);
       single += static_cast<double>(own.size()) / static_cast<double>(frames.size());
-      for (std::size_t k = 0; k < turns.size(); ++k) {
-        addVoxels(scan, poses[i] * Pose(turns[k], Vec3::Zero()), s.voxel, as_turned[k]);
-      }
       addVoxels(scan, poses[i].inverse(), s.voxel, as_inverted);
       as_world.insert(own.begin(), own.end());
       // The source moved scans back by their pose; moving them twice
