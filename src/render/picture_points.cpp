@@ -18,21 +18,36 @@ PicturePoints::PicturePoints(double voxel, const Vec3& origin, std::size_t expec
 void PicturePoints::add(const PointCloud& cloud, const Pose& pose) {
   const Mat3 R = pose.R();
   const Vec3 t = pose * cloud.origin - origin_;
-  for (const Vec3f& p : cloud.points) {
-    const Vec3 local = R * p.cast<double>() + t;
+  // Keys first, then the inserts, each prefetching the slot of a key a few
+  // points ahead. A point in the voxel of the point before it (scans come
+  // ring by ring) is not new.
+  constexpr std::uint64_t kOutside = ~std::uint64_t{0};
+  thread_local std::vector<std::uint64_t> keys;
+  thread_local std::vector<Vec3f> local;
+  keys.resize(cloud.points.size());
+  local.resize(cloud.points.size());
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const Vec3 q = R * cloud.points[i].cast<double>() + t;
+    local[i] = q.cast<float>();
     std::uint64_t key = 0;
-    bool in_range = true;
     for (int axis = 0; axis < 3; ++axis) {
-      const double cell = std::floor(local(axis) * inverse_voxel_);
-      // Also false for NaN.
-      in_range = in_range && cell > -static_cast<double>(kHalfRange) && cell < static_cast<double>(kHalfRange);
-      if (!in_range) break;
-      key |= static_cast<std::uint64_t>(static_cast<std::int64_t>(cell) + kHalfRange) << (21 * axis);
+      // Clamped for NaN and huge values, which then fall outside the range.
+      const std::int64_t cell = voxel::VoxelKey::cell(q(axis) * inverse_voxel_);
+      if (!(cell > -kHalfRange && cell < kHalfRange)) {
+        key = kOutside;
+        break;
+      }
+      key |= static_cast<std::uint64_t>(cell + kHalfRange) << (21 * axis);
     }
-    if (!in_range) continue;
+    keys[i] = key;
+  }
+  constexpr std::size_t kLookahead = 16;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (i + kLookahead < keys.size()) index_.prefetch(keys[i + kLookahead]);
+    if (keys[i] == kOutside || (i > 0 && keys[i] == keys[i - 1])) continue;
     bool inserted = false;
-    index_.insert(key, inserted);
-    if (inserted) points_.push_back(local.cast<float>());
+    index_.insert(keys[i], inserted);
+    if (inserted) points_.push_back(local[i]);
   }
 }
 
