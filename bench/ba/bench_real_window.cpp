@@ -18,6 +18,7 @@ namespace hba::ba {
 namespace {
 
 struct RealWindow {
+  PointCloud raw;  // the first scan as read
   std::vector<PointCloud> scans;
   std::vector<Pose> poses;
   std::size_t points = 0;
@@ -36,6 +37,7 @@ const std::optional<RealWindow>& realWindow() {
     const io::Dataset data = io::Dataset::open(dir);
     RealWindow w;
     const std::size_t first = data.size() / 2;
+    w.raw = data.loadScan(first);
     for (std::size_t i = first; i < std::min(data.size(), first + 10); ++i) {
       w.scans.push_back(voxel::downsample(data.loadScan(i), 0.1));
       w.poses.push_back(data.trajectory().poses[i]);
@@ -51,6 +53,15 @@ voxel::PlaneSettings planesAt(double voxel) {
   settings.voxel_size = voxel;
   return settings;
 }
+
+// A scan as read, downsampled as layer 1 loads it.
+void BM_RealScanDownsample(benchmark::State& state) {
+  const auto& w = realWindow();
+  if (!w) return state.SkipWithError("HBA_BENCH_WINDOW is not set");
+  for (auto _ : state) benchmark::DoNotOptimize(voxel::downsample(w->raw, 0.1));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w->raw.size()));
+}
+BENCHMARK(BM_RealScanDownsample)->Unit(benchmark::kMillisecond);
 
 void BM_RealWindowExtractPlanes(benchmark::State& state) {
   const auto& w = realWindow();
