@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
@@ -152,19 +155,32 @@ CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
     return VoxelKey{VoxelKey::cell(p.x() * inverse), VoxelKey::cell(p.y() * inverse),
                     VoxelKey::cell(p.z() * inverse)};
   };
+  // Keys are independent of each other: a large cloud (a refinement block of
+  // millions) computes them in parallel; the numbering below stays serial.
+  const auto forEachPoint = [&](const auto& body) {
+    constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
+    if (points.size() < kParallelFrom) {
+      for (std::size_t i = 0; i < points.size(); ++i) body(i);
+    } else {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 16),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
+                        });
+    }
+  };
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     std::vector<VoxelKey> keys(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) keys[i] = keyOf(i);
+    forEachPoint([&](std::size_t i) { keys[i] = keyOf(i); });
     return assignKeys(keys, points_per_cell);
   }
   std::vector<std::uint64_t> keys(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  forEachPoint([&](std::size_t i) {
     const VoxelKey key = keyOf(i);
     keys[i] = static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
               static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
               static_cast<std::uint64_t>(key.z - bounds.low.z);
-  }
+  });
   return assignKeys(keys, points_per_cell);
 }
 
