@@ -102,10 +102,10 @@ class FactoredSystem {
     diagonal_.assign(frames_, Mat6::Zero());
     own_.assign(frames_, Mat6::Zero());
     // Planes linearized in parallel chunks, each summing into its own
-    // per-frame gradient and blocks (64 MB in all); the chunks are then
+    // per-frame gradient and blocks (16 MB in all); the chunks are then
     // added in order (deterministic). No plane's full linearization is kept.
     const std::vector<std::size_t> build = planeChunks(
-        index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{64} << 20);
+        index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{16} << 20);
     std::vector<FrameSums> partial(build.size() - 1);
     tbb::parallel_for(std::size_t{0}, partial.size(), [&](std::size_t c) {
       FrameSums& sums = partial[c];
