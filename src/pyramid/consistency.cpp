@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <type_traits>
 
 #include <tbb/parallel_for.h>
+
+#include "hba/core/error.hpp"
 
 namespace hba::pyramid {
 
@@ -20,7 +24,8 @@ FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans,
       CompactCluster c;
       c.frame = fc.frame;
       c.count = static_cast<float>(fc.cluster.count);
-      c.mean = fc.cluster.mean.cast<float>();
+      c.mean = {static_cast<float>(fc.cluster.mean.x()), static_cast<float>(fc.cluster.mean.y()),
+                static_cast<float>(fc.cluster.mean.z())};
       const Mat3& S = fc.cluster.scatter;
       c.scatter = {static_cast<float>(S(0, 0)), static_cast<float>(S(0, 1)),
                    static_cast<float>(S(0, 2)), static_cast<float>(S(1, 1)),
@@ -54,7 +59,7 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
       ba::FrameCluster fc;
       fc.frame = c.frame;
       fc.cluster.count = c.count;
-      fc.cluster.mean = c.mean.cast<double>();
+      fc.cluster.mean = Vec3(c.mean[0], c.mean[1], c.mean[2]);
       const auto& v = c.scatter;
       fc.cluster.scatter << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
       plane.clusters.push_back(fc);
@@ -69,6 +74,54 @@ std::size_t FixedPlaneMap::bytes() const {
          (plane_begin_.capacity() + plane_region_.capacity() + region_starts_.capacity()) *
              sizeof(std::size_t) +
          (plane_points_.capacity() + region_points_.capacity()) * sizeof(double);
+}
+
+namespace {
+
+template <typename T>
+void writeVector(std::ofstream& out, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  out.write(reinterpret_cast<const char*>(&n), sizeof(n));
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+template <typename T>
+void readVector(std::ifstream& in, std::vector<T>& v) {
+  std::uint64_t n = 0;
+  in.read(reinterpret_cast<char*>(&n), sizeof(n));
+  if (!in) return;
+  v.resize(static_cast<std::size_t>(n));
+  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)));
+}
+
+}  // namespace
+
+void FixedPlaneMap::save(const std::filesystem::path& path) const {
+  static_assert(std::is_trivially_copyable_v<CompactCluster>);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  writeVector(out, clusters_);
+  writeVector(out, plane_begin_);
+  writeVector(out, plane_region_);
+  writeVector(out, plane_points_);
+  writeVector(out, region_points_);
+  writeVector(out, region_starts_);
+  out.write(reinterpret_cast<const char*>(&points_), sizeof(points_));
+  out.close();
+  if (!out) failAt(path, "cannot write a kept self-check map (disk full?)");
+}
+
+FixedPlaneMap FixedPlaneMap::load(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  FixedPlaneMap map;
+  readVector(in, map.clusters_);
+  readVector(in, map.plane_begin_);
+  readVector(in, map.plane_region_);
+  readVector(in, map.plane_points_);
+  readVector(in, map.region_points_);
+  readVector(in, map.region_starts_);
+  in.read(reinterpret_cast<char*>(&map.points_), sizeof(map.points_));
+  if (!in || map.plane_begin_.empty()) failAt(path, "cannot read a kept self-check map");
+  return map;
 }
 
 double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,6 +35,11 @@ class FixedPlaneMap {
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
   // Memory held (bytes).
   std::size_t bytes() const;
+  // The map written to a file and read back, the same to the bit (a
+  // long refinement keeps its blocks' maps on disk, not in memory).
+  // Throw hba::Error naming the file.
+  void save(const std::filesystem::path& path) const;
+  static FixedPlaneMap load(const std::filesystem::path& path);
 
  private:
   // A frame's cluster of one plane in single precision (44 bytes instead
@@ -42,9 +48,10 @@ class FixedPlaneMap {
   struct CompactCluster {
     std::uint32_t frame = 0;
     float count = 0.0f;
-    Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+    std::array<float, 3> mean{};  // plain floats: the map is written to disk as bytes
     std::array<float, 6> scatter{};  // xx xy xz yy yz zz
   };
+  FixedPlaneMap() = default;
   std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
 
   std::vector<CompactCluster> clusters_;

@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
 
 #include "consistency.hpp"
+#include "keyframe_store.hpp"
 #include "group_refinement.hpp"
 #include "spilled_scan_source.hpp"
 #include "hba/ba/global_refinement.hpp"
@@ -119,47 +121,34 @@ std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<
   return input;
 }
 
-// Each block's fixed map, kept for the re-measured self-check when the
-// maps together fit in `kKeptMapBytes` (about 44 bytes a plane cluster:
-// 270 MB for 1000 HDL-32 frames); a block whose map was not kept is read and
-// its map found again (the same scans and poses give the same map).
-constexpr std::size_t kKeptMapBytes = std::size_t{512} << 20;
-
+// Each block's fixed map, kept on disk for the re-measured self-check (44
+// bytes a plane cluster: 200 MB for 1000 HDL-32 frames), so that the groups'
+// result is measured without reading and voxelizing every block again, and
+// without holding the maps in memory while later blocks are refined. The
+// folder (a KeyframeStore of no keyframes: a private temporary folder,
+// removed at the end and on Ctrl-C) is made with the first map.
 struct BlockMaps {
-  std::vector<std::unique_ptr<FixedPlaneMap>> maps;  // per block; null: not kept
-  std::size_t bytes = 0;
-  void offer(std::unique_ptr<FixedPlaneMap> map) {
-    if (bytes + map->bytes() <= kKeptMapBytes) {
-      bytes += map->bytes();
-      maps.push_back(std::move(map));
-    } else {
-      maps.emplace_back();
-    }
+  std::unique_ptr<KeyframeStore> folder;
+  std::vector<std::filesystem::path> files;  // per block
+  void keep(const FixedPlaneMap& map) {
+    if (!folder) folder = std::make_unique<KeyframeStore>(0);
+    files.push_back(folder->folder() / ("map-" + std::to_string(files.size()) + ".bin"));
+    map.save(files.back());
   }
 };
 
 // The final poses measured again on each block's fixed map (the groups
 // moved them after the blocks were checked): figures only.
-double remeasure(const ScanSource& scans, const std::vector<Pose>& initial,
-                 const std::vector<Pose>& result, const std::vector<FrameSpan>& spans,
-                 const BlockMaps& kept, const ba::RefinementSettings& rs,
-                 const HbaSettings& settings, std::vector<RegionFigures>& regions) {
+double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& result,
+                 const std::vector<FrameSpan>& spans, const BlockMaps& kept,
+                 std::vector<RegionFigures>& regions) {
   RmsSum final_sum;
   regions.clear();
   for (std::size_t b = 0; b < spans.size(); ++b) {
     const FrameSpan& span = spans[b];
     const std::vector<Pose> input = inputOnto(initial, result, span.first, span.end);
     const std::vector<Pose> poses = slice(result, span.first, span.end);
-    std::unique_ptr<FixedPlaneMap> found;
-    if (!kept.maps[b]) {
-      const Block block =
-          loadBlock(scans, span.first, SIZE_MAX, settings.refine_scan_voxel, span.end);
-      std::vector<const PointCloud*> pointers;
-      for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
-      found = std::make_unique<FixedPlaneMap>(pointers, input, rs.planes, rs.reject_ratio,
-                                              regionCount(input.size()));
-    }
-    const FixedPlaneMap& fixed = kept.maps[b] ? *kept.maps[b] : *found;
+    const FixedPlaneMap fixed = FixedPlaneMap::load(kept.files[b]);
     final_sum.add(fixed.rms(poses), fixed.points());
     addRegions(fixed, input, poses, span.first, regions);
   }
@@ -211,9 +200,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
     const std::vector<Pose> current = slice(result, block.first, block.end);
 
-    auto fixed_map = std::make_unique<FixedPlaneMap>(pointers, input, rs.planes, rs.reject_ratio,
-                                                     regionCount(input.size()));
-    const FixedPlaneMap& fixed = *fixed_map;
+    const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size()));
     const double input_rms = fixed.rms(input);
     const double current_rms = fixed.rms(current);
     c.planes += fixed.planes();
@@ -266,7 +253,8 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     final_sum.add(final_rms, fixed.points());
     addRegions(fixed, input, poses, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
-    kept_maps.offer(std::move(fixed_map));
+    if (block.end >= initial.size() && blocks == 1) break;  // one block: nothing to re-measure
+    kept_maps.keep(fixed);
     if (block.end >= initial.size()) break;
     if (!spilled) {
       spilled = std::make_unique<SpilledScanSource>(scans);
@@ -285,7 +273,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
       std::vector<RegionFigures> grouped_regions;
-      const double grouped_rms = remeasure(*source, initial, grouped, spans, kept_maps, rs, settings, grouped_regions);
+      const double grouped_rms = remeasure(initial, grouped, spans, kept_maps, grouped_regions);
       // The output is never less consistent than the input (as for each block).
       if (grouped_rms <= input_sum.rms() * 1.005) {
         result = std::move(grouped);

@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <random>
 
+#include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/sim/simulation.hpp"
+#include "consistency.hpp"
 #include "refine_stage.hpp"
 #include "simulated_sequence.hpp"
 
@@ -39,6 +41,30 @@ std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& set
   const MemoryScanSource source(simulated().scans, settings.scan_voxel);
   report.layers = 3;  // as if a pyramid had run
   return refineAndCheck(source, simulated().initial, hierarchy, settings, report);
+}
+
+// A long refinement keeps its blocks' self-check maps on disk: read back,
+// a map measures any poses exactly as the map it was written from.
+TEST(RefineStage, KeptSelfCheckMapReadsBackTheSame) {
+  const auto& seq = simulated();
+  std::vector<const PointCloud*> scans;
+  for (const PointCloud& scan : seq.scans) scans.push_back(&scan);
+  voxel::PlaneSettings planes;
+  planes.voxel_size = 1.0;
+  const FixedPlaneMap map(scans, seq.initial, planes, 0.05, 4);
+  ASSERT_GT(map.planes(), 10u);
+  const std::string path = ::testing::TempDir() + "kept_map.bin";
+  map.save(path);
+  const FixedPlaneMap back = FixedPlaneMap::load(path);
+  std::remove(path.c_str());
+  EXPECT_EQ(back.planes(), map.planes());
+  EXPECT_EQ(back.points(), map.points());
+  EXPECT_EQ(back.regionStarts(), map.regionStarts());
+  for (const std::vector<Pose>* poses : {&seq.initial, &seq.truth.poses}) {
+    EXPECT_EQ(back.rms(*poses), map.rms(*poses));
+    EXPECT_EQ(back.regionRms(*poses), map.regionRms(*poses));
+  }
+  EXPECT_THROW(FixedPlaneMap::load(path), Error);  // gone: a clear error, not an empty map
 }
 
 // From the drifting input itself (as when the hierarchy is refused), the
