@@ -173,9 +173,9 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   std::size_t first = 0;
   std::size_t blocks = 0;
   // A sequence longer than one block is read again: the blocks overlap, and
-  // the groups (and the re-measured self-check, for maps not kept) read
-  // every scan once more. There each scan is parsed and downsampled once
-  // and then kept on disk; a sequence of one block reads its scans once here.
+  // the groups read every scan once more. There each scan is parsed and
+  // downsampled once and then kept on disk; a sequence of one block reads
+  // its scans once here.
   // Layer 1 counted the scans' points at a finer voxel: more than a block
   // there means a second block, so scans are kept from the first on (else
   // from the second block, should one follow after all).
@@ -187,7 +187,8 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     spilled = std::make_unique<SpilledScanSource>(scans);
     source = spilled.get();
   }
-  BlockMaps kept_maps;
+  BlockMaps kept_maps;  // for the groups' re-measure, when they run
+  const bool groups_follow = settings.refine && settings.refine_groups && report.layers > 1;
   while (first + 1 < initial.size() || blocks == 0) {
     const Block block = loadBlock(*source, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
@@ -253,8 +254,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     final_sum.add(final_rms, fixed.points());
     addRegions(fixed, input, poses, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
-    if (block.end >= initial.size() && blocks == 1) break;  // one block: nothing to re-measure
-    kept_maps.keep(fixed);
+    if (groups_follow && !(block.end >= initial.size() && blocks == 1)) kept_maps.keep(fixed);
     if (block.end >= initial.size()) break;
     if (!spilled) {
       spilled = std::make_unique<SpilledScanSource>(scans);
@@ -265,7 +265,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
     first = std::max(block.first + 1, block.end - (block.end - block.first) / 4);
   }
   c.final_rms = final_sum.rms();
-  if (blocks > 1 && settings.refine && settings.refine_groups && report.layers > 1) {
+  if (blocks > 1 && groups_follow) {
     // Blocks of consecutive frames cannot see planes shared by passes far
     // apart in time, nor bends longer than a block: rigid groups of the
     // blocks' frames are placed as a whole, and the checks measured again.
