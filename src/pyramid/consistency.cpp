@@ -69,13 +69,6 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
   return costs;
 }
 
-std::size_t FixedPlaneMap::bytes() const {
-  return clusters_.capacity() * sizeof(CompactCluster) +
-         (plane_begin_.capacity() + plane_region_.capacity() + region_starts_.capacity()) *
-             sizeof(std::size_t) +
-         (plane_points_.capacity() + region_points_.capacity()) * sizeof(double);
-}
-
 namespace {
 
 template <typename T>

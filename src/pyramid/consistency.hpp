@@ -33,8 +33,6 @@ class FixedPlaneMap {
   std::vector<double> regionRms(const std::vector<Pose>& poses) const;
   // First frame of each region.
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
-  // Memory held (bytes).
-  std::size_t bytes() const;
   // The map written to a file and read back, the same to the bit (a
   // long refinement keeps its blocks' maps on disk, not in memory).
   // Throw hba::Error naming the file.
