@@ -6,6 +6,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
 #include "output_dir.hpp"
 #include "number_checks.hpp"
 #include "hba/core/atomic_file.hpp"
@@ -28,7 +29,7 @@ struct EvalArgs {
 
 Trajectory readTrajectory(const std::string& path, const std::string& format) {
   Trajectory trajectory =
-      format.empty() ? io::readPoses(path) : io::readPoses(path, io::poseFormatFromString(format));
+      format.empty() ? io::readPoses(path) : io::readPoses(path, parseEnum<io::PoseFormat>(format));
   const std::string unit = io::stampsToSeconds(trajectory.stamps);
   if (!unit.empty()) spdlog::info("{}: the stamps are in {}; read as seconds", path, unit);
   return trajectory;
@@ -44,7 +45,7 @@ std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
   const std::string prefix = args.label.empty() ? "" : args.label + "  ";
   std::string out = fmt::format(
       "{}{} of {} estimated poses matched by {}, alignment {}{}; RPE over {} {}\n", prefix,
-      r.matched, r.estimate_count, eval::toString(r.association_used), args.align,
+      r.matched, r.estimate_count, hba::toString(r.association_used), args.align,
       args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
       args.delta_unit);
   out += fmt::format("{}{:<14} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}\n", prefix, "", "rmse", "mean",
@@ -68,7 +69,7 @@ nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation
       {"label", args.label},
       {"gt", args.gt},
       {"est", args.est},
-      {"association", eval::toString(r.association_used)},
+      {"association", hba::toString(r.association_used)},
       {"matched", r.matched},
       {"gt_poses", r.reference_count},
       {"est_poses", r.estimate_count},
@@ -88,11 +89,11 @@ nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation
 
 void run(const EvalArgs& args) {
   eval::EvalOptions options;
-  options.alignment = eval::alignmentFromString(args.align);
-  options.association = eval::associationModeFromString(args.assoc);
+  options.alignment = parseEnum<eval::Alignment>(args.align);
+  options.association = parseEnum<eval::AssociationMode>(args.assoc);
   options.max_time_diff = args.t_max_diff;
   options.rpe_delta = args.delta;
-  options.rpe_unit = eval::deltaUnitFromString(args.delta_unit);
+  options.rpe_unit = parseEnum<eval::DeltaUnit>(args.delta_unit);
 
   if (!args.json.empty()) refuseToReplace(args.json, args.force);
   if (!args.plot.empty()) {
@@ -149,15 +150,15 @@ void registerEvalCommand(CLI::App& app) {
       "eval", "Trajectory accuracy: ATE and RPE of an estimate against ground truth (evo's definitions)");
   command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(CLI::ExistingFile);
   command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(CLI::ExistingFile);
-  const auto formats = CLI::IsMember({"kitti", "tum", "hba"});
+  const auto formats = oneOf<io::PoseFormat>();
   command->add_option("--gt-format", args->gt_format, "Format of --gt (default: detected)")->check(formats);
   command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")->check(formats);
   command->add_option("--align", args->align, "Alignment of the estimate onto the ground truth")
-      ->check(CLI::IsMember({"se3", "sim3", "none"}))
+      ->check(oneOf<eval::Alignment>())
       ->capture_default_str();
   command->add_option("--assoc", args->assoc,
                       "Pose pairing: auto = by time when both files have timestamps, else by index")
-      ->check(CLI::IsMember({"auto", "index", "time"}))
+      ->check(oneOf<eval::AssociationMode>())
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
       ->check(nonNegative())
@@ -170,7 +171,7 @@ void registerEvalCommand(CLI::App& app) {
       ->check(positive())
       ->capture_default_str();
   command->add_option("--delta-unit", args->delta_unit, "Unit of --delta")
-      ->check(CLI::IsMember({"frames", "m"}))
+      ->check(oneOf<eval::DeltaUnit>())
       ->capture_default_str();
   command->add_option("--label", args->label, "Text printed before every output line");
   command->add_option("--json", args->json, "Also write the results as JSON to this file");

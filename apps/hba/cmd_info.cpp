@@ -165,7 +165,7 @@ void printText(const io::Dataset& dataset, const Summary& s) {
             << "scans:       " << dataset.size() << " (" << extension << ") in "
             << dataset.scansDir().string() << "\n"
             << "poses:       " << dataset.trajectory().size() << " ("
-            << io::toString(dataset.poseFormat()) << ") from " << dataset.posesFile().string()
+            << hba::toString(dataset.poseFormat()) << ") from " << dataset.posesFile().string()
             << "\n";
   if (!dataset.calibrationFile().empty()) {
     std::cout << "calibration: camera poses turned into LiDAR poses with Tr of "
@@ -207,7 +207,7 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"scan_count", dataset.size()},
       {"scan_extension", dataset.scanPath(0).extension().string()},
       {"poses_file", dataset.posesFile().string()},
-      {"pose_format", io::toString(dataset.poseFormat())},
+      {"pose_format", hba::toString(dataset.poseFormat())},
       {"pose_count", dataset.trajectory().size()},
       {"calibration_file", dataset.calibrationFile().string()},
       {"times_file", dataset.timesFile().string()},

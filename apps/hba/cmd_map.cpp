@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
 #include "number_checks.hpp"
 #include "output_dir.hpp"
 #include "dataset_args.hpp"
@@ -29,7 +30,7 @@ void run(MapArgs& args) {
   const fs::path output = args.output;
   const std::string extension = output.extension().string();
   if (extension != ".pcd" && extension != ".ply") failAt(output, "the map must be a .pcd or .ply file");
-  args.settings.color = eval::mapColorFromString(args.color);
+  args.settings.color = parseEnum<eval::MapColor>(args.color);
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(output, dataset);  // hba never writes into its input
@@ -59,7 +60,7 @@ void registerMapCommand(CLI::App& app) {
   command->add_option("--color", args->color,
                       "What the intensity field carries: none (mean intensity), scan (scan index), "
                       "height (z)")
-      ->check(CLI::IsMember({"none", "scan", "height"}))
+      ->check(oneOf<eval::MapColor>())
       ->capture_default_str();
   command->callback([args] { run(*args); });
 }

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
 #include "number_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
@@ -39,7 +40,7 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
   config.seed = args.seed;
   config.trajectory.frames = args.frames;
   config.trajectory.speed = args.speed;
-  if (auto shape = sim::pathShapeFromString(args.trajectory)) {
+  if (auto shape = findEnum<sim::PathShape>(args.trajectory)) {
     config.trajectory.shape = *shape;
   } else {
     config.trajectory.file = args.trajectory;
@@ -47,7 +48,7 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
       failAt(args.trajectory, "not block, figure8, street, nor a trajectory file");
     }
   }
-  const auto model = sim::sensorModelFromString(args.sensor);
+  const auto model = findEnum<sim::SensorModel>(args.sensor);
   if (!model) throw Error("simulate: unknown sensor '" + args.sensor + "'");
   config.sensor = sim::sensorPreset(*model);
   if (args.noise) config.sensor.range_noise = *args.noise;
@@ -59,7 +60,7 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
   config.drift.loop_closed = args.loop_closed;
   config.drift.jitter_translation = args.jitter_translation;
   config.drift.jitter_rotation_deg = args.jitter_rotation;
-  config.scene = *sim::sceneFromString(args.scene);  // CLI11 checked the name
+  config.scene = *findEnum<sim::Scene>(args.scene);  // CLI11 checked the name
   config.world = sim::scenePreset(config.scene);
   config.downsample_voxel = args.downsample;
   return config;
@@ -72,7 +73,7 @@ void run(const SimulateArgs& args) {
                "({} rays/frame)",
                simulation.world.triangles().size(), simulation.world.spheres().size(),
                pathLength(simulation.truth.poses), simulation.truth.size(),
-               sim::toString(simulation.config.sensor.model),
+               hba::toString(simulation.config.sensor.model),
                simulation.config.sensor.raysPerFrame());
   sim::WriteOptions options;
   options.force = args.force;
@@ -109,7 +110,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--speed", args->speed, "Vehicle speed in m/s (procedural paths)")
       ->capture_default_str();
   command->add_option("--sensor", args->sensor, "vlp16 | hdl32 | hdl64 | os128 | livox")
-      ->check(CLI::IsMember({"vlp16", "hdl32", "hdl64", "os128", "livox"}))
+      ->check(oneOf<sim::SensorModel>())
       ->capture_default_str();
   command->add_option("--noise", args->noise, "Range noise sigma in m (default: 0.02)");
   command->add_option("--dropout", args->dropout, "Probability a return is lost (default: 0.02)");
@@ -129,7 +130,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--scene", args->scene,
                       "mixed | city (dense buildings) | open (sparse structure, vegetation) | indoor "
                       "(corridors and halls under a ceiling)")
-      ->check(CLI::IsMember({"mixed", "city", "open", "indoor"}))
+      ->check(oneOf<sim::Scene>())
       ->default_val(args->scene);
   command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")
       ->capture_default_str();

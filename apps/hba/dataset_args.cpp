@@ -1,4 +1,5 @@
 #include "dataset_args.hpp"
+#include "enum_choice.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -50,7 +51,7 @@ void DatasetArgs::addTo(CLI::App* command) {
   command->add_option("--scans", scans, "Folder of scans (overrides detection)");
   command->add_option("--poses", poses, "Trajectory file (overrides detection)");
   command->add_option("--format", format, "Format of the --poses file")
-      ->check(CLI::IsMember({"kitti", "tum", "hba"}));
+      ->check(oneOf<io::PoseFormat>());
   command->add_option("--times", times, "Timestamps, one per scan and line (seconds)");
   auto* conventions = command->add_option_group("Conventions", "When the input is not sensor-to-world poses of sensor-frame scans (docs/io_datasets.md)");
   conventions->add_flag("--invert-poses", invert_poses, "The poses map world to sensor: invert them");
@@ -67,7 +68,7 @@ io::Dataset DatasetArgs::open() const {
   io::DatasetOverrides overrides;
   if (!scans.empty()) overrides.scans_dir = scans;
   if (!poses.empty()) overrides.poses_file = poses;
-  if (!format.empty()) overrides.pose_format = io::poseFormatFromString(format);
+  if (!format.empty()) overrides.pose_format = parseEnum<io::PoseFormat>(format);
   if (!times.empty()) overrides.times_file = times;
   overrides.invert_poses = invert_poses;
   if (!extrinsic.empty()) overrides.extrinsic = parsePoseArgument(extrinsic, "--extrinsic");
@@ -77,7 +78,7 @@ io::Dataset DatasetArgs::open() const {
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.
   spdlog::debug("dataset {}: layout {}, {} scans in {}, poses {} ({})", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.scansDir().string(),
-               dataset.posesFile().string(), io::toString(dataset.poseFormat()));
+               dataset.posesFile().string(), hba::toString(dataset.poseFormat()));
   for (const io::DatasetNote& note : dataset.notes()) {
     if (note.level == io::DatasetNote::Level::Warning) {
       spdlog::warn("{}", note.text);

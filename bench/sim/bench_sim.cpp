@@ -39,7 +39,7 @@ void BM_SimulateFrame(benchmark::State& state) {
       static_cast<double>(state.iterations() * simulation.config.sensor.raysPerFrame()),
       benchmark::Counter::kIsRate);
   state.counters["points/frame"] = static_cast<double>(points) / state.iterations();
-  state.SetLabel(toString(model));
+  state.SetLabel(hba::toString(model));
 }
 
 void BM_SimulateFramesAllCores(benchmark::State& state) {
@@ -53,7 +53,7 @@ void BM_SimulateFramesAllCores(benchmark::State& state) {
     });
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kBatch));
-  state.SetLabel(toString(model));
+  state.SetLabel(hba::toString(model));
 }
 
 void BM_BuildWorld(benchmark::State& state) {

@@ -6,22 +6,6 @@
 
 namespace hba::eval {
 
-std::string toString(Alignment alignment) {
-  switch (alignment) {
-    case Alignment::None: return "none";
-    case Alignment::SE3: return "se3";
-    case Alignment::Sim3: return "sim3";
-  }
-  return "?";
-}
-
-Alignment alignmentFromString(const std::string& name) {
-  if (name == "none") return Alignment::None;
-  if (name == "se3") return Alignment::SE3;
-  if (name == "sim3") return Alignment::Sim3;
-  throw Error("unknown alignment '" + name + "' (expected none, se3 or sim3)");
-}
-
 Pose Similarity::apply(const Pose& pose) const { return Pose(Mat3(R * pose.R()), apply(pose.t)); }
 
 Similarity umeyama(const std::vector<Vec3>& source, const std::vector<Vec3>& target,

@@ -9,22 +9,6 @@
 
 namespace hba::eval {
 
-std::string toString(AssociationMode mode) {
-  switch (mode) {
-    case AssociationMode::Auto: return "auto";
-    case AssociationMode::Index: return "index";
-    case AssociationMode::Time: return "time";
-  }
-  return "?";
-}
-
-AssociationMode associationModeFromString(const std::string& name) {
-  if (name == "auto") return AssociationMode::Auto;
-  if (name == "index") return AssociationMode::Index;
-  if (name == "time") return AssociationMode::Time;
-  throw Error("unknown association '" + name + "' (expected auto, index or time)");
-}
-
 Association associateByIndex(std::size_t reference_count, std::size_t estimate_count) {
   if (reference_count != estimate_count) {
     throw Error("association by index needs equal pose counts, got " +

@@ -8,22 +8,6 @@
 
 namespace hba::eval {
 
-std::string toString(MapColor color) {
-  switch (color) {
-    case MapColor::None: return "none";
-    case MapColor::Scan: return "scan";
-    case MapColor::Height: return "height";
-  }
-  return "?";
-}
-
-MapColor mapColorFromString(const std::string& name) {
-  if (name == "none") return MapColor::None;
-  if (name == "scan") return MapColor::Scan;
-  if (name == "height") return MapColor::Height;
-  throw Error("unknown map colour '" + name + "' (expected none, scan or height)");
-}
-
 VoxelMerger::VoxelMerger(const MapSettings& settings, const Vec3& origin)
     : settings_(settings), origin_(origin) {}
 

@@ -6,14 +6,6 @@
 
 namespace hba::eval {
 
-std::string toString(DeltaUnit unit) { return unit == DeltaUnit::Frames ? "frames" : "m"; }
-
-DeltaUnit deltaUnitFromString(const std::string& name) {
-  if (name == "frames") return DeltaUnit::Frames;
-  if (name == "m") return DeltaUnit::Meters;
-  throw Error("unknown delta unit '" + name + "' (expected frames or m)");
-}
-
 double rotationAngleDeg(const Quat& q) {
   // atan2 of the half-angle stays accurate near 0, where acos((tr R - 1)/2) does not.
   const Quat n = q.normalized();

@@ -5,22 +5,6 @@
 
 namespace hba::io {
 
-std::string toString(PoseFormat format) {
-  switch (format) {
-    case PoseFormat::Hba: return "hba";
-    case PoseFormat::Kitti: return "kitti";
-    case PoseFormat::Tum: return "tum";
-  }
-  return "unknown";
-}
-
-PoseFormat poseFormatFromString(const std::string& name) {
-  if (name == "hba") return PoseFormat::Hba;
-  if (name == "kitti") return PoseFormat::Kitti;
-  if (name == "tum") return PoseFormat::Tum;
-  throw Error("unknown pose format '" + name + "' (expected hba, kitti or tum)");
-}
-
 PoseFormat detectPoseFormat(const std::filesystem::path& path) {
   return detail::formatOfRow(path, detail::readFirstNumberRow(path));
 }

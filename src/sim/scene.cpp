@@ -2,28 +2,6 @@
 
 namespace hba::sim {
 
-std::optional<Scene> sceneFromString(const std::string& name) {
-  if (name == "mixed") return Scene::Mixed;
-  if (name == "city") return Scene::City;
-  if (name == "open") return Scene::Open;
-  if (name == "indoor") return Scene::Indoor;
-  return std::nullopt;
-}
-
-const char* toString(Scene scene) {
-  switch (scene) {
-    case Scene::City:
-      return "city";
-    case Scene::Open:
-      return "open";
-    case Scene::Indoor:
-      return "indoor";
-    case Scene::Mixed:
-      break;
-  }
-  return "mixed";
-}
-
 WorldConfig scenePreset(Scene scene) {
   WorldConfig config;  // mixed
   switch (scene) {

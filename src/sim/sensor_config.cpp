@@ -20,25 +20,6 @@ SensorConfig spinning(SensorModel model, int channels, double lowest, double hig
 
 }  // namespace
 
-std::string toString(SensorModel model) {
-  switch (model) {
-    case SensorModel::Vlp16: return "vlp16";
-    case SensorModel::Hdl32: return "hdl32";
-    case SensorModel::Hdl64: return "hdl64";
-    case SensorModel::Os128: return "os128";
-    case SensorModel::Livox: return "livox";
-  }
-  return "unknown";
-}
-
-std::optional<SensorModel> sensorModelFromString(const std::string& name) {
-  for (SensorModel m : {SensorModel::Vlp16, SensorModel::Hdl32, SensorModel::Hdl64,
-                        SensorModel::Os128, SensorModel::Livox}) {
-    if (toString(m) == name) return m;
-  }
-  return std::nullopt;
-}
-
 // Fields of view and resolutions from the makers' data sheets at 10 Hz.
 SensorConfig sensorPreset(SensorModel model) {
   switch (model) {

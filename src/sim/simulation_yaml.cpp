@@ -12,7 +12,7 @@ void emitTrajectory(YAML::Emitter& out, const Simulation& s) {
   const TrajectoryConfig& t = s.config.trajectory;
   out << YAML::Key << "trajectory" << YAML::Value << YAML::BeginMap;
   if (t.file.empty()) {
-    out << YAML::Key << "shape" << YAML::Value << toString(t.shape);
+    out << YAML::Key << "shape" << YAML::Value << hba::toString(t.shape);
     out << YAML::Key << "speed_mps" << YAML::Value << t.speed;
   } else {
     out << YAML::Key << "file" << YAML::Value << t.file.string();
@@ -26,7 +26,7 @@ void emitTrajectory(YAML::Emitter& out, const Simulation& s) {
 
 void emitSensor(YAML::Emitter& out, const SensorConfig& c) {
   out << YAML::Key << "sensor" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "model" << YAML::Value << toString(c.model);
+  out << YAML::Key << "model" << YAML::Value << hba::toString(c.model);
   if (c.model == SensorModel::Livox) {
     out << YAML::Key << "points_per_frame" << YAML::Value << c.points_per_frame;
     out << YAML::Key << "field_of_view_deg" << YAML::Value << c.field_of_view_deg;
@@ -47,7 +47,7 @@ void emitSensor(YAML::Emitter& out, const SensorConfig& c) {
 void emitWorld(YAML::Emitter& out, const Simulation& s) {
   const WorldConfig& w = s.config.world;
   out << YAML::Key << "world" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "scene" << YAML::Value << toString(s.config.scene);
+  out << YAML::Key << "scene" << YAML::Value << hba::toString(s.config.scene);
   out << YAML::Key << "max_slope" << YAML::Value << w.max_slope;
   out << YAML::Key << "ground_cell_m" << YAML::Value << w.ground_cell;
   out << YAML::Key << "margin_m" << YAML::Value << w.margin;

@@ -107,22 +107,6 @@ PlanarPath proceduralPath(const TrajectoryConfig& config) {
 
 }  // namespace
 
-std::string toString(PathShape shape) {
-  switch (shape) {
-    case PathShape::Block: return "block";
-    case PathShape::Figure8: return "figure8";
-    case PathShape::Street: return "street";
-  }
-  return "unknown";
-}
-
-std::optional<PathShape> pathShapeFromString(const std::string& name) {
-  if (name == "block") return PathShape::Block;
-  if (name == "figure8") return PathShape::Figure8;
-  if (name == "street") return PathShape::Street;
-  return std::nullopt;
-}
-
 PlanarPath planarPathFromFile(const std::filesystem::path& file, std::size_t max_poses) {
   const io::PoseFormat format = io::detectPoseFormat(file);
   const Trajectory trajectory = io::readPoses(file, format);

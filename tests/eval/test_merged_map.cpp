@@ -61,7 +61,7 @@ TEST(MergedMap, DownsampleMapOfAWorldCloud) {
   const PointCloud map = downsampleMap(cloud, s);
   EXPECT_EQ(map.size(), 4u);
   EXPECT_FALSE(map.hasIntensity());
-  EXPECT_THROW(mapColorFromString("rainbow"), Error);
+  EXPECT_THROW(parseEnum<MapColor>("rainbow"), Error);
 }
 
 }  // namespace

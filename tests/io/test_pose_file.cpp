@@ -79,8 +79,8 @@ TEST(PoseFile, EveryFormatRoundTripsExactly) {
   const Trajectory original = randomTrajectory(50, 7);
   test::TempDir dir;
   for (const PoseFormat format : {PoseFormat::Hba, PoseFormat::Kitti, PoseFormat::Tum}) {
-    SCOPED_TRACE(toString(format));
-    const fs::path path = dir / ("poses_" + toString(format) + ".txt");
+    SCOPED_TRACE(hba::toString(format));
+    const fs::path path = dir / ("poses_" + hba::toString(format) + ".txt");
     writePoses(path, original, format);
     EXPECT_EQ(detectPoseFormat(path), format);
     const Trajectory back = readPoses(path);
@@ -115,9 +115,9 @@ TEST(PoseFile, WritingRefusesAnEmptyTrajectoryAndLeavesNoFile) {
 
 TEST(PoseFile, FormatNames) {
   for (const PoseFormat format : {PoseFormat::Hba, PoseFormat::Kitti, PoseFormat::Tum}) {
-    EXPECT_EQ(poseFormatFromString(toString(format)), format);
+    EXPECT_EQ(parseEnum<PoseFormat>(hba::toString(format)), format);
   }
-  expectErrorMentioning([] { poseFormatFromString("csv"); }, {"csv", "hba, kitti or tum"});
+  expectErrorMentioning([] { parseEnum<PoseFormat>("csv"); }, {"csv", "hba, kitti or tum"});
 }
 
 TEST(PoseFile, MissingFileIsNamed) {

@@ -20,13 +20,13 @@ TEST(SimSensor, NoiseFreeReturnsLieOnTheSurfacesTheyHit) {
     for (std::size_t frame : {0u, 37u, 90u}) {
       const Pose& pose = s.truth.poses[frame];
       const auto returns = scanReturns(s.world, pose, config, 1, frame);
-      ASSERT_GT(returns.size(), 2000u) << toString(model);
+      ASSERT_GT(returns.size(), 2000u) << hba::toString(model);
       double worst = 0.0;
       for (const Return& r : returns) {
         worst = std::max(worst, s.world.distanceToPrimitive(r.primitive, pose * r.point));
         EXPECT_NEAR(r.point.norm(), r.true_range, 1e-9);
       }
-      EXPECT_LT(worst, 1e-6) << toString(model) << " frame " << frame;
+      EXPECT_LT(worst, 1e-6) << hba::toString(model) << " frame " << frame;
     }
   }
 }
@@ -109,8 +109,8 @@ TEST(SimSensor, SpinningPresetsMatchTheirDataSheets) {
       high = std::max(high, elevation);
       ASSERT_NEAR(d.norm(), 1.0, 1e-12);
     }
-    EXPECT_NEAR(low, e.lowest, 1e-9) << toString(e.model);
-    EXPECT_NEAR(high, e.highest, 1e-9) << toString(e.model);
+    EXPECT_NEAR(low, e.lowest, 1e-9) << hba::toString(e.model);
+    EXPECT_NEAR(high, e.highest, 1e-9) << hba::toString(e.model);
   }
 }
 
@@ -143,8 +143,8 @@ TEST(SimSensor, RejectsImpossibleSettings) {
   config = sensorPreset(SensorModel::Vlp16);
   config.max_range = 0.1;
   EXPECT_THROW(validate(config), Error);
-  EXPECT_FALSE(sensorModelFromString("hdl128").has_value());
-  EXPECT_EQ(sensorModelFromString("os128"), SensorModel::Os128);
+  EXPECT_FALSE(findEnum<SensorModel>("hdl128").has_value());
+  EXPECT_EQ(findEnum<SensorModel>("os128"), SensorModel::Os128);
 }
 
 }  // namespace

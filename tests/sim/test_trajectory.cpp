@@ -41,7 +41,7 @@ TEST_P(SimTrajectoryShapes, DrivesAtSpeedOnTheGroundAndComesBack) {
     const Vec3& p = t.poses[k].t;
     EXPECT_NEAR(p.z() - terrain.height(p.x(), p.y()), 1.8, 1e-9);
   }
-  EXPECT_LT(revisitGap(t), 1.0) << toString(GetParam()) << " must revisit its start";
+  EXPECT_LT(revisitGap(t), 1.0) << hba::toString(GetParam()) << " must revisit its start";
 }
 
 INSTANTIATE_TEST_SUITE_P(AllShapes, SimTrajectoryShapes,
@@ -114,8 +114,8 @@ TEST(SimTrajectory, RejectsBadSettings) {
   config.speed = 5.0;
   config.file = "/nonexistent/trajectory.txt";
   EXPECT_THROW(makeTrajectory(config, terrain), Error);
-  EXPECT_EQ(pathShapeFromString("figure8"), PathShape::Figure8);
-  EXPECT_FALSE(pathShapeFromString("circle").has_value());
+  EXPECT_EQ(findEnum<PathShape>("figure8"), PathShape::Figure8);
+  EXPECT_FALSE(findEnum<PathShape>("circle").has_value());
 }
 
 }  // namespace

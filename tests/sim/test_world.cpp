@@ -76,9 +76,9 @@ TEST(SimWorld, ScenesDifferInStructureAndVegetation) {
   }
   EXPECT_GT(city_tall, 5 * std::max<std::size_t>(open_tall, 1));
   EXPECT_GT(open.spheres().size(), 2 * city.spheres().size());
-  EXPECT_EQ(sceneFromString("open"), Scene::Open);
-  EXPECT_FALSE(sceneFromString("forest"));
-  EXPECT_STREQ(toString(Scene::City), "city");
+  EXPECT_EQ(findEnum<Scene>("open"), Scene::Open);
+  EXPECT_FALSE(findEnum<Scene>("forest"));
+  EXPECT_EQ(hba::toString(Scene::City), "city");
 }
 
 // Indoors the path runs in a closed corridor: the path stays free, a
@@ -107,8 +107,8 @@ TEST(SimWorld, IndoorSceneEnclosesThePath) {
     if (up && up->distance < 6.0 && l && l->distance < 7.5 && r && r->distance < 7.5) ++enclosed;
   }
   EXPECT_GT(enclosed, 0.85 * static_cast<double>(checked)) << enclosed << " of " << checked;
-  EXPECT_EQ(sceneFromString("indoor"), Scene::Indoor);
-  EXPECT_STREQ(toString(Scene::Indoor), "indoor");
+  EXPECT_EQ(findEnum<Scene>("indoor"), Scene::Indoor);
+  EXPECT_EQ(hba::toString(Scene::Indoor), "indoor");
 }
 
 TEST(SimWorld, TerrainSlopesStayGentle) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/core/types.hpp"
 
@@ -16,9 +17,6 @@ namespace hba::eval {
 
 enum class Alignment { None, SE3, Sim3 };
 
-std::string toString(Alignment alignment);
-// "none", "se3" or "sim3"; throws hba::Error for anything else.
-Alignment alignmentFromString(const std::string& name);
 
 // x -> scale * R x + t. The identity by default.
 struct Similarity {
@@ -43,3 +41,11 @@ Similarity alignTrajectory(const std::vector<Pose>& reference, const std::vector
                            Alignment alignment);
 
 }  // namespace hba::eval
+
+namespace hba {
+template <>
+struct EnumNames<eval::Alignment> {
+  static constexpr const char* what = "alignment";
+  static constexpr EnumName<eval::Alignment> names[] = {{eval::Alignment::None, "none"}, {eval::Alignment::SE3, "se3"}, {eval::Alignment::Sim3, "sim3"}};
+};
+}  // namespace hba

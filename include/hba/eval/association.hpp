@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 
 namespace hba::eval {
@@ -14,9 +15,6 @@ enum class AssociationMode {
   Time    // each estimated pose with the nearest reference stamp within a tolerance
 };
 
-std::string toString(AssociationMode mode);
-// "auto", "index" or "time"; throws hba::Error for anything else.
-AssociationMode associationModeFromString(const std::string& name);
 
 // Matched pose pairs, in increasing order of the estimate's index.
 struct Association {
@@ -41,3 +39,11 @@ Association associate(const Trajectory& reference, const Trajectory& estimate,
                       AssociationMode mode, double max_time_diff);
 
 }  // namespace hba::eval
+
+namespace hba {
+template <>
+struct EnumNames<eval::AssociationMode> {
+  static constexpr const char* what = "association";
+  static constexpr EnumName<eval::AssociationMode> names[] = {{eval::AssociationMode::Auto, "auto"}, {eval::AssociationMode::Index, "index"}, {eval::AssociationMode::Time, "time"}};
+};
+}  // namespace hba

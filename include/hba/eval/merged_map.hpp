@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/dataset.hpp"
@@ -30,8 +31,6 @@ enum class MapColor {
   Height   // the point's z in metres
 };
 
-std::string toString(MapColor color);
-MapColor mapColorFromString(const std::string& name);  // "none", "scan", "height"
 
 struct MapSettings {
   double voxel = 0.1;  // m; <= 0 keeps every point
@@ -78,3 +77,11 @@ PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& p
 PointCloud downsampleMap(const PointCloud& cloud, const MapSettings& settings);
 
 }  // namespace hba::eval
+
+namespace hba {
+template <>
+struct EnumNames<eval::MapColor> {
+  static constexpr const char* what = "map colour";
+  static constexpr EnumName<eval::MapColor> names[] = {{eval::MapColor::None, "none"}, {eval::MapColor::Scan, "scan"}, {eval::MapColor::Height, "height"}};
+};
+}  // namespace hba

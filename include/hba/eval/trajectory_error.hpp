@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/association.hpp"
@@ -19,8 +20,6 @@
 namespace hba::eval {
 
 enum class DeltaUnit { Frames, Meters };
-std::string toString(DeltaUnit unit);
-DeltaUnit deltaUnitFromString(const std::string& name);  // "frames" or "m"
 
 struct PoseErrors {
   ErrorStats translation_m;
@@ -69,3 +68,11 @@ TrajectoryEvaluation evaluateTrajectory(const Trajectory& reference, const Traje
                                         const EvalOptions& options = {});
 
 }  // namespace hba::eval
+
+namespace hba {
+template <>
+struct EnumNames<eval::DeltaUnit> {
+  static constexpr const char* what = "delta unit";
+  static constexpr EnumName<eval::DeltaUnit> names[] = {{eval::DeltaUnit::Frames, "frames"}, {eval::DeltaUnit::Meters, "m"}};
+};
+}  // namespace hba

@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/graph/information.hpp"
 #include "hba/graph/pose_graph.hpp"
@@ -34,3 +35,14 @@ std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const InformationSettings& settings = {});
 
 }  // namespace hba::graph
+
+namespace hba {
+template <>
+struct EnumNames<graph::FactorPairs> {
+  static constexpr const char* what = "factor pairs";
+  static constexpr EnumName<graph::FactorPairs> names[] = {
+      {graph::FactorPairs::Adjacent, "adjacent"},
+      {graph::FactorPairs::AllPairs, "all"},
+      {graph::FactorPairs::FromFirst, "from_first"}};
+};
+}  // namespace hba

@@ -9,15 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 
 namespace hba::io {
 
 enum class PoseFormat { Hba, Kitti, Tum };
 
-std::string toString(PoseFormat format);
-// "hba", "kitti" or "tum"; throws hba::Error for anything else.
-PoseFormat poseFormatFromString(const std::string& name);
 // Guesses the format from the first data line's number count (7, 12 or 8).
 // Throws hba::Error naming the file if it cannot tell.
 PoseFormat detectPoseFormat(const std::filesystem::path& path);
@@ -41,3 +39,11 @@ std::vector<double> readTimes(const std::filesystem::path& path);
 void writeTimes(const std::filesystem::path& path, const std::vector<double>& stamps);
 
 }  // namespace hba::io
+
+namespace hba {
+template <>
+struct EnumNames<io::PoseFormat> {
+  static constexpr const char* what = "pose format";
+  static constexpr EnumName<io::PoseFormat> names[] = {{io::PoseFormat::Hba, "hba"}, {io::PoseFormat::Kitti, "kitti"}, {io::PoseFormat::Tum, "tum"}};
+};
+}  // namespace hba

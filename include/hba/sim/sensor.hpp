@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/sim/world.hpp"
@@ -22,9 +23,6 @@ namespace hba::sim {
 // forward-looking solid-state sensor with a non-repetitive rosette.
 enum class SensorModel { Vlp16, Hdl32, Hdl64, Os128, Livox };
 
-std::string toString(SensorModel model);
-// "vlp16", "hdl32", "hdl64", "os128" or "livox"; nullopt otherwise.
-std::optional<SensorModel> sensorModelFromString(const std::string& name);
 
 struct SensorConfig {
   SensorModel model = SensorModel::Vlp16;
@@ -72,3 +70,11 @@ PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig&
                 std::uint64_t seed, std::size_t frame);
 
 }  // namespace hba::sim
+
+namespace hba {
+template <>
+struct EnumNames<sim::SensorModel> {
+  static constexpr const char* what = "sensor";
+  static constexpr EnumName<sim::SensorModel> names[] = {{sim::SensorModel::Vlp16, "vlp16"}, {sim::SensorModel::Hdl32, "hdl32"}, {sim::SensorModel::Hdl64, "hdl64"}, {sim::SensorModel::Os128, "os128"}, {sim::SensorModel::Livox, "livox"}};
+};
+}  // namespace hba

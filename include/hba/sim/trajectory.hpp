@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/sim/terrain.hpp"
 
@@ -20,9 +21,6 @@ namespace hba::sim {
 // driven (within limits), so a sequence ends by revisiting where it started.
 enum class PathShape { Block, Figure8, Street };
 
-std::string toString(PathShape shape);
-// "block", "figure8" or "street"; nullopt for anything else (e.g. a file path).
-std::optional<PathShape> pathShapeFromString(const std::string& name);
 
 struct TrajectoryConfig {
   PathShape shape = PathShape::Block;
@@ -55,3 +53,11 @@ Trajectory drapeOnTerrain(const PlanarPath& path, const Terrain& terrain, double
                           double frame_rate_hz);
 
 }  // namespace hba::sim
+
+namespace hba {
+template <>
+struct EnumNames<sim::PathShape> {
+  static constexpr const char* what = "path shape";
+  static constexpr EnumName<sim::PathShape> names[] = {{sim::PathShape::Block, "block"}, {sim::PathShape::Figure8, "figure8"}, {sim::PathShape::Street, "street"}};
+};
+}  // namespace hba

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/sim/bvh.hpp"
 #include "hba/sim/primitives.hpp"
@@ -66,8 +67,6 @@ struct WorldConfig {
 //  - indoor: corridors and halls on a flat floor, under a ceiling: short
 //    ranges, long walls nearly free along their axis.
 enum class Scene { Mixed, City, Open, Indoor };
-std::optional<Scene> sceneFromString(const std::string& name);
-const char* toString(Scene scene);
 WorldConfig scenePreset(Scene scene);
 
 // Builds terrain-following ground, kerbs along the path, buildings of varied
@@ -78,3 +77,11 @@ World buildWorld(const std::vector<Pose>& path, const Terrain& terrain, const Wo
                  std::uint64_t seed);
 
 }  // namespace hba::sim
+
+namespace hba {
+template <>
+struct EnumNames<sim::Scene> {
+  static constexpr const char* what = "scene";
+  static constexpr EnumName<sim::Scene> names[] = {{sim::Scene::Mixed, "mixed"}, {sim::Scene::City, "city"}, {sim::Scene::Open, "open"}, {sim::Scene::Indoor, "indoor"}};
+};
+}  // namespace hba
