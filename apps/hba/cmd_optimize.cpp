@@ -7,7 +7,9 @@
 #include <malloc.h>
 #endif
 #include <tbb/global_control.h>
+#include <tbb/info.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -24,6 +26,7 @@
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
 #include "output_dir.hpp"
+#include "setting_flags.hpp"
 
 namespace hba::cli {
 namespace {
@@ -33,10 +36,7 @@ struct OptimizeArgs {
   DatasetArgs data;
   std::string output;
   std::string config;
-  pyramid::HbaSettings settings;
-  std::string top_down;
-  std::string pairs;
-  double voxel = 0.0;  // sets both local and global voxel sizes
+  SettingFlags settings;
   std::string ground_truth;
   bool no_render = false;
   bool no_convention_check = false;
@@ -104,35 +104,10 @@ std::vector<std::string> writeOptimizedPoses(const fs::path& out, const io::Data
 }
 
 // Defaults, then the YAML file, then the flags given on the command line.
-pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& command) {
+pyramid::HbaSettings mergeSettings(const OptimizeArgs& args) {
   pyramid::HbaSettings settings;
   if (!args.config.empty()) pyramid::applySettingsFile(args.config, settings);
-  auto given = [&](const char* flag) { return command.count(flag) > 0; };
-  const pyramid::HbaSettings& flags = args.settings;
-  if (given("--window")) settings.window = flags.window;
-  if (given("--stride")) settings.stride = flags.stride;
-  if (given("--layers")) settings.layers = flags.layers;
-  if (given("--iterations")) settings.outer_iterations = flags.outer_iterations;
-  if (given("--scan-voxel")) settings.scan_voxel = flags.scan_voxel;
-  if (given("--keyframe-voxel")) settings.keyframe_voxel = flags.keyframe_voxel;
-  if (given("--voxel")) {
-    settings.scan_window_voxel = settings.local.planes.voxel_size = settings.global.planes.voxel_size = args.voxel;
-  }
-  if (given("--voxel-scans")) settings.scan_window_voxel = flags.scan_window_voxel;
-  if (given("--voxel-local")) settings.local.planes.voxel_size = flags.local.planes.voxel_size;
-  if (given("--voxel-global")) settings.global.planes.voxel_size = flags.global.planes.voxel_size;
-  if (given("--final-voxel")) settings.local.final_voxel_size = settings.global.final_voxel_size = flags.local.final_voxel_size;
-  if (given("--theta-local")) settings.local.planes.eigen_ratio = flags.local.planes.eigen_ratio;
-  if (given("--theta-global")) settings.global.planes.eigen_ratio = flags.global.planes.eigen_ratio;
-  if (given("--reject")) settings.local.reject_ratio = settings.global.reject_ratio = flags.local.reject_ratio;
-  if (given("--ba-iterations")) settings.local.max_iterations = settings.global.max_iterations = flags.local.max_iterations;
-  if (given("--point-sigma")) settings.information.point_sigma = flags.information.point_sigma;
-  if (given("--no-refine")) settings.refine = false;
-  if (given("--refine-voxel")) settings.refinement.planes.voxel_size = flags.refinement.planes.voxel_size;
-  if (given("--no-motion-prior")) settings.setMotionPrior(false);
-  // CLI11 has checked the names already.
-  if (given("--top-down")) settings.top_down = *pyramid::topDownModeFromString(args.top_down);
-  if (given("--pairs")) settings.factor_pairs = *pyramid::factorPairsFromString(args.pairs);
+  args.settings.applyTo(settings);
   pyramid::checkSettings(settings);
   return settings;
 }
@@ -160,26 +135,25 @@ nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSou
 }
 
 void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io::Dataset& dataset,
-                 const pyramid::HbaSettings& settings, std::size_t threads, const nlohmann::json& conventions) {
+                 const pyramid::HbaSettings& settings, const nlohmann::json& conventions) {
   nlohmann::json report = pyramid::reportToJson(result.report);
   report["convention_check"] = conventions;
   report["input"] = {{"dataset", fs::absolute(dataset.root()).string()},
                      {"layout", dataset.layout()},
                      {"poses", fs::absolute(dataset.posesFile()).string()},
-                     {"pose_format", io::toString(dataset.poseFormat())},
+                     {"pose_format", hba::toString(dataset.poseFormat())},
                      {"scans", dataset.size()},
                      {"stamps", dataset.stampsSource().empty() ? "none (scan index)" : dataset.stampsSource()},
                      {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
                      {"scans_in_world", dataset.scansInWorld()}};
   report["settings"] = pyramid::settingsToJson(settings);
-  report["threads"] = threads;
   report["peak_memory_mib"] = peakMemoryMiB();
   writeFileAtomically(out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; },
                       false);
 }
 
-void run(const OptimizeArgs& args, const CLI::App& command) {
-  const pyramid::HbaSettings settings = mergeSettings(args, command);
+void run(const OptimizeArgs& args) {
+  pyramid::HbaSettings settings = mergeSettings(args);
   if (args.print_config) {
     std::cout << pyramid::settingsToYaml(settings);
     return;
@@ -187,9 +161,11 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   // Required unless --print-config (CLI11 cannot say "unless").
   if (args.data.dir.empty()) throw CLI::RequiredError("DIR");
   if (args.output.empty()) throw CLI::RequiredError("--output");
-  // The -j limit (a tbb::global_control), not the machine's core count.
-  const std::size_t threads =
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  // -j (a tbb::global_control in main), passed down explicitly: the pose
+  // graph's Ceres solve runs on it too.
+  settings.threads = static_cast<int>(std::min<std::size_t>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
+      static_cast<std::size_t>(tbb::info::default_concurrency())));
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
@@ -202,13 +178,13 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
-  spdlog::info("threads: {}", threads);
+  spdlog::info("threads: {}", settings.threads);
 
   const pyramid::HbaResult result =
       pyramid::runHierarchicalBa(source, dataset.trajectory().poses, settings);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
-  writeReport(out, result, dataset, settings, threads, conventions);
+  writeReport(out, result, dataset, settings, conventions);
 
   if (!args.no_render) writePicture(args, dataset, result.poses, out);
   staging.commit();
@@ -222,7 +198,6 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
 
 void registerOptimizeCommand(CLI::App& app) {
   auto args = std::make_shared<OptimizeArgs>();
-  pyramid::HbaSettings& s = args->settings;
   auto* command = app.add_subcommand(
       "optimize", "Optimize the poses of a sequence (hierarchical BA + pose graph)");
   args->data.addTo(command);
@@ -241,50 +216,8 @@ void registerOptimizeCommand(CLI::App& app) {
                     "Do not check that the map is crispest with the poses as given (vs inverted, vs none)");
   command->add_option("--config", args->config, "YAML settings file (flags override it)")
       ->check(CLI::ExistingFile);
-  command->add_option("--window", s.window, "Frames per local window (w)")->default_val(s.window);
-  command->add_option("--stride", s.stride, "Stride between windows (s < w)")->default_val(s.stride);
-  command->add_option("--layers", s.layers, "Pyramid layers incl. layer 1 (0 = automatic)")
-      ->default_val(s.layers);
-  command->add_option("--iterations", s.outer_iterations, "Outer iterations (bottom-up + top-down)")
-      ->default_val(s.outer_iterations);
-  command->add_option("--scan-voxel", s.scan_voxel, "Downsample scans to this voxel (m)")
-      ->default_val(s.scan_voxel);
-  command->add_option("--keyframe-voxel", s.keyframe_voxel, "Downsample keyframes to this voxel (m)")
-      ->default_val(s.keyframe_voxel);
-  command->add_option("--voxel", args->voxel, "Root voxel size V of every BA (m)");
-  command->add_option("--voxel-scans", s.scan_window_voxel,
-                      "Root voxel size of the layer-1 (scan) windows (m; 0 = --voxel-local)")
-      ->default_val(s.scan_window_voxel);
-  command->add_option("--voxel-local", s.local.planes.voxel_size,
-                      "Root voxel size of the keyframe windows, layers 2 and up (m)")
-      ->default_val(s.local.planes.voxel_size);
-  command->add_option("--voxel-global", s.global.planes.voxel_size, "Root voxel size of global BA (m)")
-      ->default_val(s.global.planes.voxel_size);
-  command->add_option("--final-voxel", s.local.final_voxel_size,
-                      "Coarse to fine: voxel size of the last associations (m; 0 = off)")
-      ->default_val(s.local.final_voxel_size);
-  command->add_option("--theta-local", s.local.planes.eigen_ratio, "Plane test threshold, local BA")
-      ->default_val(s.local.planes.eigen_ratio);
-  command->add_option("--theta-global", s.global.planes.eigen_ratio, "Plane test threshold, global BA")
-      ->default_val(s.global.planes.eigen_ratio);
-  command->add_option("--reject", s.local.reject_ratio, "Fraction of worst planes rejected")
-      ->default_val(s.local.reject_ratio);
-  command->add_option("--ba-iterations", s.local.max_iterations, "LM iterations per BA round")
-      ->default_val(s.local.max_iterations);
-  command->add_option("--point-sigma", s.information.point_sigma,
-                      "Point-to-plane noise for the pose-graph weights (m)")
-      ->default_val(s.information.point_sigma);
-  command->add_flag("--no-refine", "Skip the final sparse BA over every scan (the hierarchy alone)");
-  command->add_option("--refine-voxel", s.refinement.planes.voxel_size,
-                      "Root voxel of the final sparse BA over every scan (m)")
-      ->default_val(s.refinement.planes.voxel_size);
-  command->add_flag("--no-motion-prior",
-                    "No weak prior holding neighbouring frames at their input relative pose");
-  command->add_option("--top-down", args->top_down, "pose-graph (the paper) or direct-assign (ablation)")
-      ->check(CLI::IsMember({"pose-graph", "direct-assign"}));
-  command->add_option("--pairs", args->pairs, "Window frame pairs that become factors")
-      ->check(CLI::IsMember({"adjacent", "all", "from-first"}));
-  command->callback([args, command] { run(*args, *command); });
+  args->settings.addTo(command);
+  command->callback([args] { run(*args); });
 }
 
 }  // namespace hba::cli

@@ -1,6 +1,9 @@
 #include "hba/pyramid/hierarchical_ba.hpp"
 
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +14,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
+#include "hba/pyramid/settings_file.hpp"
 #include "refine_stage.hpp"
 #include "top_down.hpp"
 
@@ -23,9 +27,16 @@ void validate(const ScanSource& scans, const std::vector<Pose>& initial, const H
                 std::to_string(scans.size()) + ")");
   }
   if (initial.empty()) throw Error("no scans to optimize");
-  planWindows(initial.size(), s.window, s.stride);  // throws on a bad window/stride
-  if (s.layers < 0) throw Error("layer count must be >= 0 (0 = automatic)");
-  if (s.outer_iterations < 1) throw Error("outer iterations must be >= 1");
+  if (s.threads < 0) throw Error("thread count must be >= 0 (0 = as many as allowed)");
+  checkSettings(s);  // the ranges of the setting table
+}
+
+// settings.threads, or (0) as many as this process allows (hba -j, a
+// tbb::global_control, or the machine's cores).
+int threadCount(const HbaSettings& settings) {
+  if (settings.threads > 0) return settings.threads;
+  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
 }
 
 void logLayer(const LayerReport& r) {
@@ -154,6 +165,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   const auto graph_start = Clock::now();
   graph::PoseGraphSettings graph_settings;
   graph_settings.max_iterations = settings.graph_max_iterations;
+  graph_settings.threads = settings.threads;  // resolved by runHierarchicalBa
   graph::PoseGraphResult solved = graph::optimizePoseGraph(assigned, factors, graph_settings);
   iteration_report.factors = factors.size();
   iteration_report.graph_cost_before = solved.initial_cost;
@@ -229,11 +241,18 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
 HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings) {
   validate(scans, initial, settings);
+  // Every parallel part runs on this many threads: TBB's within the arena,
+  // Ceres's through the pose graph's settings.
+  HbaSettings resolved = settings;
+  resolved.threads = threadCount(settings);
+  tbb::task_arena arena(resolved.threads);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
-  HbaResult result = runNearOrigin(scans, translated(initial, -origin), settings);
+  HbaResult result;
+  arena.execute([&] { result = runNearOrigin(scans, translated(initial, -origin), resolved); });
+  result.report.threads = resolved.threads;
   result.poses = translated(result.poses, origin);
   return result;
 }

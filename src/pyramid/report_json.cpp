@@ -75,6 +75,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
                            {"final_rejected", c.final_rejected},
                            {"regions", regions}}},
           {"layers", r.layers},
+          {"threads", r.threads},
           // "converged: false" read as a failure after the default single pass.
           {"outer_iterations", {{"run", r.iterations.size()},
                                 {"stopped", r.poses_settled ? "poses settled" : "iteration limit"}}},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hba/pyramid/setting_table.hpp"
 #include "hba/pyramid/window_plan.hpp"
 
 namespace hba::pyramid {
@@ -15,6 +16,12 @@ ba::BaSettings withPointSigma(ba::BaSettings settings, double point_sigma) {
 }
 
 }  // namespace
+
+HbaSettings::HbaSettings() {
+  for (const Setting& setting : settingTable()) {
+    if (!setting.shorthand()) setting.set(*this, setting.default_value);
+  }
+}
 
 ba::BaSettings HbaSettings::localBa() const { return withPointSigma(local, information.point_sigma); }
 

@@ -1,16 +1,17 @@
+// The settings as YAML (`--config`, `--print-config`), JSON (report.json) and
+// a Markdown table (docs/settings.md), all made from the setting table.
 #include "hba/pyramid/settings_file.hpp"
 
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
-#include <charconv>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
-#include <type_traits>
 
 #include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
+#include "hba/pyramid/setting_table.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -19,15 +20,24 @@ namespace {
   throw Error(source + ": " + problem);
 }
 
-template <typename T>
-void read(const YAML::Node& node, const char* key, T& value, const std::string& source) {
-  const YAML::Node child = node[key];
-  if (!child) return;
-  try {
-    value = child.as<T>();
-  } catch (const YAML::Exception&) {
-    bad(source, std::string("'") + key + "' has a value of the wrong type");
-  }
+std::string sectionOf(const std::string& key) {
+  const auto dot = key.find('.');
+  return dot == std::string::npos ? "" : key.substr(0, dot);
+}
+
+std::string leafOf(const std::string& key) {
+  const auto dot = key.find('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+// The node of `name` ("window", "local.voxel_size"), if the file gives it.
+std::optional<YAML::Node> nodeOf(const YAML::Node& root, const std::string& name) {
+  const std::string section = sectionOf(name);
+  const YAML::Node parent = section.empty() ? root : root[section];
+  if (!parent || !parent.IsMap()) return std::nullopt;
+  const YAML::Node node = parent[leafOf(name)];
+  if (!node) return std::nullopt;
+  return node;
 }
 
 void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& known,
@@ -42,127 +52,98 @@ void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& know
   }
 }
 
-// `key`: adjacent | all | from_first (or the command line's from-first).
-void readFactorPairs(const YAML::Node& root, const char* key, FactorPairs& pairs, const std::string& source) {
-  std::string name;
-  read(root, key, name, source);
-  if (name.empty()) return;
-  const auto parsed = factorPairsFromString(name);
-  if (!parsed) bad(source, std::string(key) + " must be adjacent, all or from_first");
-  pairs = *parsed;
-}
-
-// Keys named like the flags of `hba optimize` (--iterations -> iterations),
-// so a setting has one name on the command line and in the file. Giving a
-// setting under both names is an error: which one wins would be a guess.
-void readFlagNamedKeys(const YAML::Node& root, HbaSettings& s, const std::string& source) {
-  const auto both = [&](const char* flag_name, const char* key) {
-    if (root[flag_name] && root[key]) {
-      bad(source, std::string("'") + flag_name + "' and '" + key + "' are the same setting; give one");
+// Unknown keys are an error (with a "did you mean"), so a typo never passes
+// silently; so are the sections that are not maps.
+void rejectUnknownNames(const YAML::Node& root, const std::string& source) {
+  std::set<std::string> top;
+  for (const Setting& s : settingTable()) {
+    top.insert(sectionOf(s.key).empty() ? s.key : sectionOf(s.key));
+    top.insert(s.aliases.begin(), s.aliases.end());
+  }
+  rejectUnknownKeys(root, top, "", source);
+  for (const SettingSection& section : settingSections()) {
+    const YAML::Node map = root[section.name];
+    if (!map) continue;
+    if (!map.IsMap()) bad(source, "'" + section.name + "' must be a map of settings");
+    std::set<std::string> known;
+    for (const Setting& s : settingTable()) {
+      if (sectionOf(s.key) == section.name) known.insert(leafOf(s.key));
     }
-  };
-  both("iterations", "outer_iterations");
-  both("voxel_scans", "scan_window_voxel");
-  both("pairs", "factor_pairs");
-  read(root, "iterations", s.outer_iterations, source);
-  double voxel = 0.0;
-  read(root, "voxel", voxel, source);
-  if (root["voxel"]) s.scan_window_voxel = s.local.planes.voxel_size = s.global.planes.voxel_size = voxel;
-  read(root, "voxel_scans", s.scan_window_voxel, source);
-  read(root, "voxel_local", s.local.planes.voxel_size, source);
-  read(root, "voxel_global", s.global.planes.voxel_size, source);
-  if (root["final_voxel"]) {
-    read(root, "final_voxel", s.local.final_voxel_size, source);
-    s.global.final_voxel_size = s.local.final_voxel_size;
+    rejectUnknownKeys(map, known, section.name + ".", source);
   }
-  read(root, "theta_local", s.local.planes.eigen_ratio, source);
-  read(root, "theta_global", s.global.planes.eigen_ratio, source);
-  if (root["reject"]) {
-    read(root, "reject", s.local.reject_ratio, source);
-    s.global.reject_ratio = s.local.reject_ratio;
-  }
-  if (root["ba_iterations"]) {
-    read(root, "ba_iterations", s.local.max_iterations, source);
-    s.global.max_iterations = s.local.max_iterations;
-  }
-  readFactorPairs(root, "pairs", s.factor_pairs, source);
 }
 
-void readBa(const YAML::Node& node, const std::string& name, ba::BaSettings& ba,
-            const std::string& source) {
-  if (!node) return;
-  if (!node.IsMap()) bad(source, "'" + name + "' must be a map of settings");
-  rejectUnknownKeys(node,
-                    {"voxel_size", "final_voxel_size", "eigen_ratio", "max_depth", "min_points",
-                     "max_iterations", "association_rounds", "reject_ratio", "trust_check"},
-                    name + ".", source);
-  read(node, "voxel_size", ba.planes.voxel_size, source);
-  read(node, "final_voxel_size", ba.final_voxel_size, source);
-  read(node, "eigen_ratio", ba.planes.eigen_ratio, source);
-  read(node, "max_depth", ba.planes.max_depth, source);
-  read(node, "min_points", ba.planes.min_points, source);
-  read(node, "max_iterations", ba.max_iterations, source);
-  read(node, "association_rounds", ba.association_rounds, source);
-  read(node, "reject_ratio", ba.reject_ratio, source);
-  read(node, "trust_check", ba.check_fixed_map, source);
+// The one name `setting` is given under in the file, if any.
+std::optional<std::string> givenName(const YAML::Node& root, const Setting& setting, const std::string& source) {
+  std::vector<std::string> given;
+  if (nodeOf(root, setting.key)) given.push_back(setting.key);
+  for (const std::string& alias : setting.aliases) {
+    if (nodeOf(root, alias)) given.push_back(alias);
+  }
+  if (given.size() > 1) {
+    bad(source, "'" + given[0] + "' and '" + given[1] + "' are the same setting; give one");
+  }
+  if (given.empty()) return std::nullopt;
+  return given.front();
 }
 
-nlohmann::json baToJson(const ba::BaSettings& ba) {
-  return {{"voxel_size", ba.planes.voxel_size},     {"final_voxel_size", ba.final_voxel_size},
-          {"eigen_ratio", ba.planes.eigen_ratio},
-          {"max_depth", ba.planes.max_depth},       {"min_points", ba.planes.min_points},
-          {"max_iterations", ba.max_iterations},    {"association_rounds", ba.association_rounds},
-          {"reject_ratio", ba.reject_ratio},        {"trust_check", ba.check_fixed_map}};
+SettingValue readValue(const YAML::Node& node, const Setting& setting, const std::string& name,
+                       const std::string& source) {
+  const Setting& typed = valueSetting(setting);
+  try {
+    switch (typed.type) {
+      case SettingType::Switch: return node.as<bool>();
+      case SettingType::Integer:
+      case SettingType::Count: return node.as<long long>();
+      case SettingType::Real: return node.as<double>();
+      case SettingType::Choice: return node.as<std::string>();
+    }
+  } catch (const YAML::Exception&) {
+  }
+  bad(source, "'" + name + "' has a value of the wrong type; it takes " + rangeText(setting));
 }
 
-void checkBa(const ba::BaSettings& ba, const std::string& name) {
-  auto fail = [&](const std::string& what) { throw Error("setting " + name + "." + what); };
-  if (!(ba.planes.voxel_size >= 0.01 && ba.planes.voxel_size <= 1000)) {
-    fail("voxel_size must be in [0.01, 1000] m");
+void applyOne(const Setting& setting, const SettingValue& value, HbaSettings& settings) {
+  if (!setting.shorthand()) {
+    setting.set(settings, value);
+    return;
   }
-  if (!(ba.final_voxel_size == 0 || (ba.final_voxel_size >= 0.01 && ba.final_voxel_size <= 1000))) {
-    fail("final_voxel_size must be 0 (off) or in [0.01, 1000] m");
+  for (const std::string& key : setting.sets) settingByKey(key).set(settings, value);
+}
+
+nlohmann::json toJson(const SettingValue& value) {
+  if (const bool* b = std::get_if<bool>(&value)) return *b;
+  if (const long long* i = std::get_if<long long>(&value)) return *i;
+  if (const double* d = std::get_if<double>(&value)) return *d;
+  return std::get<std::string>(value);
+}
+
+// What a line of --print-config or a row of the docs says after the help.
+// its flag, and those of the shorthands that set it too.
+std::string flagNote(const Setting& s) {
+  std::vector<std::string> flags;
+  if (!s.flag.empty()) flags.push_back(s.flag);
+  for (const Setting& other : settingTable()) {
+    for (const std::string& key : other.sets) {
+      if (key == s.key && !other.flag.empty()) flags.push_back(other.flag);
+    }
   }
-  if (!(ba.planes.eigen_ratio > 0 && ba.planes.eigen_ratio < 1)) fail("eigen_ratio must be in (0, 1)");
-  if (ba.planes.max_depth < 0 || ba.planes.max_depth > 8) fail("max_depth must be in [0, 8]");
-  if (ba.planes.min_points < 3) fail("min_points must be >= 3");
-  if (ba.max_iterations < 1) fail("max_iterations must be >= 1");
-  if (ba.association_rounds < 1) fail("association_rounds must be >= 1");
-  if (!(ba.reject_ratio >= 0 && ba.reject_ratio < 1)) fail("reject_ratio must be in [0, 1)");
+  std::string text;
+  for (const std::string& flag : flags) text += (text.empty() ? " (" : ", ") + flag;
+  return text.empty() ? text : text + ")";
+}
+
+std::string yamlLine(const std::string& indent, const Setting& s, const SettingValue& value) {
+  std::string text = indent + leafOf(s.key) + ": " + valueText(value);
+  if (text.size() < 34) text.resize(34, ' ');
+  std::string comment = s.help;
+  if (!valueSetting(s).range.zero.empty()) comment += "; 0 = " + valueSetting(s).range.zero;
+  return text + "  # " + comment + flagNote(s) + "\n";
 }
 
 }  // namespace
 
-std::string toString(TopDownMode mode) {
-  return mode == TopDownMode::PoseGraph ? "pose_graph" : "direct_assign";
-}
-
-std::string toString(FactorPairs pairs) {
-  switch (pairs) {
-    case FactorPairs::Adjacent: return "adjacent";
-    case FactorPairs::AllPairs: return "all";
-    case FactorPairs::FromFirst: return "from_first";
-  }
-  return "adjacent";
-}
-
-std::optional<TopDownMode> topDownModeFromString(std::string name) {
-  std::replace(name.begin(), name.end(), '-', '_');
-  if (name == "pose_graph") return TopDownMode::PoseGraph;
-  if (name == "direct_assign") return TopDownMode::DirectAssign;
-  return std::nullopt;
-}
-
-std::optional<FactorPairs> factorPairsFromString(std::string name) {
-  std::replace(name.begin(), name.end(), '-', '_');
-  if (name == "adjacent") return FactorPairs::Adjacent;
-  if (name == "all") return FactorPairs::AllPairs;
-  if (name == "from_first") return FactorPairs::FromFirst;
-  return std::nullopt;
-}
-
-void applySettingsYaml(const std::string& yaml_text, const std::string& source,
-                       HbaSettings& settings) {
+void applySettingsYaml(const std::string& yaml_text, const std::string& source, HbaSettings& settings) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
@@ -172,52 +153,22 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source,
   if (!root || root.IsNull()) return;  // an empty file changes nothing
   if (!root.IsMap()) bad(source, "expected a map of settings at the top level");
   try {
-    rejectUnknownKeys(root,
-                      {"window", "stride", "layers", "outer_iterations", "scan_voxel",
-                       "keyframe_voxel", "keyframe_voxel_growth", "scan_window_voxel", "top_down", "factor_pairs", "point_sigma", "local",
-                       "global", "refine", "refine_voxel", "refine_scan_voxel", "refine_max_points",
-                       "refine_iterations", "refine_rounds", "refine_round_gain",
-                       "refine_groups", "group_min_frames", "group_max_count", "group_voxel",
-                       "motion_prior",
-                       // the command line's names, for the settings that have a flag
-                       "iterations", "voxel", "voxel_scans", "voxel_local", "voxel_global",
-                       "final_voxel", "theta_local", "theta_global", "reject", "ba_iterations",
-                       "pairs"},
-                      "", source);
-    readFlagNamedKeys(root, settings, source);
-    read(root, "window", settings.window, source);
-    read(root, "stride", settings.stride, source);
-    read(root, "layers", settings.layers, source);
-    read(root, "outer_iterations", settings.outer_iterations, source);
-    read(root, "scan_voxel", settings.scan_voxel, source);
-    read(root, "keyframe_voxel", settings.keyframe_voxel, source);
-    read(root, "keyframe_voxel_growth", settings.keyframe_voxel_growth, source);
-    read(root, "scan_window_voxel", settings.scan_window_voxel, source);
-    read(root, "point_sigma", settings.information.point_sigma, source);
-    read(root, "refine", settings.refine, source);
-    read(root, "refine_voxel", settings.refinement.planes.voxel_size, source);
-    read(root, "refine_scan_voxel", settings.refine_scan_voxel, source);
-    read(root, "refine_max_points", settings.refine_max_points, source);
-    read(root, "refine_iterations", settings.refinement.lm.max_iterations, source);
-    read(root, "refine_rounds", settings.refinement.association_rounds, source);
-    read(root, "refine_round_gain", settings.refinement.round_gain, source);
-    read(root, "refine_groups", settings.refine_groups, source);
-    read(root, "group_min_frames", settings.group_min_frames, source);
-    read(root, "group_max_count", settings.group_max_count, source);
-    read(root, "group_voxel", settings.group_voxel, source);
-    bool motion_prior = settings.motionPrior();
-    read(root, "motion_prior", motion_prior, source);
-    settings.setMotionPrior(motion_prior);
-    std::string mode;
-    read(root, "top_down", mode, source);
-    if (!mode.empty()) {
-      const auto parsed = topDownModeFromString(mode);
-      if (!parsed) bad(source, "top_down must be pose_graph or direct_assign");
-      settings.top_down = *parsed;
+    rejectUnknownNames(root, source);
+    // Shorthands first, so that a specific key given beside one wins.
+    for (const bool shorthands : {true, false}) {
+      for (const Setting& setting : settingTable()) {
+        if (setting.shorthand() != shorthands) continue;
+        const std::optional<std::string> name = givenName(root, setting, source);
+        if (!name) continue;
+        const SettingValue value = readValue(*nodeOf(root, *name), setting, *name, source);
+        try {
+          checkSettingValue(setting, value);
+        } catch (const Error& e) {
+          bad(source, e.what());
+        }
+        applyOne(setting, value, settings);
+      }
     }
-    readFactorPairs(root, "factor_pairs", settings.factor_pairs, source);
-    readBa(root["local"], "local", settings.local, source);
-    readBa(root["global"], "global", settings.global, source);
   } catch (const YAML::Exception& e) {
     bad(source, "cannot read settings (" + std::string(e.what()) + ")");
   }
@@ -231,141 +182,70 @@ void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings)
   applySettingsYaml(text.str(), path.string(), settings);
 }
 
-void checkSettings(const HbaSettings& s) {
-  if (s.window < 2) throw Error("setting window must be >= 2");
-  if (s.stride < 1 || s.stride >= s.window) throw Error("setting stride must be in [1, window - 1]");
-  if (s.layers < 0) throw Error("setting layers must be >= 0 (0 = automatic)");
-  if (s.outer_iterations < 1) throw Error("setting outer_iterations must be >= 1");
-  // Voxels below 1 mm only blow up hash keys; 0 switches downsampling off.
-  auto downsampling = [](double v) { return v == 0.0 || (v >= 1e-3 && v <= 100.0); };
-  if (!downsampling(s.scan_voxel)) throw Error("setting scan_voxel must be 0 (off) or in [0.001, 100] m");
-  if (!downsampling(s.keyframe_voxel)) {
-    throw Error("setting keyframe_voxel must be 0 (off) or in [0.001, 100] m");
+void checkSettings(const HbaSettings& settings) {
+  for (const Setting& s : settingTable()) {
+    if (s.shorthand()) continue;
+    const SettingValue value = s.get(settings);
+    checkSettingValue(s, value);
+    if (s.below.empty()) continue;
+    const SettingValue limit = settingByKey(s.below).get(settings);
+    if (!(std::get<long long>(value) < std::get<long long>(limit))) {
+      throw Error("setting " + s.key + " must be below " + s.below + " (" + valueText(value) +
+                  " >= " + valueText(limit) + ")");
+    }
   }
-  if (!(s.keyframe_voxel_growth >= 1.0 && s.keyframe_voxel_growth <= 10.0)) {
-    throw Error("setting keyframe_voxel_growth must be in [1, 10]");
-  }
-  if (!(s.scan_window_voxel == 0.0 || (s.scan_window_voxel >= 0.01 && s.scan_window_voxel <= 100.0))) {
-    throw Error("setting scan_window_voxel must be 0 (= local voxel_size) or in [0.01, 100] m");
-  }
-  if (!(s.information.point_sigma > 0)) throw Error("setting point_sigma must be > 0");
-  if (!(s.refinement.planes.voxel_size >= 0.05 && s.refinement.planes.voxel_size <= 100.0)) {
-    throw Error("setting refine_voxel must be in [0.05, 100] m");
-  }
-  if (!(s.refine_scan_voxel == 0.0 || (s.refine_scan_voxel >= 1e-3 && s.refine_scan_voxel <= 100.0))) {
-    throw Error("setting refine_scan_voxel must be 0 (= scan_voxel) or in [0.001, 100] m");
-  }
-  if (s.refine_max_points < 1000) throw Error("setting refine_max_points must be >= 1000");
-  if (s.refinement.lm.max_iterations < 0) throw Error("setting refine_iterations must be >= 0");
-  if (s.refinement.association_rounds < 1) throw Error("setting refine_rounds must be >= 1");
-  if (!(s.refinement.round_gain >= 0.0 && s.refinement.round_gain <= 1.0)) {
-    throw Error("setting refine_round_gain must be in [0, 1]");
-  }
-  if (s.group_min_frames < 2) throw Error("setting group_min_frames must be >= 2");
-  // The groups' BA is solved densely: (6 x groups)^2 doubles.
-  if (s.group_max_count < 3 || s.group_max_count > 2000) {
-    throw Error("setting group_max_count must be in [3, 2000]");
-  }
-  if (!(s.group_voxel == 0.0 || (s.group_voxel >= 1e-3 && s.group_voxel <= 100.0))) {
-    throw Error("setting group_voxel must be 0 (no downsampling) or in [0.001, 100] m");
-  }
-  checkBa(s.local, "local");
-  checkBa(s.global, "global");
 }
 
-nlohmann::json settingsToJson(const HbaSettings& s) {
-  return {{"window", s.window},
-          {"stride", s.stride},
-          {"layers", s.layers},
-          {"outer_iterations", s.outer_iterations},
-          {"scan_voxel", s.scan_voxel},
-          {"keyframe_voxel", s.keyframe_voxel},
-          {"keyframe_voxel_growth", s.keyframe_voxel_growth},
-          {"scan_window_voxel", s.scan_window_voxel},
-          {"top_down", toString(s.top_down)},
-          {"factor_pairs", toString(s.factor_pairs)},
-          {"point_sigma", s.information.point_sigma},
-          {"refine", s.refine},
-          {"refine_voxel", s.refinement.planes.voxel_size},
-          {"refine_scan_voxel", s.refine_scan_voxel},
-          {"refine_max_points", s.refine_max_points},
-          {"refine_iterations", s.refinement.lm.max_iterations},
-          {"refine_rounds", s.refinement.association_rounds},
-          {"refine_round_gain", s.refinement.round_gain},
-          {"refine_groups", s.refine_groups},
-          {"group_min_frames", s.group_min_frames},
-          {"group_max_count", s.group_max_count},
-          {"group_voxel", s.group_voxel},
-          {"motion_prior", s.motionPrior()},
-          {"local", baToJson(s.local)},
-          {"global", baToJson(s.global)}};
-}
-
-namespace {
-
-// "key: value  # comment" with the value in YAML's plain form.
-template <typename T>
-std::string yamlLine(const std::string& indent, const std::string& key, const T& value, const std::string& comment) {
-  std::string text = indent + key + ": ";
-  if constexpr (std::is_same_v<T, bool>) {
-    text += value ? "true" : "false";
-  } else if constexpr (std::is_arithmetic_v<T>) {
-    char digits[32];  // the shortest form that reads back the same
-    text.append(digits, std::to_chars(digits, digits + sizeof(digits), value).ptr);
-  } else {
-    text += value;
+nlohmann::json settingsToJson(const HbaSettings& settings) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const Setting& s : settingTable()) {
+    if (s.shorthand()) continue;
+    const std::string section = sectionOf(s.key);
+    nlohmann::json& parent = section.empty() ? out : out[section];
+    parent[leafOf(s.key)] = toJson(s.get(settings));
   }
-  if (text.size() < 34) text.resize(34, ' ');
-  return text + "  # " + comment + "\n";
-}
-
-std::string baYaml(const ba::BaSettings& ba, const char* which) {
-  std::string out;
-  out += yamlLine("  ", "voxel_size", ba.planes.voxel_size, "root voxel of the adaptive plane map, m (--voxel-" + std::string(which) + ")");
-  out += yamlLine("  ", "final_voxel_size", ba.final_voxel_size, "coarse to fine down to this voxel, m; 0 = off (--final-voxel)");
-  out += yamlLine("  ", "eigen_ratio", ba.planes.eigen_ratio, "plane test lambda_min / lambda_max (--theta-" + std::string(which) + ")");
-  out += yamlLine("  ", "max_depth", ba.planes.max_depth, "octree levels below the root voxel");
-  out += yamlLine("  ", "min_points", ba.planes.min_points, "fewest points of a plane");
-  out += yamlLine("  ", "max_iterations", ba.max_iterations, "LM iterations per association (--ba-iterations)");
-  out += yamlLine("  ", "association_rounds", ba.association_rounds, "associations at the final voxel");
-  out += yamlLine("  ", "reject_ratio", ba.reject_ratio, "share of the worst planes dropped (--reject)");
-  out += yamlLine("  ", "trust_check", ba.check_fixed_map, "windows that blur the map keep their input poses");
   return out;
 }
 
-}  // namespace
-
-std::string settingsToYaml(const HbaSettings& s) {
+std::string settingsToYaml(const HbaSettings& settings) {
   std::string out =
       "# hba optimize settings: every one, at its value (hba optimize --print-config).\n"
       "# Read back with --config FILE; flags given on the command line override the file.\n"
-      "# A key named like a flag (window for --window, iterations for --iterations, ...) is\n"
-      "# the same setting under the same name. docs/pyramid.md explains them.\n";
-  out += yamlLine("", "window", s.window, "frames per local window, w (--window)");
-  out += yamlLine("", "stride", s.stride, "frames between window starts, s < w (--stride)");
-  out += yamlLine("", "layers", s.layers, "pyramid layers incl. layer 1; 0 = automatic (--layers)");
-  out += yamlLine("", "iterations", s.outer_iterations, "bottom-up + top-down rounds at most (--iterations)");
-  out += yamlLine("", "scan_voxel", s.scan_voxel, "downsampling of the input scans, m (--scan-voxel)");
-  out += yamlLine("", "keyframe_voxel", s.keyframe_voxel, "downsampling of keyframes, m (--keyframe-voxel)");
-  out += yamlLine("", "keyframe_voxel_growth", s.keyframe_voxel_growth, "keyframe voxel factor per layer up");
-  out += yamlLine("", "voxel_scans", s.scan_window_voxel, "root voxel of the layer-1 windows, m; 0 = local (--voxel-scans)");
-  out += yamlLine("", "top_down", toString(s.top_down), "pose_graph or direct_assign (--top-down)");
-  out += yamlLine("", "pairs", toString(s.factor_pairs), "window pairs that become factors: adjacent, all, from_first (--pairs)");
-  out += yamlLine("", "point_sigma", s.information.point_sigma, "point-to-plane noise for the pose-graph weights, m (--point-sigma)");
-  out += yamlLine("", "motion_prior", s.motionPrior(), "hold neighbours weakly at their input relative pose (--no-motion-prior)");
-  out += yamlLine("", "refine", s.refine, "the final sparse BA over every scan (--no-refine)");
-  out += yamlLine("", "refine_voxel", s.refinement.planes.voxel_size, "its root voxel, m (--refine-voxel)");
-  out += yamlLine("", "refine_scan_voxel", s.refine_scan_voxel, "scans held at this density for it, m; 0 = scan_voxel");
-  out += yamlLine("", "refine_max_points", s.refine_max_points, "beyond this many points it runs in blocks");
-  out += yamlLine("", "refine_iterations", s.refinement.lm.max_iterations, "LM iterations per association");
-  out += yamlLine("", "refine_rounds", s.refinement.association_rounds, "associations at most");
-  out += yamlLine("", "refine_round_gain", s.refinement.round_gain, "associate again while a round cuts the cost by this share");
-  out += yamlLine("", "refine_groups", s.refine_groups, "beyond one block, then place rigid groups of frames as a whole");
-  out += yamlLine("", "group_min_frames", s.group_min_frames, "frames per group at least");
-  out += yamlLine("", "group_max_count", s.group_max_count, "groups at most (larger groups on longer sequences)");
-  out += yamlLine("", "group_voxel", s.group_voxel, "groups' merged clouds downsampled to this, m");
-  out += "local:  # the windows of layers 1 and up\n" + baYaml(s.local, "local");
-  out += "global:  # the one BA of the top layer\n" + baYaml(s.global, "global");
+      "# Keys named like the flags (iterations for --iterations, voxel for --voxel, ...) are\n"
+      "# read too. docs/settings.md lists every setting; docs/pyramid.md explains them.\n";
+  for (const Setting& s : settingTable()) {
+    if (!s.shorthand() && sectionOf(s.key).empty()) out += yamlLine("", s, s.get(settings));
+  }
+  for (const SettingSection& section : settingSections()) {
+    out += section.name + ":  # " + section.help + "\n";
+    for (const Setting& s : settingTable()) {
+      if (sectionOf(s.key) == section.name) out += yamlLine("  ", s, s.get(settings));
+    }
+  }
+  return out;
+}
+
+std::string settingsMarkdown() {
+  const HbaSettings defaults;
+  std::string out =
+      "| YAML key | flag | default | takes | what it sets |\n"
+      "|---|---|---|---|---|\n";
+  const auto cell = [](const std::string& text) { return text.empty() ? std::string("—") : "`" + text + "`"; };
+  for (const Setting& s : settingTable()) {
+    std::string key = "`" + s.key + "`";
+    for (const std::string& alias : s.aliases) key += " or `" + alias + "`";
+    std::string what = s.help;
+    std::string fallback;
+    if (s.shorthand()) {
+      what += "; sets";
+      for (const std::string& target : s.sets) what += " `" + target + "`";
+      fallback = "as they are";
+    } else {
+      fallback = valueText(s.get(defaults));
+    }
+    out += "| " + key + " | " + cell(s.flag) + " | " + (s.shorthand() ? fallback : "`" + fallback + "`") +
+           " | " + rangeText(s) + " | " + what + " |\n";
+  }
   return out;
 }
 

@@ -181,6 +181,34 @@ TEST_F(OptimizeSimulated, SettingsFileAndFlagsCombine) {
   EXPECT_NE(bad.output.find("unknown setting 'windw'"), std::string::npos) << bad.output;
 }
 
+// -j 1 reaches every parallel part, the pose graph's Ceres solve included
+// (report.json says what it ran on), and two runs give the same bytes.
+TEST_F(OptimizeSimulated, OneThreadIsByteIdenticalRunToRun) {
+  run(hba() + " -q simulate --frames 40 --seed 4 -o " + data().string());
+  const std::string command = hba() + " -q -j 1 optimize " + data().string() + " --no-render --force -o ";
+  run(command + (dir / "a").string());
+  run(command + (dir / "b").string());
+  EXPECT_EQ(readJson(dir / "a" / "report.json").at("threads"), 1);
+  EXPECT_FALSE(readJson(dir / "a" / "report.json").at("iterations").empty());
+  for (const char* file : {"pose.json", "poses_kitti.txt", "poses_tum.txt"}) {
+    EXPECT_EQ(test::readText(dir / "a" / file), test::readText(dir / "b" / file)) << file;
+  }
+}
+
+// A shorthand flag sets every setting it stands for; a specific flag beside
+// it wins, whatever their order on the line.
+TEST_F(OptimizeSimulated, ShorthandFlagsYieldToSpecificOnes) {
+  run(hba() + " -q simulate --frames 30 --seed 9 -o " + data().string());
+  run(hba() + " -q optimize " + data().string() + " -o " + out().string() +
+      " --no-render --voxel-local 2 --voxel 3 --top-down direct-assign");
+  const nlohmann::json settings = readJson(out() / "report.json").at("settings");
+  EXPECT_EQ(settings.at("local").at("voxel_size"), 2.0);
+  EXPECT_EQ(settings.at("global").at("voxel_size"), 3.0);
+  EXPECT_EQ(settings.at("voxel_scans"), 3.0);
+  EXPECT_EQ(settings.at("top_down"), "direct_assign");
+  EXPECT_EQ(settings.at("refine_groups"), true);  // every setting is in the report
+}
+
 }  // namespace
 }  // namespace hba
 

@@ -76,7 +76,7 @@ TEST(SettingsFile, RangeChecks) {
 TEST(SettingsFile, JsonHasEverySetting) {
   const auto json = settingsToJson(HbaSettings());
   EXPECT_EQ(json.at("window"), 10);
-  EXPECT_EQ(json.at("scan_window_voxel"), 2.0);
+  EXPECT_EQ(json.at("voxel_scans"), 2.0);
   EXPECT_EQ(json.at("local").at("voxel_size"), 4.0);
   EXPECT_EQ(json.at("global").at("eigen_ratio"), 0.1);
 }

@@ -97,6 +97,7 @@ struct ConsistencyReport {
 
 struct HbaReport {
   int layers = 0;
+  int threads = 0;  // that every parallel part ran on, the pose graph included
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;

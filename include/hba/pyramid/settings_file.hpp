@@ -1,19 +1,11 @@
 #pragma once
-// Settings from YAML (the `hba optimize --config FILE` format) and as JSON
-// (printed at start and stored in report.json).
-//
-// YAML keys (all optional; unknown keys are an error, so typos never pass
-// silently, and get a "did you mean"). Every setting that has a flag may also
-// be named like it (iterations, voxel, voxel_scans, voxel_local, voxel_global,
-// final_voxel, theta_local, theta_global, reject, ba_iterations, pairs):
-//   window, stride, layers, outer_iterations, scan_voxel, keyframe_voxel, keyframe_voxel_growth,
-//   top_down: pose_graph | direct_assign, factor_pairs: adjacent | all | from_first,
-//   scan_window_voxel, point_sigma,
-//   local:  { voxel_size, final_voxel_size, eigen_ratio, max_depth, min_points, max_iterations,
-//             association_rounds, reject_ratio }
-//   global: { same keys as local }
+// Settings from YAML (the `hba optimize --config FILE` format), as JSON
+// (report.json) and as a Markdown table (docs/settings.md). Every key, its
+// range and its meaning come from the setting table (setting_table.hpp):
+// unknown keys are an error with a "did you mean", so typos never pass
+// silently; a key named like a flag (iterations, voxel_local) is the same
+// setting as its YAML key, and giving both is an error.
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -21,14 +13,6 @@
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
-
-// Names of the modes, as in YAML ("pose_graph", "from_first"); the parsers
-// also take the command line's dashes ("pose-graph", "from-first"). They
-// return nothing for an unknown name.
-std::string toString(TopDownMode mode);
-std::string toString(FactorPairs pairs);
-std::optional<TopDownMode> topDownModeFromString(std::string name);
-std::optional<FactorPairs> factorPairsFromString(std::string name);
 
 // Applies the keys present in `yaml_text` on top of `settings`. Throws
 // hba::Error naming `source` (a file name, for messages) and the bad key.
@@ -44,5 +28,8 @@ nlohmann::json settingsToJson(const HbaSettings& settings);
 // Every setting as a commented YAML file that applySettingsYaml reads back
 // to the same settings (`hba optimize --print-config`).
 std::string settingsToYaml(const HbaSettings& settings);
+
+// Every setting as a Markdown table: key, flag, default, range, meaning.
+std::string settingsMarkdown();
 
 }  // namespace hba::pyramid

@@ -1,0 +1,80 @@
+#include "setting_flags.hpp"
+
+#include <string>
+
+#include "hba/core/enum_names.hpp"
+
+namespace hba::cli {
+
+using pyramid::Setting;
+using pyramid::SettingType;
+using pyramid::SettingValue;
+
+namespace {
+
+std::string describe(const Setting& setting) {
+  const Setting& typed = pyramid::valueSetting(setting);
+  std::string text = setting.help;
+  // Which BA a sectioned setting belongs to (local.eigen_ratio: the windows').
+  const auto dot = setting.key.find('.');
+  if (dot != std::string::npos) text = setting.key.substr(0, dot) + " BA: " + text;
+  if (typed.type == SettingType::Switch) text = "Off: " + text;
+  if (!typed.range.zero.empty()) text += "; 0 = " + typed.range.zero;
+  return text;
+}
+
+}  // namespace
+
+void SettingFlags::addTo(CLI::App* command) {
+  const std::vector<Setting>& table = pyramid::settingTable();
+  given_.assign(table.size(), std::nullopt);
+  CLI::App* group = command->add_option_group(
+      "Settings", "Settings (also in a --config YAML file; docs/settings.md lists them all)");
+  const pyramid::HbaSettings defaults;
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const Setting& setting = table[i];
+    if (setting.flag.empty()) continue;
+    std::optional<SettingValue>& slot = given_[i];
+    const Setting& typed = pyramid::valueSetting(setting);
+    const std::string help = describe(setting);
+    CLI::Option* option = nullptr;
+    switch (typed.type) {
+      case SettingType::Switch:
+        // A switch's flag turns it off (--no-refine).
+        group->add_flag_callback(setting.flag, [&slot] { slot = false; }, help);
+        continue;
+      case SettingType::Integer:
+      case SettingType::Count:
+        option = group->add_option_function<long long>(setting.flag, [&slot](const long long& v) { slot = v; }, help);
+        break;
+      case SettingType::Real:
+        option = group->add_option_function<double>(setting.flag, [&slot](const double& v) { slot = v; }, help);
+        break;
+      case SettingType::Choice:
+        option = group->add_option_function<std::string>(
+            setting.flag, [&slot](const std::string& v) { slot = normalizedEnumName(v); }, help);
+        option->check(CLI::IsMember(typed.choices, normalizedEnumName));
+        break;
+    }
+    if (!setting.shorthand()) option->default_str(pyramid::valueText(setting.get(defaults)));
+  }
+}
+
+void SettingFlags::applyTo(pyramid::HbaSettings& settings) const {
+  const std::vector<Setting>& table = pyramid::settingTable();
+  for (const bool shorthands : {true, false}) {
+    for (std::size_t i = 0; i < table.size(); ++i) {
+      const Setting& setting = table[i];
+      if (setting.shorthand() != shorthands || !given_[i]) continue;
+      // The range is checked with the whole settings (checkSettings), which
+      // names the setting.
+      if (!setting.shorthand()) {
+        setting.set(settings, *given_[i]);
+        continue;
+      }
+      for (const std::string& key : setting.sets) pyramid::settingByKey(key).set(settings, *given_[i]);
+    }
+  }
+}
+
+}  // namespace hba::cli

@@ -1,0 +1,246 @@
+// The settings of `hba optimize`, each declared once. To add one: an entry
+// here and the code that uses it; the flag, YAML key, report.json, range
+// check and docs/settings.md follow (regenerate the docs with
+// HBA_UPDATE_DOCS=1 ctest -R SettingTable).
+#include "hba/pyramid/setting_table.hpp"
+
+#include "hba/core/enum_names.hpp"
+#include "hba/core/error.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+template <typename T>
+using FieldOf = std::function<T&(HbaSettings&)>;
+
+// A setting stored in one field of HbaSettings.
+template <typename T>
+Setting field(std::string key, std::string flag, SettingType type, T default_value, SettingRange range,
+              FieldOf<T> ref, std::string help) {
+  Setting s;
+  s.key = std::move(key);
+  s.flag = std::move(flag);
+  s.type = type;
+  s.range = std::move(range);
+  s.help = std::move(help);
+  if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, double>) {
+    s.default_value = default_value;
+    s.get = [ref](const HbaSettings& h) { return SettingValue(ref(const_cast<HbaSettings&>(h))); };
+    s.set = [ref](HbaSettings& h, const SettingValue& v) { ref(h) = std::get<T>(v); };
+  } else {
+    // Integers travel as long long; the range check keeps them in T's range.
+    s.default_value = static_cast<long long>(default_value);
+    s.get = [ref](const HbaSettings& h) {
+      return SettingValue(static_cast<long long>(ref(const_cast<HbaSettings&>(h))));
+    };
+    s.set = [ref](HbaSettings& h, const SettingValue& v) { ref(h) = static_cast<T>(std::get<long long>(v)); };
+  }
+  return s;
+}
+
+Setting integer(std::string key, std::string flag, int default_value, SettingRange range, FieldOf<int> ref,
+                std::string help) {
+  return field<int>(std::move(key), std::move(flag), SettingType::Integer, default_value, std::move(range),
+                    std::move(ref), std::move(help));
+}
+
+Setting count(std::string key, std::string flag, std::size_t default_value, SettingRange range,
+              FieldOf<std::size_t> ref, std::string help) {
+  return field<std::size_t>(std::move(key), std::move(flag), SettingType::Count, default_value, std::move(range),
+                            std::move(ref), std::move(help));
+}
+
+Setting real(std::string key, std::string flag, double default_value, SettingRange range, FieldOf<double> ref,
+             std::string help) {
+  return field<double>(std::move(key), std::move(flag), SettingType::Real, default_value, std::move(range),
+                       std::move(ref), std::move(help));
+}
+
+Setting onOff(std::string key, std::string flag, bool default_value, FieldOf<bool> ref, std::string help) {
+  return field<bool>(std::move(key), std::move(flag), SettingType::Switch, default_value, {}, std::move(ref),
+                     std::move(help));
+}
+
+template <typename E>
+Setting choice(std::string key, std::string flag, E default_value, FieldOf<E> ref, std::string help) {
+  Setting s;
+  s.key = std::move(key);
+  s.flag = std::move(flag);
+  s.type = SettingType::Choice;
+  s.choices = enumNames<E>();
+  s.default_value = toString(default_value);
+  s.help = std::move(help);
+  s.get = [ref](const HbaSettings& h) { return SettingValue(toString(ref(const_cast<HbaSettings&>(h)))); };
+  s.set = [ref](HbaSettings& h, const SettingValue& v) { ref(h) = parseEnum<E>(std::get<std::string>(v)); };
+  return s;
+}
+
+Setting withAliases(Setting s, std::vector<std::string> aliases) {
+  s.aliases = std::move(aliases);
+  return s;
+}
+
+// A name that sets several settings at once.
+Setting shorthand(std::string key, std::string flag, std::vector<std::string> sets, std::string help) {
+  Setting s;
+  s.key = std::move(key);
+  s.flag = std::move(flag);
+  s.sets = std::move(sets);
+  s.help = std::move(help);
+  return s;  // type, range and default: those of the first setting it sets
+}
+
+SettingRange atLeast(double min) { return {min, kInf, false, false, ""}; }
+SettingRange between(double min, double max) { return {min, max, false, false, ""}; }
+SettingRange zeroOr(const std::string& zero, double min, double max) { return {min, max, false, false, zero}; }
+
+// The settings of one plane BA (the windows' or the top layer's), in the
+// YAML map `section`; `which` names its flags (--voxel-local).
+void addBaSettings(std::vector<Setting>& table, const std::string& section, const std::string& which,
+                   double eigen_ratio, ba::BaSettings HbaSettings::*member) {
+  const auto ba = [member](HbaSettings& h) -> ba::BaSettings& { return h.*member; };
+  const std::string k = section + ".";
+  table.push_back(withAliases(
+      real(k + "voxel_size", "--voxel-" + which, 4.0, between(0.01, 1000),
+           [ba](HbaSettings& h) -> double& { return ba(h).planes.voxel_size; }, "root voxel of the adaptive plane map, m"),
+      {"voxel_" + which}));
+  table.push_back(real(k + "final_voxel_size", "", 1.0, zeroOr("off", 0.01, 1000),
+                       [ba](HbaSettings& h) -> double& { return ba(h).final_voxel_size; },
+                       "coarse to fine down to this voxel, m"));
+  table.push_back(withAliases(
+      real(k + "eigen_ratio", "--theta-" + which, eigen_ratio, {0.0, 1.0, true, true, ""},
+           [ba](HbaSettings& h) -> double& { return ba(h).planes.eigen_ratio; }, "plane test lambda_min / lambda_max"),
+      {"theta_" + which}));
+  table.push_back(integer(k + "max_depth", "", 3, between(0, 8),
+                          [ba](HbaSettings& h) -> int& { return ba(h).planes.max_depth; },
+                          "octree levels below the root voxel"));
+  table.push_back(integer(k + "min_points", "", 20, atLeast(3),
+                          [ba](HbaSettings& h) -> int& { return ba(h).planes.min_points; }, "fewest points of a plane"));
+  table.push_back(integer(k + "max_iterations", "", 10, atLeast(0),
+                          [ba](HbaSettings& h) -> int& { return ba(h).max_iterations; }, "LM iterations per association"));
+  table.push_back(integer(k + "association_rounds", "", 1, atLeast(1),
+                          [ba](HbaSettings& h) -> int& { return ba(h).association_rounds; },
+                          "associations at the final voxel"));
+  table.push_back(real(k + "reject_ratio", "", 0.05, {0.0, 1.0, false, true, ""},
+                       [ba](HbaSettings& h) -> double& { return ba(h).reject_ratio; },
+                       "share of the worst planes dropped"));
+  table.push_back(onOff(k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
+                        "windows that blur the map keep their input poses"));
+}
+
+std::vector<Setting> makeTable() {
+  std::vector<Setting> t;
+  // Shorthands first: they are applied before the settings they set.
+  t.push_back(shorthand("voxel", "--voxel", {"local.voxel_size", "global.voxel_size", "voxel_scans"},
+                        "root voxel V of every BA, m"));
+  t.push_back(shorthand("final_voxel", "--final-voxel", {"local.final_voxel_size", "global.final_voxel_size"},
+                        "coarse to fine: voxel of the last associations of every BA, m"));
+  t.push_back(shorthand("reject", "--reject", {"local.reject_ratio", "global.reject_ratio"},
+                        "share of the worst planes every BA drops"));
+  t.push_back(shorthand("ba_iterations", "--ba-iterations", {"local.max_iterations", "global.max_iterations"},
+                        "LM iterations per association of every BA"));
+
+  Setting window = integer("window", "--window", 10, atLeast(2), [](HbaSettings& h) -> int& { return h.window; },
+                           "frames per local window, w");
+  t.push_back(window);
+  Setting stride = integer("stride", "--stride", 5, atLeast(1), [](HbaSettings& h) -> int& { return h.stride; },
+                           "frames between window starts, s < w");
+  stride.below = "window";
+  t.push_back(stride);
+  t.push_back(integer("layers", "--layers", 0, zeroOr("automatic", 1, kInf),
+                      [](HbaSettings& h) -> int& { return h.layers; }, "pyramid layers incl. layer 1"));
+  t.push_back(withAliases(integer("iterations", "--iterations", 1, atLeast(1),
+                                  [](HbaSettings& h) -> int& { return h.outer_iterations; },
+                                  "bottom-up + top-down rounds at most"),
+                          {"outer_iterations"}));
+  t.push_back(real("scan_voxel", "--scan-voxel", 0.1, zeroOr("off", 1e-3, 100),
+                   [](HbaSettings& h) -> double& { return h.scan_voxel; }, "downsampling of the input scans, m"));
+  t.push_back(real("keyframe_voxel", "--keyframe-voxel", 0.2, zeroOr("off", 1e-3, 100),
+                   [](HbaSettings& h) -> double& { return h.keyframe_voxel; }, "downsampling of keyframes, m"));
+  t.push_back(real("keyframe_voxel_growth", "", 1.0, between(1, 10),
+                   [](HbaSettings& h) -> double& { return h.keyframe_voxel_growth; },
+                   "keyframe voxel factor per layer up"));
+  t.push_back(withAliases(real("voxel_scans", "--voxel-scans", 2.0, zeroOr("as local.voxel_size", 0.01, 100),
+                               [](HbaSettings& h) -> double& { return h.scan_window_voxel; },
+                               "root voxel of the layer-1 (scan) windows, m"),
+                          {"scan_window_voxel"}));
+  t.push_back(choice<TopDownMode>("top_down", "--top-down", TopDownMode::PoseGraph,
+                                  [](HbaSettings& h) -> TopDownMode& { return h.top_down; },
+                                  "how the corrections come down: pose_graph (the paper) or direct_assign"));
+  t.push_back(withAliases(choice<FactorPairs>("pairs", "--pairs", FactorPairs::Adjacent,
+                                              [](HbaSettings& h) -> FactorPairs& { return h.factor_pairs; },
+                                              "window frame pairs that become pose-graph factors"),
+                          {"factor_pairs"}));
+  t.push_back(real("point_sigma", "--point-sigma", 0.02, {0.0, kInf, true, false, ""},
+                   [](HbaSettings& h) -> double& { return h.information.point_sigma; },
+                   "point-to-plane noise for the pose-graph weights, m"));
+  Setting prior = onOff("motion_prior", "--no-motion-prior", true, [](HbaSettings& h) -> bool& {
+    return h.local.motion_prior.enabled;
+  }, "hold neighbours weakly at their input relative pose");
+  // One switch for the prior of every BA.
+  prior.set = [](HbaSettings& h, const SettingValue& v) { h.setMotionPrior(std::get<bool>(v)); };
+  t.push_back(prior);
+  t.push_back(integer("graph_max_iterations", "", 100, atLeast(1),
+                      [](HbaSettings& h) -> int& { return h.graph_max_iterations; },
+                      "Levenberg-Marquardt iterations of the pose graph at most"));
+  t.push_back(onOff("refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
+                    "the final sparse BA over every scan"));
+  t.push_back(real("refine_voxel", "--refine-voxel", 1.0, between(0.05, 100),
+                   [](HbaSettings& h) -> double& { return h.refinement.planes.voxel_size; },
+                   "the final sparse BA's root voxel, m"));
+  t.push_back(real("refine_scan_voxel", "", 0.2, zeroOr("as scan_voxel", 1e-3, 100),
+                   [](HbaSettings& h) -> double& { return h.refine_scan_voxel; },
+                   "scans held at this density for it, m"));
+  t.push_back(count("refine_max_points", "", 20'000'000, atLeast(1000),
+                    [](HbaSettings& h) -> std::size_t& { return h.refine_max_points; },
+                    "beyond this many points it runs in blocks"));
+  t.push_back(integer("refine_iterations", "", 10, atLeast(0),
+                      [](HbaSettings& h) -> int& { return h.refinement.lm.max_iterations; },
+                      "its LM iterations per association"));
+  t.push_back(integer("refine_rounds", "", 6, atLeast(1),
+                      [](HbaSettings& h) -> int& { return h.refinement.association_rounds; },
+                      "its associations at most"));
+  t.push_back(real("refine_round_gain", "", 0.02, between(0, 1),
+                   [](HbaSettings& h) -> double& { return h.refinement.round_gain; },
+                   "associate again while a round cuts the cost by this share"));
+  t.push_back(onOff("refine_groups", "", true, [](HbaSettings& h) -> bool& { return h.refine_groups; },
+                    "beyond one block, then place rigid groups of frames as a whole"));
+  t.push_back(count("group_min_frames", "", 10, atLeast(2),
+                    [](HbaSettings& h) -> std::size_t& { return h.group_min_frames; }, "frames per group at least"));
+  // The groups' BA is solved densely: (6 x groups)^2 doubles.
+  t.push_back(count("group_max_count", "", 500, between(3, 2000),
+                    [](HbaSettings& h) -> std::size_t& { return h.group_max_count; },
+                    "groups at most (larger groups on longer sequences)"));
+  t.push_back(real("group_voxel", "", 0.4, zeroOr("no downsampling", 1e-3, 100),
+                   [](HbaSettings& h) -> double& { return h.group_voxel; },
+                   "groups' merged clouds downsampled to this, m"));
+  addBaSettings(t, "local", "local", 0.05, &HbaSettings::local);
+  addBaSettings(t, "global", "global", 0.1, &HbaSettings::global);
+  return t;
+}
+
+}  // namespace
+
+const std::vector<Setting>& settingTable() {
+  static const std::vector<Setting> table = makeTable();
+  return table;
+}
+
+const std::vector<SettingSection>& settingSections() {
+  static const std::vector<SettingSection> sections = {
+      {"local", "the windows of layers 1 and up"},
+      {"global", "the one BA of the top layer"},
+  };
+  return sections;
+}
+
+const Setting& settingByKey(const std::string& key) {
+  for (const Setting& s : settingTable()) {
+    if (s.key == key) return s;
+  }
+  throw Error("no setting '" + key + "'");
+}
+
+}  // namespace hba::pyramid
