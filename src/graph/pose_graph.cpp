@@ -5,22 +5,23 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
+#include "factor_model.hpp"
 #include "gauge_anchors.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/relative_pose_error.hpp"
+#include "orientation_held_manifold.hpp"
 #include "pose_block.hpp"
-#include "relative_pose_cost.hpp"
 #include "world_pose_manifold.hpp"
 
 namespace hba::graph {
 namespace {
 
-void validate(const std::vector<Pose>& initial, const std::vector<RelativePoseFactor>& factors,
+void validate(const std::vector<Pose>& initial, const FactorGraph& factors,
               const PoseGraphSettings& settings) {
   for (std::size_t i = 0; i < initial.size(); ++i) {
     if (!initial[i].t.allFinite() || !initial[i].q.coeffs().allFinite()) {
@@ -28,16 +29,9 @@ void validate(const std::vector<Pose>& initial, const std::vector<RelativePoseFa
     }
   }
   for (std::size_t k = 0; k < factors.size(); ++k) {
-    const RelativePoseFactor& f = factors[k];
-    const std::string name = "pose graph: factor " + std::to_string(k);
-    if (f.from >= initial.size() || f.to >= initial.size()) {
-      throw Error(name + " links node " + std::to_string(std::max(f.from, f.to)) +
-                  " but there are " + std::to_string(initial.size()) + " poses");
-    }
-    if (f.from == f.to) throw Error(name + " links node " + std::to_string(f.from) + " to itself");
-    if (!f.measurement.t.allFinite() || !f.measurement.q.coeffs().allFinite()) {
-      throw Error(name + " has a non-finite measurement");
-    }
+    const FactorModel& model = *factors.models()[k];
+    model.validate(initial.size(),
+                   "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
   }
   if (settings.max_iterations < 0) throw Error("pose graph: max_iterations must be >= 0");
   if (settings.threads < 0) throw Error("pose graph: threads must be >= 0");
@@ -47,14 +41,20 @@ void validate(const std::vector<Pose>& initial, const std::vector<RelativePoseFa
   if (settings.robust_loss != RobustLoss::None && !(settings.robust_loss_scale > 0.0)) {
     throw Error("pose graph: robust_loss_scale must be positive");
   }
+  if (settings.loop_robust_loss != RobustLoss::None && !(settings.loop_robust_loss_scale > 0.0)) {
+    throw Error("pose graph: loop_robust_loss_scale must be positive");
+  }
+  if (!(settings.min_prior_spread > 0.0) || !std::isfinite(settings.min_prior_spread)) {
+    throw Error("pose graph: min_prior_spread must be positive and finite");
+  }
 }
 
-std::unique_ptr<ceres::LossFunction> makeLoss(const PoseGraphSettings& settings) {
-  switch (settings.robust_loss) {
+std::unique_ptr<ceres::LossFunction> makeLoss(RobustLoss kind, double scale) {
+  switch (kind) {
     case RobustLoss::Huber:
-      return std::make_unique<ceres::HuberLoss>(settings.robust_loss_scale);
+      return std::make_unique<ceres::HuberLoss>(scale);
     case RobustLoss::Cauchy:
-      return std::make_unique<ceres::CauchyLoss>(settings.robust_loss_scale);
+      return std::make_unique<ceres::CauchyLoss>(scale);
     case RobustLoss::None:
       break;
   }
@@ -81,9 +81,8 @@ ceres::Solver::Options solverOptions(const PoseGraphSettings& settings) {
 
 }  // namespace
 
-PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
-                                  const std::vector<RelativePoseFactor>& factors,
-                                  const PoseGraphSettings& settings) {
+PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const FactorGraph& factors,
+                                    const PoseGraphSettings& settings) {
   validate(initial, factors, settings);
   PoseGraphResult result;
   result.poses = initial;
@@ -96,27 +95,58 @@ PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
   std::vector<bool> touched(initial.size(), false);
   for (std::size_t i = 0; i < initial.size(); ++i) blocks[i] = toPoseBlock(initial[i]);
 
-  // The problem borrows the manifold and the loss; it owns the costs.
+  // The problem borrows the manifolds and the losses; it owns the costs.
   ceres::Problem::Options problem_options;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   WorldPoseManifold manifold;
-  const std::unique_ptr<ceres::LossFunction> loss = makeLoss(settings);
+  OrientationHeldManifold orientation_held;
+  const std::unique_ptr<ceres::LossFunction> window_loss =
+      makeLoss(settings.robust_loss, settings.robust_loss_scale);
+  const std::unique_ptr<ceres::LossFunction> loop_loss =
+      makeLoss(settings.loop_robust_loss, settings.loop_robust_loss_scale);
+  auto lossOf = [&](LossGroup group) -> ceres::LossFunction* {
+    if (group == LossGroup::Window) return window_loss.get();
+    if (group == LossGroup::Loop) return loop_loss.get();
+    return nullptr;
+  };
 
-  for (const RelativePoseFactor& f : factors) {
-    problem.AddResidualBlock(
-        new RelativePoseCost(f.measurement, squareRootInformation(f.information)), loss.get(),
-        blocks[f.from].data(), blocks[f.to].data());
-    touched[f.from] = touched[f.to] = true;
+  std::vector<GaugeInput> gauge_inputs;
+  gauge_inputs.reserve(factors.size());
+  for (const auto& model : factors.models()) {
+    GaugeInput gauge{model->nodes(), model->gaugePin()};
+    std::vector<double*> parameters;
+    for (const std::size_t node : gauge.nodes) {
+      parameters.push_back(blocks[node].data());
+      touched[node] = true;
+    }
+    problem.AddResidualBlock(model->newCost(), lossOf(model->lossGroup()), parameters);
+    gauge_inputs.push_back(std::move(gauge));
+  }
+  const std::vector<GaugeAnchor> anchors =
+      componentAnchors(initial.size(), gauge_inputs, settings.min_prior_spread);
+  std::vector<bool> fixed(initial.size(), false);
+  std::vector<bool> orientation_fixed(initial.size(), false);
+  for (const GaugeAnchor& anchor : anchors) {
+    if (anchor.hold == GaugeHold::Pose) fixed[anchor.node] = true;
+    if (anchor.hold == GaugeHold::Orientation) orientation_fixed[anchor.node] = true;
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (touched[i]) problem.SetManifold(blocks[i].data(), &manifold);
+    if (!touched[i]) continue;
+    if (orientation_fixed[i]) {
+      problem.SetManifold(blocks[i].data(), &orientation_held);
+    } else {
+      problem.SetManifold(blocks[i].data(), &manifold);
+    }
   }
-  std::vector<bool> fixed(initial.size(), false);
-  for (const std::size_t anchor : gaugeAnchors(initial.size(), factors)) {
-    problem.SetParameterBlockConstant(blocks[anchor].data());
-    fixed[anchor] = true;
+  for (const GaugeAnchor& anchor : anchors) {
+    if (anchor.hold == GaugeHold::Pose) {
+      problem.SetParameterBlockConstant(blocks[anchor.node].data());
+      result.held_nodes.push_back(anchor.node);
+    } else {
+      result.orientation_held_nodes.push_back(anchor.node);
+    }
   }
 
   ceres::Solver::Summary summary;
@@ -134,18 +164,28 @@ PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
   return result;
 }
 
-double poseGraphCost(const std::vector<Pose>& poses,
-                     const std::vector<RelativePoseFactor>& factors) {
+PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
+                                  const std::vector<RelativePoseFactor>& factors,
+                                  const PoseGraphSettings& settings) {
+  return optimizeFactorGraph(initial, FactorGraph(factors), settings);
+}
+
+double factorGraphCost(const std::vector<Pose>& poses, const FactorGraph& factors) {
   double cost = 0.0;
-  for (const RelativePoseFactor& f : factors) {
-    if (f.from >= poses.size() || f.to >= poses.size()) {
-      throw Error("pose graph: factor links a node outside the " + std::to_string(poses.size()) +
-                  " poses");
+  for (std::size_t k = 0; k < factors.size(); ++k) {
+    const FactorModel& model = *factors.models()[k];
+    for (const std::size_t node : model.nodes()) {
+      checkNode(node, poses.size(),
+                "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
     }
-    const Vec6 e = relativePoseError(f.measurement, poses[f.from], poses[f.to]);
-    cost += e.dot(f.information * e);
+    cost += model.cost(poses);
   }
   return cost;
+}
+
+double poseGraphCost(const std::vector<Pose>& poses,
+                     const std::vector<RelativePoseFactor>& factors) {
+  return factorGraphCost(poses, FactorGraph(factors));
 }
 
 }  // namespace hba::graph

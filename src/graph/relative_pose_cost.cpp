@@ -1,29 +1,14 @@
 #include "relative_pose_cost.hpp"
 
-#include <algorithm>
-#include <cmath>
-
-#include <Eigen/Eigenvalues>
-
-#include "hba/core/error.hpp"
 #include "hba/core/relative_pose_error.hpp"
+#include "information_root.hpp"
 #include "pose_block.hpp"
 #include "world_pose_manifold.hpp"
 
 namespace hba::graph {
 
 Mat6 squareRootInformation(const Mat6& information) {
-  if (!information.allFinite()) throw Error("pose graph: factor information is not finite");
-  const Mat6 symmetric = 0.5 * (information + information.transpose());
-  const Eigen::SelfAdjointEigenSolver<Mat6> eigen(symmetric);
-  const Vec6& values = eigen.eigenvalues();
-  // Round-off may leave tiny negative eigenvalues; a large one is bad input.
-  const double scale = values.cwiseAbs().maxCoeff();
-  if (values.minCoeff() < -1e-9 * scale) {
-    throw Error("pose graph: factor information is not positive semi-definite");
-  }
-  const Vec6 roots = values.unaryExpr([](double v) { return std::sqrt(std::max(v, 0.0)); });
-  return roots.asDiagonal() * eigen.eigenvectors().transpose();
+  return informationRoot<6>(information, "pose graph: factor information");
 }
 
 RelativePoseCost::RelativePoseCost(const Pose& measurement, const Mat6& sqrt_information)

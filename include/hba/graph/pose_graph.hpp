@@ -1,25 +1,17 @@
 #pragma once
 // The top-down pose graph: all layer-1 poses as unknowns, relative-pose
-// factors from the BA windows of every layer. Solved with Ceres
-// (Levenberg-Marquardt, sparse normal Cholesky). See docs/graph.md.
+// factors from the BA windows of every layer, optionally loop closures and
+// priors. Solved with Ceres (Levenberg-Marquardt, sparse normal Cholesky).
+// See docs/graph.md.
 #include <cstddef>
 #include <vector>
 
 #include "hba/core/pose.hpp"
 #include "hba/core/types.hpp"
+#include "hba/graph/factor_graph.hpp"
+#include "hba/graph/factors.hpp"
 
 namespace hba::graph {
-
-// A measured relative pose T_from^-1 * T_to with its 6x6 information matrix.
-// The information is expressed in the tangent of the residual of
-// hba/core/relative_pose_error.hpp (translation first, then rotation); it
-// must be symmetric positive semi-definite.
-struct RelativePoseFactor {
-  std::size_t from = 0;
-  std::size_t to = 0;
-  Pose measurement;
-  Mat6 information = Mat6::Identity();
-};
 
 enum class RobustLoss { None, Huber, Cauchy };
 
@@ -27,13 +19,24 @@ struct PoseGraphSettings {
   int max_iterations = 100;
   double function_tolerance = 1e-10;
   int threads = 0;  // 0: all cores
-  // Optional robust loss on each factor's e^T Omega e; `robust_loss_scale` is
-  // the whitened error norm (in "sigmas") where it starts to down-weight.
+  // Optional robust loss on each relative (window) factor's e^T Omega e;
+  // `robust_loss_scale` is the whitened error norm (in "sigmas") where it
+  // starts to down-weight.
   RobustLoss robust_loss = RobustLoss::None;
   double robust_loss_scale = 1.0;
-  // Gauge: in every connected component of the factor graph the node with the
-  // smallest index is held fixed (node 0 for a connected sequence). Nodes that
-  // no factor touches are returned unchanged.
+  // The same for loop-closure factors, set apart because a wrong place match
+  // is far likelier than a wrong window. Priors have no robust loss.
+  RobustLoss loop_robust_loss = RobustLoss::None;
+  double loop_robust_loss_scale = 1.0;
+  // Gauge, per connected component of the relative and loop factors: none of
+  // its nodes is held when its priors fix all six degrees of freedom (a
+  // positive definite pose prior, or positive definite position priors whose
+  // positions lie at least `min_prior_spread` metres (root-sum-square) off
+  // their best-fitting line). With weaker position priors only the
+  // orientation of its smallest node is held; without priors, the whole
+  // smallest node (node 0 for a connected sequence). Nodes that no factor
+  // touches are returned unchanged.
+  double min_prior_spread = 1.0;
 };
 
 struct PoseGraphResult {
@@ -42,16 +45,28 @@ struct PoseGraphResult {
   double final_cost = 0.0;
   int iterations = 0;
   bool converged = false;
+  // The gauge the solve used: nodes held entirely, and nodes whose
+  // orientation alone was held (ascending).
+  std::vector<std::size_t> held_nodes;
+  std::vector<std::size_t> orientation_held_nodes;
 };
 
 // Throws hba::Error if a factor names a node outside [0, initial.size()),
-// links a node to itself, or has a non-finite or indefinite information, or if
-// a pose or a setting is invalid. Deterministic for a given input and settings.
+// links a node to itself, or has a non-finite measurement or a non-finite or
+// indefinite information, or if a pose or a setting is invalid; the message
+// names the factor's index and kind. Deterministic for a given input and
+// settings.
+PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const FactorGraph& factors,
+                                    const PoseGraphSettings& settings = {});
+
+// The pyramid's graph of relative factors only: optimizeFactorGraph of
+// FactorGraph(factors).
 PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
                                   const std::vector<RelativePoseFactor>& factors,
                                   const PoseGraphSettings& settings = {});
 
 // Sum over factors of e^T Omega e at `poses` (no robust loss).
+double factorGraphCost(const std::vector<Pose>& poses, const FactorGraph& factors);
 double poseGraphCost(const std::vector<Pose>& poses,
                      const std::vector<RelativePoseFactor>& factors);
 

@@ -1,0 +1,35 @@
+#include "hba/graph/factor_graph.hpp"
+
+#include <string>
+
+#include "factor_model.hpp"
+#include "hba/core/error.hpp"
+
+namespace hba::graph {
+
+// Each kind's add() lives with its model, in that kind's source file.
+FactorGraph::FactorGraph(const std::vector<RelativePoseFactor>& relative_factors) {
+  models_.reserve(relative_factors.size());
+  for (const RelativePoseFactor& factor : relative_factors) add(factor);
+}
+
+std::size_t FactorGraph::count(FactorKind kind) const {
+  std::size_t n = 0;
+  for (const auto& model : models_) n += model->kind() == kind ? 1 : 0;
+  return n;
+}
+
+void checkNode(std::size_t node, std::size_t num_poses, const std::string& label) {
+  if (node >= num_poses) {
+    throw Error(label + " links node " + std::to_string(node) + " but there are " +
+                std::to_string(num_poses) + " poses");
+  }
+}
+
+void checkFinite(const Pose& measurement, const std::string& label) {
+  if (!measurement.t.allFinite() || !measurement.q.coeffs().allFinite()) {
+    throw Error(label + " has a non-finite measurement");
+  }
+}
+
+}  // namespace hba::graph

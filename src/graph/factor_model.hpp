@@ -1,0 +1,51 @@
+#pragma once
+// The solver's interface to one factor kind. A new kind is one source file
+// that implements FactorModel and defines FactorGraph::add for its data
+// struct (see relative_factor.cpp), plus its struct in hba/graph/factors.hpp
+// and its add() declaration: the solver, the cost sum, the validation and the
+// gauge rule go through this interface only.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "gauge_anchors.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/graph/factor_graph.hpp"
+
+namespace ceres {
+class CostFunction;
+}
+
+namespace hba::graph {
+
+// Which PoseGraphSettings robust loss a factor gets.
+enum class LossGroup { Window, Loop, None };
+
+class FactorModel {
+ public:
+  virtual ~FactorModel() = default;
+
+  virtual FactorKind kind() const = 0;
+  // For messages: "relative", "loop closure", ...
+  virtual const char* name() const = 0;
+  // The nodes the residual depends on, in the order of the Ceres cost's
+  // parameter blocks (PoseBlocks under WorldPoseManifold's tangent).
+  virtual std::vector<std::size_t> nodes() const = 0;
+  virtual LossGroup lossGroup() const = 0;
+  // What the factor fixes in the world frame, for the gauge rule.
+  virtual GaugePin gaugePin() const { return {}; }
+
+  // Throws hba::Error, its message starting with `label`, unless the factor
+  // fits a graph of `num_poses` poses and its numbers are valid.
+  virtual void validate(std::size_t num_poses, const std::string& label) const = 0;
+  // e^T Omega e at `poses` (the factor is valid for them).
+  virtual double cost(const std::vector<Pose>& poses) const = 0;
+  // The whitened residual as a new Ceres cost; the caller takes ownership.
+  virtual ceres::CostFunction* newCost() const = 0;
+};
+
+// Checks shared by the kinds; each throws hba::Error starting with `label`.
+void checkNode(std::size_t node, std::size_t num_poses, const std::string& label);
+void checkFinite(const Pose& measurement, const std::string& label);
+
+}  // namespace hba::graph

@@ -1,0 +1,209 @@
+// Every factor kind's Ceres cost, reached through the FactorModel interface
+// as the solver reaches it: the squared residual is the model's cost, and the
+// tangent Jacobians match central differences. A new kind added to
+// oneFactorOfEachKind is checked the same way.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+
+#include <ceres/cost_function.h>
+
+#include "factor_model.hpp"
+#include "graph_test_utils.hpp"
+#include "hba/core/lie.hpp"
+#include "hba/core/relative_pose_error.hpp"
+#include "hba/graph/factor_graph.hpp"
+#include "orientation_held_manifold.hpp"
+#include "pose_block.hpp"
+#include "relative_pose_cost.hpp"
+#include "world_pose_manifold.hpp"
+
+namespace hba::graph {
+namespace {
+
+using test::randomPose;
+using test::randomVec3;
+using test::randomVec6;
+
+template <int N>
+Eigen::Matrix<double, N, N> randomInformation(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Matrix<double, N, N> A;
+  for (int k = 0; k < N; ++k) {
+    for (int r = 0; r < N; ++r) A(r, k) = u(rng);
+  }
+  return A * A.transpose() + 0.1 * Eigen::Matrix<double, N, N>::Identity();
+}
+
+// Measurements far from the poses: the Jacobians must hold for large errors.
+FactorGraph oneFactorOfEachKind(std::mt19937& rng) {
+  FactorGraph graph;
+  graph.add(RelativePoseFactor{0, 1, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
+  graph.add(LoopClosureFactor{1, 0, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
+  graph.add(PosePriorFactor{1, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
+  graph.add(PositionPriorFactor{0, randomVec3(rng, 5.0), randomInformation<3>(rng)});
+  return graph;
+}
+
+struct Evaluation {
+  Eigen::VectorXd residual;
+  std::vector<Eigen::MatrixXd> ambient_jacobians;  // one per parameter block, rows x 7
+};
+
+Evaluation evaluate(const ceres::CostFunction& cost, const std::vector<PoseBlock>& blocks) {
+  Evaluation out;
+  out.residual.resize(cost.num_residuals());
+  std::vector<const double*> parameters;
+  for (const PoseBlock& b : blocks) parameters.push_back(b.data());
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
+  std::vector<RowMajor> storage(blocks.size(), RowMajor(cost.num_residuals(), 7));
+  std::vector<double*> jacobians;
+  for (RowMajor& j : storage) jacobians.push_back(j.data());
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), out.residual.data(), jacobians.data()));
+  for (const RowMajor& j : storage) out.ambient_jacobians.emplace_back(j);
+  return out;
+}
+
+Eigen::VectorXd residualAt(const ceres::CostFunction& cost, const std::vector<PoseBlock>& blocks) {
+  Eigen::VectorXd residual(cost.num_residuals());
+  std::vector<const double*> parameters;
+  for (const PoseBlock& b : blocks) parameters.push_back(b.data());
+  EXPECT_TRUE(cost.Evaluate(parameters.data(), residual.data(), nullptr));
+  return residual;
+}
+
+TEST(FactorCosts, EveryKindIsCounted) {
+  std::mt19937 rng(31);
+  const FactorGraph graph = oneFactorOfEachKind(rng);
+  EXPECT_EQ(graph.size(), 4u);
+  for (const FactorKind kind : {FactorKind::Relative, FactorKind::LoopClosure,
+                                FactorKind::PosePrior, FactorKind::PositionPrior}) {
+    EXPECT_EQ(graph.count(kind), 1u);
+  }
+}
+
+TEST(FactorCosts, SquaredResidualIsTheFactorsCost) {
+  std::mt19937 rng(32);
+  for (int trial = 0; trial < 10; ++trial) {
+    const FactorGraph graph = oneFactorOfEachKind(rng);
+    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng)};
+    for (const auto& model : graph.models()) {
+      const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
+      std::vector<PoseBlock> blocks;
+      for (const std::size_t node : model->nodes()) blocks.push_back(toPoseBlock(poses[node]));
+      const double expected = model->cost(poses);
+      EXPECT_GT(expected, 1e-3) << model->name();  // far from the measurement
+      EXPECT_NEAR(residualAt(*cost, blocks).squaredNorm(), expected, 1e-9 * expected)
+          << model->name();
+      EXPECT_NEAR(evaluate(*cost, blocks).residual.squaredNorm(), expected, 1e-9 * expected)
+          << model->name();
+    }
+  }
+}
+
+TEST(FactorCosts, TangentJacobiansMatchCentralDifferences) {
+  std::mt19937 rng(33);
+  const WorldPoseManifold manifold;
+  const double h = 1e-6;
+  for (int trial = 0; trial < 10; ++trial) {
+    const FactorGraph graph = oneFactorOfEachKind(rng);
+    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng)};
+    for (const auto& model : graph.models()) {
+      const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
+      std::vector<PoseBlock> blocks;
+      for (const std::size_t node : model->nodes()) blocks.push_back(toPoseBlock(poses[node]));
+      const Evaluation at = evaluate(*cost, blocks);
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        Eigen::Matrix<double, 7, 6, Eigen::RowMajor> lift;
+        manifold.PlusJacobian(blocks[b].data(), lift.data());
+        const Eigen::MatrixXd tangent = at.ambient_jacobians[b] * lift;  // what LM solves with
+        for (int k = 0; k < 6; ++k) {
+          Vec6 d = Vec6::Zero();
+          d[k] = h;
+          const Vec6 minus_d = -d;
+          std::vector<PoseBlock> plus = blocks;
+          std::vector<PoseBlock> minus = blocks;
+          manifold.Plus(blocks[b].data(), d.data(), plus[b].data());
+          manifold.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
+          const Eigen::VectorXd numeric =
+              (residualAt(*cost, plus) - residualAt(*cost, minus)) / (2 * h);
+          EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()))
+              << model->name() << " block " << b << " k " << k;
+        }
+      }
+    }
+  }
+}
+
+TEST(FactorCosts, PriorResidualsAreTheDocumentedOnes) {
+  std::mt19937 rng(34);
+  const Pose pose = randomPose(rng);
+  const Pose measured = randomPose(rng, 5.0, 1.0);
+  const Vec3 position = randomVec3(rng, 5.0);
+  FactorGraph graph;
+  graph.add(PosePriorFactor{0, measured, Mat6::Identity()});
+  graph.add(PositionPriorFactor{0, position, Mat3::Identity()});
+  const std::vector<PoseBlock> blocks = {toPoseBlock(pose)};
+
+  // The pose prior is a relative factor from the world origin ...
+  const std::unique_ptr<ceres::CostFunction> pose_prior(graph.models()[0]->newCost());
+  const Eigen::VectorXd e = residualAt(*pose_prior, blocks);
+  EXPECT_LT((e - relativePoseError(measured, Pose(), pose)).norm(), 1e-12);
+  EXPECT_LT((e.head<3>() - measured.R().transpose() * (pose.t - measured.t)).norm(), 1e-9);
+  EXPECT_LT((e.tail<3>() - so3Log(Quat(measured.q.conjugate() * pose.q))).norm(), 1e-9);
+  // ... which vanishes at the measurement,
+  EXPECT_LT(residualAt(*pose_prior, {toPoseBlock(measured)}).norm(), 1e-12);
+  // and the position prior is the world offset of the position.
+  const std::unique_ptr<ceres::CostFunction> position_prior(graph.models()[1]->newCost());
+  EXPECT_LT((residualAt(*position_prior, blocks) - (pose.t - position)).norm(), 1e-12);
+}
+
+TEST(OrientationHeldManifold, MovesThePositionOnlyAndInvertsItself) {
+  std::mt19937 rng(35);
+  const OrientationHeldManifold manifold;
+  const PoseBlock x = toPoseBlock(randomPose(rng));
+  const Vec3 delta = randomVec3(rng, 2.0);
+  PoseBlock moved{};
+  ASSERT_TRUE(manifold.Plus(x.data(), delta.data(), moved.data()));
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(moved[k], x[k] + delta[k]);
+  for (int k = 3; k < 7; ++k) EXPECT_EQ(moved[k], x[k]);  // the rotation, bit for bit
+  Vec3 back;
+  ASSERT_TRUE(manifold.Minus(moved.data(), x.data(), back.data()));
+  EXPECT_LT((back - delta).norm(), 1e-12);
+
+  Eigen::Matrix<double, 7, 3, Eigen::RowMajor> plus_jacobian;
+  Eigen::Matrix<double, 3, 7, Eigen::RowMajor> minus_jacobian;
+  ASSERT_TRUE(manifold.PlusJacobian(x.data(), plus_jacobian.data()));
+  ASSERT_TRUE(manifold.MinusJacobian(x.data(), minus_jacobian.data()));
+  EXPECT_LT((minus_jacobian * plus_jacobian - Mat3::Identity()).norm(), 1e-15);
+}
+
+TEST(OrientationHeldManifold, GivesTheSolverTheTranslationColumnsOfTheTangentJacobian) {
+  std::mt19937 rng(36);
+  const RelativePoseCost cost(randomPose(rng, 3.0, 1.0), Mat6::Identity());
+  const std::vector<PoseBlock> blocks = {toPoseBlock(randomPose(rng)),
+                                         toPoseBlock(randomPose(rng))};
+  const Evaluation at = evaluate(cost, blocks);
+  const OrientationHeldManifold held;
+  const double h = 1e-6;
+  for (std::size_t b = 0; b < 2; ++b) {
+    Eigen::Matrix<double, 7, 3, Eigen::RowMajor> lift;
+    held.PlusJacobian(blocks[b].data(), lift.data());
+    const Eigen::MatrixXd tangent = at.ambient_jacobians[b] * lift;
+    for (int k = 0; k < 3; ++k) {
+      Vec3 d = Vec3::Zero();
+      d[k] = h;
+      const Vec3 minus_d = -d;
+      std::vector<PoseBlock> plus = blocks;
+      std::vector<PoseBlock> minus = blocks;
+      held.Plus(blocks[b].data(), d.data(), plus[b].data());
+      held.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
+      const Eigen::VectorXd numeric = (residualAt(cost, plus) - residualAt(cost, minus)) / (2 * h);
+      EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hba::graph
