@@ -18,6 +18,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/convention_check.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/report_json.hpp"
@@ -63,7 +64,7 @@ std::optional<Trajectory> groundTruth(const OptimizeArgs& args, const io::Datase
   return gt;
 }
 
-void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
+void writePicture(const OptimizeArgs& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const std::vector<Pose>& optimized, const fs::path& out) {
 #ifdef __GLIBC__
   // The optimization's freed heap stays resident while the picture's large
@@ -74,7 +75,7 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
   const std::optional<Trajectory> gt = groundTruth(args, dataset);
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
-  render::writeBeforeAfter(dataset, dataset.trajectory().poses, optimized,
+  render::writeBeforeAfter(scans, dataset.trajectory().poses, optimized,
                            gt ? &gt->poses : nullptr, png);
 }
 
@@ -210,7 +211,7 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, threads, conventions);
 
-  if (!args.no_render) writePicture(args, dataset, result.poses, out);
+  if (!args.no_render) writePicture(args, dataset, io::DatasetScanSource(dataset), result.poses, out);
   staging.commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), staging.destination().string());
