@@ -24,6 +24,7 @@
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
 #include "output_dir.hpp"
 
 namespace hba::cli {
@@ -140,7 +141,7 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args, const CLI::App& com
 
 // Refuses input in another convention (inverted poses, world-frame scans)
 // before hours of work on it, naming the flag that fixes it.
-nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSource& source,
+nlohmann::json checkConventions(const OptimizeArgs& args, const io::ScanSource& source,
                                 const io::Dataset& dataset) {
   if (args.no_convention_check) return "skipped (--no-convention-check)";
   pyramid::GivenConventions given;
@@ -198,20 +199,22 @@ void run(const OptimizeArgs& args, const CLI::App& command) {
   // half-written folder, no earlier run's files beside this run's.
   StagingFolder staging(args.output, args.force);
   const fs::path& out = staging.path();
-  const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
-  const nlohmann::json conventions = checkConventions(args, source, dataset);
+  // One source of the scans for the convention check, the optimization and the picture.
+  const io::DatasetScanSource scans(dataset);
+  const nlohmann::json conventions =
+      checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
   spdlog::info("threads: {}", threads);
 
   const pyramid::HbaResult result =
-      pyramid::runHierarchicalBa(source, dataset.trajectory().poses, settings);
+      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, threads, conventions);
 
-  if (!args.no_render) writePicture(args, dataset, io::DatasetScanSource(dataset), result.poses, out);
+  if (!args.no_render) writePicture(args, dataset, scans, result.poses, out);
   staging.commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), staging.destination().string());

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "bottom_up.hpp"
@@ -12,12 +13,13 @@
 #include "hba/core/lie.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "refine_stage.hpp"
+#include "timed_clouds.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
 namespace {
 
-void validate(const ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
+void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
   if (initial.size() != scans.size()) {
     throw Error("pose count (" + std::to_string(initial.size()) + ") differs from scan count (" +
                 std::to_string(scans.size()) + ")");
@@ -87,8 +89,17 @@ Update largestUpdate(const std::vector<Pose>& before, const std::vector<Pose>& a
   return u;
 }
 
+// The clouds `layer` reads: layer 1 the scans, an upper layer its stored
+// keyframes, timed in `stored` (all of their load is reading).
+const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans, std::unique_ptr<TimedClouds>& stored) {
+  if (!layer.keyframes) return scans;
+  stored = std::make_unique<TimedClouds>(*layer.keyframes);
+  return *stored;
+}
+
 // One bottom-up pass and one top-down pass from `poses`.
-std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& poses,
+
+std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& poses,
                           const HbaSettings& settings, int layers, int iteration,
                           HbaReport& report) {
   StageTimes times;
@@ -105,7 +116,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   for (int level = 1; level < layers; ++level) {
     const auto start = Clock::now();
     const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
-    const ScanSource& clouds = level == 1 ? scans : *layer.keyframes;
+    std::unique_ptr<TimedClouds> stored;
+    const TimedClouds& clouds = cloudsOf(layer, scans, stored);
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
     LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
                                          keyframes.get(), keyframeVoxel(settings, level + 1), times,
@@ -123,7 +135,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   // The top layer: one global BA with its own, looser settings.
   const auto start = Clock::now();
   const std::vector<Window> all{Window{0, layer.poses.size()}};
-  const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
+  std::unique_ptr<TimedClouds> stored;
+  const TimedClouds& top_clouds = cloudsOf(layer, scans, stored);
   LayerOutcome top =
       optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
                     "layer " + std::to_string(layers) + " (global BA)");
@@ -168,7 +181,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
 }
 
 // The whole method, on poses near the origin.
-HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initial,
+HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
                         const HbaSettings& settings) {
   const auto start = Clock::now();
   HbaResult result;
@@ -206,7 +219,7 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
     }
   }
 
-  result.poses = refineAndCheck(scans, initial, result.poses, settings, report);
+  result.poses = refineAndCheck(scans.source(), initial, result.poses, settings, report);
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;
   report.largest_rotation_update = total.rotation_deg;
@@ -226,14 +239,15 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
 
 }  // namespace
 
-HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings) {
   validate(scans, initial, settings);
+  const TimedClouds layer_one(scans, settings.scan_voxel);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
-  HbaResult result = runNearOrigin(scans, translated(initial, -origin), settings);
+  HbaResult result = runNearOrigin(layer_one, translated(initial, -origin), settings);
   result.poses = translated(result.poses, origin);
   return result;
 }
