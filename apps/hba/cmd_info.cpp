@@ -12,18 +12,17 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
-#include "hba/io/pcd.hpp"
-#include "hba/io/scan_file.hpp"
+#include "hba/io/scan_file_summary.hpp"
 
 namespace hba::cli {
 namespace {
-namespace fs = std::filesystem;
 
 struct InfoOptions {
   DatasetArgs dataset;
@@ -56,61 +55,6 @@ std::vector<std::size_t> evenlySpaced(std::size_t n, std::size_t count) {
   return indices;
 }
 
-std::string pcdEncodingName(io::PcdEncoding encoding) {
-  switch (encoding) {
-    case io::PcdEncoding::Ascii: return "PCD ascii";
-    case io::PcdEncoding::Binary: return "PCD binary";
-    case io::PcdEncoding::BinaryCompressed: return "PCD binary_compressed";
-  }
-  return "PCD";
-}
-
-constexpr std::uint64_t kKittiPointBytes = 16;  // float32 x y z intensity
-
-// Points stored in one scan: the header for PCD, the size for .bin, a full read for PLY.
-std::uint64_t storedPointCount(const fs::path& path) {
-  switch (io::scanFormatFromExtension(path)) {
-    case io::ScanFormat::Pcd: return io::readPcdHeader(path).points;
-    case io::ScanFormat::KittiBin: {
-      std::error_code ec;
-      const std::uintmax_t bytes = fs::file_size(path, ec);
-      if (ec) failAt(path, "cannot read the file size: " + ec.message());
-      if (bytes % kKittiPointBytes != 0) {
-        failAt(path, "size " + std::to_string(bytes) + " bytes is not a whole number of " +
-                         "16-byte KITTI points");
-      }
-      return bytes / kKittiPointBytes;
-    }
-    case io::ScanFormat::Ply: return io::readScan(path).size();
-  }
-  failAt(path, "unknown scan format");
-}
-
-void describeFirstScan(const fs::path& path, Summary& summary) {
-  switch (io::scanFormatFromExtension(path)) {
-    case io::ScanFormat::Pcd: {
-      const io::PcdHeader header = io::readPcdHeader(path);
-      for (const io::PcdField& field : header.fields) {
-        summary.fields.push_back(field.count == 1 ? field.name
-                                                  : field.name + "[" + std::to_string(field.count) + "]");
-      }
-      summary.scan_encoding = pcdEncodingName(header.encoding);
-      return;
-    }
-    case io::ScanFormat::KittiBin:
-      summary.fields = {"x", "y", "z", "intensity"};
-      summary.scan_encoding = "KITTI float32";
-      return;
-    case io::ScanFormat::Ply: {
-      const PointCloud cloud = io::readScan(path);
-      summary.fields = {"x", "y", "z"};
-      if (cloud.hasIntensity()) summary.fields.push_back("intensity");
-      summary.scan_encoding = "PLY";
-      return;
-    }
-  }
-}
-
 PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
   const std::vector<std::size_t> indices = evenlySpaced(dataset.size(), sample);
   std::vector<std::uint64_t> counts(indices.size());
@@ -118,7 +62,7 @@ PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
   // Reading thousands of headers is I/O latency bound: overlap the reads.
   tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t k) {
     try {
-      counts[k] = storedPointCount(dataset.scanPath(indices[k]));
+      counts[k] = io::storedPointCount(dataset.scanPath(indices[k]));
     } catch (...) {
       failures[k] = std::current_exception();
     }
@@ -134,7 +78,9 @@ PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
 Summary summarize(const io::Dataset& dataset, std::size_t sample) {
   Summary summary;
   summary.points = pointStats(dataset, sample);
-  describeFirstScan(dataset.scanPath(0), summary);
+  io::ScanFileFields first = io::describeScanFields(dataset.scanPath(0));
+  summary.fields = std::move(first.fields);
+  summary.scan_encoding = std::move(first.encoding);
   const Trajectory& trajectory = dataset.trajectory();
   summary.length_m = pathLength(trajectory.poses);
   summary.extent_min = summary.extent_max = trajectory.poses.front().t;

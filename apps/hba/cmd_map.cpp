@@ -12,6 +12,7 @@
 #include "hba/core/error.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/pcd.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/io/ply.hpp"
 
 namespace hba::cli {
@@ -36,7 +37,8 @@ void run(MapArgs& args) {
   refuseOutputInsideInput(output, dataset);  // hba never writes into its input
   refuseToReplace(output, args.force);
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
-  const PointCloud map = eval::buildMergedMap(dataset, {}, args.settings);
+  const io::DatasetScanSource scans(dataset);
+  const PointCloud map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings);
   if (extension == ".pcd") {
     io::writePcd(output, map);
   } else {

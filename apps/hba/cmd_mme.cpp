@@ -12,6 +12,7 @@
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_source.hpp"
 
 namespace hba::cli {
 namespace {
@@ -44,7 +45,8 @@ void run(MmeArgs& args) {
     if (args.data.dir.empty()) throw Error("give a dataset folder or --map FILE");
     const io::Dataset dataset = args.data.open();
     spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
-    map = eval::buildMergedMap(dataset, {}, args.map);
+    const io::DatasetScanSource scans(dataset);
+    map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.map);
   }
   const double merge_seconds = secondsSince(start);
   const eval::MmeResult result = eval::meanMapEntropy(map, args.entropy);

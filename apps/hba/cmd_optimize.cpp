@@ -20,11 +20,13 @@
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/convention_check.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
 #include "output_dir.hpp"
 #include "setting_flags.hpp"
 
@@ -63,7 +65,7 @@ std::optional<Trajectory> groundTruth(const OptimizeArgs& args, const io::Datase
   return gt;
 }
 
-void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
+void writePicture(const OptimizeArgs& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const std::vector<Pose>& optimized, const fs::path& out) {
 #ifdef __GLIBC__
   // The optimization's freed heap stays resident while the picture's large
@@ -74,7 +76,7 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset,
   const std::optional<Trajectory> gt = groundTruth(args, dataset);
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
-  render::writeBeforeAfter(dataset, dataset.trajectory().poses, optimized,
+  render::writeBeforeAfter(scans, dataset.trajectory().poses, optimized,
                            gt ? &gt->poses : nullptr, png);
 }
 
@@ -114,7 +116,7 @@ pyramid::HbaSettings mergeSettings(const OptimizeArgs& args) {
 
 // Refuses input in another convention (inverted poses, world-frame scans)
 // before hours of work on it, naming the flag that fixes it.
-nlohmann::json checkConventions(const OptimizeArgs& args, const pyramid::ScanSource& source,
+nlohmann::json checkConventions(const OptimizeArgs& args, const io::ScanSource& source,
                                 const io::Dataset& dataset) {
   if (args.no_convention_check) return "skipped (--no-convention-check)";
   pyramid::GivenConventions given;
@@ -173,20 +175,22 @@ void run(const OptimizeArgs& args) {
   // half-written folder, no earlier run's files beside this run's.
   StagingFolder staging(args.output, args.force);
   const fs::path& out = staging.path();
-  const pyramid::DatasetScanSource source(dataset, settings.scan_voxel);
-  const nlohmann::json conventions = checkConventions(args, source, dataset);
+  // One source of the scans for the convention check, the optimization and the picture.
+  const io::DatasetScanSource scans(dataset);
+  const nlohmann::json conventions =
+      checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset);
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
                dataset.layout(), dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
   spdlog::info("threads: {}", settings.threads);
 
   const pyramid::HbaResult result =
-      pyramid::runHierarchicalBa(source, dataset.trajectory().poses, settings);
+      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, conventions);
 
-  if (!args.no_render) writePicture(args, dataset, result.poses, out);
+  if (!args.no_render) writePicture(args, dataset, scans, result.poses, out);
   staging.commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
                peakMemoryMiB(), staging.destination().string());

@@ -10,6 +10,7 @@
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/render/map_picture.hpp"
 
 namespace hba::cli {
@@ -42,10 +43,11 @@ void run(RenderArgs& args) {
   std::vector<Pose> gt;
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
+  const io::DatasetScanSource scans(dataset);
   if (args.compare.empty()) {
-    render::writeMapPicture(dataset, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
+    render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
   } else {
-    render::writeBeforeAfter(dataset, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
+    render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
                              args.output, args.settings);
   }
   spdlog::info("wrote {} ({}x{})", args.output, args.settings.width, args.settings.height);

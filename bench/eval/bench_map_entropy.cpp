@@ -6,6 +6,7 @@
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
 
 namespace {
 
@@ -14,7 +15,8 @@ const std::filesystem::path kHku1 = HBA_BENCH_SHARED_DATA "/hku1";
 hba::PointCloud hku1Map() {
   static const hba::PointCloud map = [] {
     const auto dataset = hba::io::Dataset::open(kHku1);
-    return hba::eval::buildMergedMap(dataset, {}, hba::eval::MapSettings{});
+    const hba::io::DatasetScanSource scans(dataset);
+    return hba::eval::buildMergedMap(scans, dataset.trajectory().poses, hba::eval::MapSettings{});
   }();
   return map;
 }
@@ -22,7 +24,10 @@ hba::PointCloud hku1Map() {
 void BM_MergeHku1(benchmark::State& state) {
   if (!std::filesystem::exists(kHku1)) return state.SkipWithError("no hku1 data");
   const auto dataset = hba::io::Dataset::open(kHku1);
-  for (auto _ : state) benchmark::DoNotOptimize(hba::eval::buildMergedMap(dataset, {}, hba::eval::MapSettings{}));
+  const hba::io::DatasetScanSource scans(dataset);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(hba::eval::buildMergedMap(scans, dataset.trajectory().poses, hba::eval::MapSettings{}));
+  }
 }
 BENCHMARK(BM_MergeHku1)->Unit(benchmark::kMillisecond);
 

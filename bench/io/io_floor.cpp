@@ -1,7 +1,8 @@
 // io_floor DIR [--voxel 0.1] [-j N]: the I/O floor of `hba optimize`, the
 // time to read and voxel-downsample every scan once with the optimizer's own
-// calls (pyramid::DatasetScanSource), in parallel. Prints one JSON object; the
-// benchmark harness (scripts/bench) divides optimize's total by seconds_wall.
+// calls (io::DatasetScanSource, then voxel::downsample), in parallel. Prints
+// one JSON object; the benchmark harness (scripts/bench) divides optimize's
+// total by seconds_wall.
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
 #include <tbb/global_control.h>
@@ -15,6 +16,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/voxel/downsample.hpp"
 
 namespace {
@@ -39,10 +41,10 @@ struct FloorTotals {
   }
 };
 
-FloorTotals readAndDownsample(const hba::io::Dataset& dataset, std::size_t i, double voxel) {
+FloorTotals readAndDownsample(const hba::io::ScanSource& scans, std::size_t i, double voxel) {
   FloorTotals totals;
   const auto start = Clock::now();
-  const hba::PointCloud scan = dataset.loadScan(i);
+  const hba::PointCloud scan = scans.load(i);
   totals.seconds_read = secondsSince(start);
   const auto downsampled = Clock::now();
   totals.points_kept = hba::voxel::downsample(scan, voxel).size();
@@ -52,13 +54,13 @@ FloorTotals readAndDownsample(const hba::io::Dataset& dataset, std::size_t i, do
   return totals;
 }
 
-FloorTotals readEveryScan(const hba::io::Dataset& dataset, double voxel) {
+FloorTotals readEveryScan(const hba::io::ScanSource& scans, double voxel) {
   tbb::combinable<FloorTotals> per_thread;
   // One scan per task, as the optimizer loads them.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, dataset.size(), 1),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scans.size(), 1),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        per_thread.local() += readAndDownsample(dataset, i, voxel);
+                        per_thread.local() += readAndDownsample(scans, i, voxel);
                       }
                     });
   FloorTotals totals;
@@ -69,7 +71,7 @@ FloorTotals readEveryScan(const hba::io::Dataset& dataset, double voxel) {
 void run(const std::string& dir, double voxel) {
   const auto start = Clock::now();
   const hba::io::Dataset dataset = hba::io::Dataset::open(dir);
-  const FloorTotals totals = readEveryScan(dataset, voxel);
+  const FloorTotals totals = readEveryScan(hba::io::DatasetScanSource(dataset), voxel);
   const nlohmann::json report = {
       {"dataset", dir},
       {"voxel", voxel},

@@ -63,20 +63,19 @@ PointCloud VoxelMerger::result() const {
   return out;
 }
 
-PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
+PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
                           const MapSettings& settings) {
-  const std::vector<Pose>& used = poses.empty() ? dataset.trajectory().poses : poses;
-  if (used.size() != dataset.size()) {
-    throw Error("the dataset has " + std::to_string(dataset.size()) + " scans but " +
-                std::to_string(used.size()) + " poses were given");
+  if (poses.size() != scans.size()) {
+    throw Error("there are " + std::to_string(scans.size()) + " scans but " + std::to_string(poses.size()) +
+                " poses were given");
   }
   // Relative to the first pose when it is far out (UTM): float coordinates
   // would lose centimetres there, and the writers then store float64.
-  const bool far = !used.empty() && used.front().t.cwiseAbs().maxCoeff() > 1e4;
-  VoxelMerger merger(settings, far ? used.front().t : Vec3::Zero());
-  Progress progress("merging the map", dataset.size(), "scans");
-  for (std::size_t i = 0; i < dataset.size(); ++i) {
-    merger.add(dataset.loadScan(i), used[i], static_cast<std::uint32_t>(i));
+  const bool far = !poses.empty() && poses.front().t.cwiseAbs().maxCoeff() > 1e4;
+  VoxelMerger merger(settings, far ? poses.front().t : Vec3::Zero());
+  Progress progress("merging the map", scans.size(), "scans");
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
     progress.advance();
   }
   return merger.result();

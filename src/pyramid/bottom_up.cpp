@@ -56,7 +56,7 @@ WindowBa summarize(const Layer& layer, const ba::BaResult& result, const Window&
 // no later window needs them.
 class StreamedClouds {
  public:
-  explicit StreamedClouds(const ScanSource& source) : source_(source) {}
+  explicit StreamedClouds(const io::ScanSource& source) : source_(source) {}
 
   void keepRange(std::size_t first, std::size_t end) {
     for (auto it = cache_.begin(); it != cache_.end();) {
@@ -75,7 +75,7 @@ class StreamedClouds {
   const PointCloud* get(std::size_t i) const { return &cache_.at(i); }
 
  private:
-  const ScanSource& source_;
+  const io::ScanSource& source_;
   std::map<std::size_t, PointCloud> cache_;
 };
 
@@ -90,7 +90,7 @@ std::vector<double> pathBetweenFrames(const Layer& layer, const Window& window) 
 
 }  // namespace
 
-LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
+LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,
                            double keyframe_voxel, StageTimes& times, const std::string& progress_label) {
@@ -98,14 +98,14 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
   outcome.windows.resize(windows.size());
   std::vector<WindowBa> results(windows.size());
 
-  StreamedClouds streamed(clouds);
+  StreamedClouds streamed(clouds.source());
   const std::size_t concurrency = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
   // Layer-1 scans are small: batches of several windows per thread keep the
   // threads busy. Keyframes grow with the layer: one window per thread.
   const bool scans = layer.keyframes == nullptr;
   const std::size_t batch = std::max<std::size_t>(scans ? 4 : 1, (scans ? 4 : 1) * concurrency);
 
-  const LoadSeconds loaded_before = clouds.loadSeconds();
+  const LoadSeconds loaded_before = clouds.seconds();
   std::size_t cloud_points = 0;
   std::size_t counted_end = 0;  // frames whose points are counted
   Progress progress(progress_label, windows.size(), "windows");
@@ -154,7 +154,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
     }
   }
 
-  const LoadSeconds loaded_after = clouds.loadSeconds();
+  const LoadSeconds loaded_after = clouds.seconds();
   times.load_parts.read += loaded_after.read - loaded_before.read;
   times.load_parts.downsample += loaded_after.downsample - loaded_before.downsample;
 

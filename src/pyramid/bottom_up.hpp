@@ -1,7 +1,7 @@
 #pragma once
-#include "hba/pyramid/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
 #include "layer.hpp"
+#include "timed_clouds.hpp"
 
 namespace hba::pyramid {
 
@@ -18,10 +18,11 @@ struct StageTimes {
 
 // Runs one BA per window of `layer` (in parallel) and turns each window's
 // Hessian into pose-graph factors. The layer's clouds are streamed from
-// `clouds` in batches, so memory stays bounded by a few windows' worth of
-// clouds. With `next` set, each window's plane points, downsampled to
-// `keyframe_voxel`, are stored there as keyframe j of the next layer.
-LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
+// `clouds` in batches (their load times added to `times`), so memory stays
+// bounded by a few windows' worth of clouds. With `next` set, each
+// window's plane points, downsampled to `keyframe_voxel`, are stored there
+// as keyframe j of the next layer.
+LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,
                            double keyframe_voxel, StageTimes& times, const std::string& progress_label);

@@ -80,7 +80,7 @@ void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& k
 
 }  // namespace
 
-ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose>& poses,
+ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<Pose>& poses,
                                  const GivenConventions& given, const ConventionSettings& s) {
   ConventionCheck check;
   const std::vector<std::vector<std::size_t>> stretches = pickStretches(poses, s);

@@ -36,7 +36,7 @@ std::vector<GroupSpan> planGroups(std::size_t frames, std::size_t size) {
 
 // The group's scans in the frame of its first scan (with the relative
 // poses of `poses`), merged and downsampled.
-PointCloud mergeGroup(const ScanSource& scans, const std::vector<Pose>& poses, GroupSpan group,
+PointCloud mergeGroup(const io::ScanSource& scans, const std::vector<Pose>& poses, GroupSpan group,
                       double voxel) {
   const Pose to_group = poses[group.first].inverse();
   PointCloud merged;
@@ -59,7 +59,7 @@ std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t mi
   return std::max({min_frames, std::size_t{1}, (frames + groups - 1) / groups});
 }
 
-std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>& input,
+std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
                                const std::vector<Pose>& current, const HbaSettings& settings,
                                HbaReport& report) {
   const auto start = Clock::now();

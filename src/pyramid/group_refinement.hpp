@@ -11,7 +11,7 @@
 
 #include "hba/core/pose.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
@@ -25,7 +25,7 @@ std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t mi
 // motion prior's reference (the odometry's steps between groups). Returns
 // `current` unchanged, with a warning, if the groups' map would get
 // blurrier. Fills report.refinement.groups.
-std::vector<Pose> refineGroups(const ScanSource& scans, const std::vector<Pose>& input,
+std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
                                const std::vector<Pose>& current, const HbaSettings& settings,
                                HbaReport& report);
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "bottom_up.hpp"
@@ -16,12 +17,13 @@
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "refine_stage.hpp"
+#include "timed_clouds.hpp"
 #include "top_down.hpp"
 
 namespace hba::pyramid {
 namespace {
 
-void validate(const ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
+void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
   if (initial.size() != scans.size()) {
     throw Error("pose count (" + std::to_string(initial.size()) + ") differs from scan count (" +
                 std::to_string(scans.size()) + ")");
@@ -98,8 +100,17 @@ Update largestUpdate(const std::vector<Pose>& before, const std::vector<Pose>& a
   return u;
 }
 
+// The clouds `layer` reads: layer 1 the scans, an upper layer its stored
+// keyframes, timed in `stored` (all of their load is reading).
+const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans, std::unique_ptr<TimedClouds>& stored) {
+  if (!layer.keyframes) return scans;
+  stored = std::make_unique<TimedClouds>(*layer.keyframes);
+  return *stored;
+}
+
 // One bottom-up pass and one top-down pass from `poses`.
-std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& poses,
+
+std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& poses,
                           const HbaSettings& settings, int layers, int iteration,
                           HbaReport& report) {
   StageTimes times;
@@ -116,7 +127,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   for (int level = 1; level < layers; ++level) {
     const auto start = Clock::now();
     const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
-    const ScanSource& clouds = level == 1 ? scans : *layer.keyframes;
+    std::unique_ptr<TimedClouds> stored;
+    const TimedClouds& clouds = cloudsOf(layer, scans, stored);
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
     LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
                                          keyframes.get(), keyframeVoxel(settings, level + 1), times,
@@ -134,7 +146,8 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   // The top layer: one global BA with its own, looser settings.
   const auto start = Clock::now();
   const std::vector<Window> all{Window{0, layer.poses.size()}};
-  const ScanSource& top_clouds = layers == 1 ? scans : *layer.keyframes;
+  std::unique_ptr<TimedClouds> stored;
+  const TimedClouds& top_clouds = cloudsOf(layer, scans, stored);
   LayerOutcome top =
       optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
                     "layer " + std::to_string(layers) + " (global BA)");
@@ -180,7 +193,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
 }
 
 // The whole method, on poses near the origin.
-HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initial,
+HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
                         const HbaSettings& settings) {
   const auto start = Clock::now();
   HbaResult result;
@@ -218,7 +231,7 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
     }
   }
 
-  result.poses = refineAndCheck(scans, initial, result.poses, settings, report);
+  result.poses = refineAndCheck(scans.source(), initial, result.poses, settings, report);
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;
   report.largest_rotation_update = total.rotation_deg;
@@ -238,7 +251,7 @@ HbaResult runNearOrigin(const ScanSource& scans, const std::vector<Pose>& initia
 
 }  // namespace
 
-HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings) {
   validate(scans, initial, settings);
   // Every parallel part runs on this many threads: TBB's within the arena,
@@ -246,12 +259,13 @@ HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& in
   HbaSettings resolved = settings;
   resolved.threads = threadCount(settings);
   tbb::task_arena arena(resolved.threads);
+  const TimedClouds layer_one(scans, settings.scan_voxel);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
   HbaResult result;
-  arena.execute([&] { result = runNearOrigin(scans, translated(initial, -origin), resolved); });
+  arena.execute([&] { result = runNearOrigin(layer_one, translated(initial, -origin), resolved); });
   result.report.threads = resolved.threads;
   result.poses = translated(result.poses, origin);
   return result;

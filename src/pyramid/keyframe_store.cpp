@@ -8,14 +8,11 @@
 #include <mutex>
 
 #include <atomic>
-#include <fstream>
-#include <vector>
 #include <string>
 #include <system_error>
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
-#include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace fs = std::filesystem;
@@ -64,31 +61,15 @@ fs::path KeyframeStore::pathOf(std::size_t i) const {
   return folder_ / (std::to_string(i) + ".bin");
 }
 
-// KITTI .bin layout (float32 x y z intensity): exact for float points, no
-// header, and read back with io::readKittiBin. Written directly, not through
-// the atomic writer: these are scratch files of this process, and syncing
-// each to disk would cost more than the BA that reads them. Clouds without
-// intensity come back with intensity 0, which the BA does not use.
+// io's KITTI .bin files (float32 x y z intensity): exact for float points,
+// no header. Written as scratch files, not atomically: they belong to this
+// process, and syncing each to disk would cost more than the BA that reads
+// them. Clouds without intensity come back with intensity 0, which the BA
+// does not use.
 void KeyframeStore::store(std::size_t i, const PointCloud& cloud) const {
-  std::vector<float> record(4 * cloud.size());
-  for (std::size_t k = 0; k < cloud.size(); ++k) {
-    record[4 * k + 0] = cloud.points[k].x();
-    record[4 * k + 1] = cloud.points[k].y();
-    record[4 * k + 2] = cloud.points[k].z();
-    record[4 * k + 3] = cloud.hasIntensity() ? cloud.intensity[k] : 0.0f;
-  }
-  std::ofstream out(pathOf(i), std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(record.data()),
-            static_cast<std::streamsize>(record.size() * sizeof(float)));
-  out.close();
-  if (!out) failAt(pathOf(i), "cannot write a keyframe (is the temporary folder's disk full?)");
+  io::writeScratchKittiBin(pathOf(i), cloud);
 }
 
-PointCloud KeyframeStore::load(std::size_t i) const {
-  const auto start = Clock::now();
-  PointCloud cloud = io::readKittiBin(pathOf(i));
-  read_.add(secondsSince(start));
-  return cloud;
-}
+PointCloud KeyframeStore::load(std::size_t i) const { return io::readKittiBin(pathOf(i)); }
 
 }  // namespace hba::pyramid

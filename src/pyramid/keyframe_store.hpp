@@ -8,11 +8,11 @@
 #include <memory>
 
 #include "hba/core/remove_on_interrupt.hpp"
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 
 namespace hba::pyramid {
 
-class KeyframeStore : public ScanSource {
+class KeyframeStore : public io::ScanSource {
  public:
   // Creates the folder under the system temporary directory ($TMPDIR).
   // Throws hba::Error if it cannot.
@@ -24,7 +24,6 @@ class KeyframeStore : public ScanSource {
   std::size_t size() const override { return count_; }
   const std::filesystem::path& folder() const { return folder_; }
   PointCloud load(std::size_t i) const override;
-  LoadSeconds loadSeconds() const override { return {read_.total(), 0.0}; }
   // Thread-safe for distinct i. Throws hba::Error (e.g. a full disk).
   void store(std::size_t i, const PointCloud& cloud) const;
 
@@ -34,7 +33,6 @@ class KeyframeStore : public ScanSource {
   std::size_t count_ = 0;
   std::filesystem::path folder_;
   std::unique_ptr<RemoveOnInterrupt> remove_on_interrupt_;  // Ctrl-C removes the folder too
-  mutable ThreadSeconds read_;
 };
 
 }  // namespace hba::pyramid

@@ -54,7 +54,7 @@ struct Block {
 
 // Loads frames from `first` on until `max_points` are held (at least two
 // frames, unless the sequence ends), and never beyond `last_end`.
-Block loadBlock(const ScanSource& scans, std::size_t first, std::size_t max_points, double voxel,
+Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_points, double voxel,
                 std::size_t last_end = SIZE_MAX) {
   Block block;
   block.first = first;
@@ -157,7 +157,7 @@ double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& resu
 
 }  // namespace
 
-std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
+std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                                  HbaReport& report) {
   const auto start = Clock::now();
@@ -180,7 +180,7 @@ std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose
   // there means a second block, so scans are kept from the first on (else
   // from the second block, should one follow after all).
   std::unique_ptr<SpilledScanSource> spilled;
-  const ScanSource* source = &scans;
+  const io::ScanSource* source = &scans;
   const bool several_blocks = !report.layer_reports.empty() &&
                               report.layer_reports.front().cloud_points > settings.refine_max_points;
   if (several_blocks && settings.refine && report.layers > 1) {

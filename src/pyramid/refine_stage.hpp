@@ -6,7 +6,7 @@
 
 #include "hba/core/pose.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
@@ -14,7 +14,7 @@ namespace hba::pyramid {
 // Returns the final poses from the input poses and the hierarchy's (built
 // with report.layers layers); fills report.consistency and
 // report.refinement and adds warnings.
-std::vector<Pose> refineAndCheck(const ScanSource& scans, const std::vector<Pose>& initial,
+std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                                  HbaReport& report);
 

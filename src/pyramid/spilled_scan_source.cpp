@@ -2,7 +2,7 @@
 
 namespace hba::pyramid {
 
-SpilledScanSource::SpilledScanSource(const ScanSource& inner)
+SpilledScanSource::SpilledScanSource(const io::ScanSource& inner)
     : inner_(inner),
       store_(inner.size()),
       state_(new std::atomic<int>[inner.size()]),
@@ -25,12 +25,6 @@ PointCloud SpilledScanSource::load(std::size_t i) const {
     state_[i].store(kKept, std::memory_order_release);
   }
   return cloud;
-}
-
-LoadSeconds SpilledScanSource::loadSeconds() const {
-  LoadSeconds seconds = inner_.loadSeconds();
-  seconds.read += store_.loadSeconds().read;
-  return seconds;
 }
 
 }  // namespace hba::pyramid

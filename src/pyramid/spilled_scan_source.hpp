@@ -9,23 +9,22 @@
 #include <memory>
 #include <vector>
 
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 #include "keyframe_store.hpp"
 
 namespace hba::pyramid {
 
-class SpilledScanSource : public ScanSource {
+class SpilledScanSource : public io::ScanSource {
  public:
   // Throws hba::Error if the temporary folder cannot be made.
-  explicit SpilledScanSource(const ScanSource& inner);
+  explicit SpilledScanSource(const io::ScanSource& inner);
   std::size_t size() const override { return inner_.size(); }
   // Thread-safe. Throws hba::Error (a full disk).
   PointCloud load(std::size_t i) const override;
-  LoadSeconds loadSeconds() const override;
 
  private:
   enum : int { kNotKept = 0, kKeeping = 1, kKept = 2 };
-  const ScanSource& inner_;
+  const io::ScanSource& inner_;
   KeyframeStore store_;
   std::unique_ptr<std::atomic<int>[]> state_;
   mutable std::vector<char> has_intensity_;  // written before its state turns kKept

@@ -79,10 +79,10 @@ eval::VoxelMerger mergerFor(const std::vector<Pose>& poses, double voxel) {
   return eval::VoxelMerger(settings, far ? poses.front().t : Vec3::Zero());
 }
 
-void checkSizes(const io::Dataset& dataset, const std::array<const std::vector<Pose>*, 2>& poses) {
+void checkSizes(const io::ScanSource& scans, const std::array<const std::vector<Pose>*, 2>& poses) {
   for (const std::vector<Pose>* set : poses) {
-    if (set->size() != dataset.size()) {
-      throw Error("the dataset has " + std::to_string(dataset.size()) + " scans but " +
+    if (set->size() != scans.size()) {
+      throw Error("there are " + std::to_string(scans.size()) + " scans but " +
                   std::to_string(set->size()) + " poses were given");
     }
   }
@@ -96,11 +96,11 @@ std::vector<std::size_t> upTo(std::size_t n) {
 
 }  // namespace
 
-double sensorReach(const io::Dataset& dataset) {
+double sensorReach(const io::ScanSource& scans) {
   std::vector<double> ranges;
-  for (const std::size_t i : {std::size_t{0}, dataset.size() / 2, dataset.size() - 1}) {
-    if (i >= dataset.size()) continue;
-    const PointCloud scan = dataset.loadScan(i);
+  for (const std::size_t i : {std::size_t{0}, scans.size() / 2, scans.size() - 1}) {
+    if (i >= scans.size()) continue;
+    const PointCloud scan = scans.load(i);
     for (std::size_t k = 0; k < scan.size(); ++k) ranges.push_back(scan.world(k).head<2>().norm());
   }
   if (ranges.empty()) return 0.0;
@@ -122,12 +122,12 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
   return std::max(voxel, span / (2.0 * std::max(pixels, 1)));
 }
 
-BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
+BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses,
                                   double voxel, int pixels, double moments_cell) {
-  checkSizes(dataset, poses);
+  checkSizes(scans, poses);
   BeforeAfterMaps maps;
-  maps.overview_voxel = overviewVoxel(poses, sensorReach(dataset), voxel, pixels);
+  maps.overview_voxel = overviewVoxel(poses, sensorReach(scans), voxel, pixels);
   // The overview's points relative to the first pose (far from the world
   // origin, floats would lose the voxel).
   const Vec3 origin = latticeCorner(poses[1]->empty() ? Vec3::Zero() : poses[1]->front().t, 1.0);
@@ -139,13 +139,13 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
   std::atomic<std::size_t> chunk_voxels{0};
   const std::function<Part(std::size_t)> read = [&](std::size_t chunk) {
     const std::size_t first = chunk * kChunk;
-    const std::size_t end = std::min(dataset.size(), first + kChunk);
+    const std::size_t end = std::min(scans.size(), first + kChunk);
     // Room for a chunk's voxels as the last chunk had them: no regrowing.
     const std::size_t expected = chunk_voxels.load(std::memory_order_relaxed);
     std::array<PicturePoints, 2> local{PicturePoints(maps.overview_voxel, origin, expected),
                                        PicturePoints(maps.overview_voxel, origin, expected)};
     for (std::size_t i = first; i < end; ++i) {
-      const PointCloud scan = voxel::downsample(dataset.loadScan(i), voxel);
+      const PointCloud scan = voxel::downsample(scans.load(i), voxel);
       // Coarser only where that halves the points at least.
       const PointCloud coarse =
           maps.overview_voxel >= 1.5 * voxel ? voxel::downsample(scan, maps.overview_voxel) : scan;
@@ -159,9 +159,9 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
     tbb::parallel_invoke([&] { overview[0].add(part[0], Pose::identity()); },
                          [&] { overview[1].add(part[1], Pose::identity()); });
   };
-  Progress progress("reading the scans for the picture", (dataset.size() + kChunk - 1) / kChunk,
+  Progress progress("reading the scans for the picture", (scans.size() + kChunk - 1) / kChunk,
                     "chunks of " + std::to_string(kChunk) + " scans");
-  streamScans(upTo((dataset.size() + kChunk - 1) / kChunk), read, merge, progress);
+  streamScans(upTo((scans.size() + kChunk - 1) / kChunk), read, merge, progress);
   // Thickness from the merged voxels (each surface once, its range noise
   // averaged), in cells holding a few of them across.
   const double cell = std::max(moments_cell, 4.0 * maps.overview_voxel);
@@ -174,17 +174,17 @@ BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
   return maps;
 }
 
-std::array<PointCloud, 2> squareMaps(const io::Dataset& dataset,
+std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses,
                                      double voxel, const Box2& square, double reach) {
-  checkSizes(dataset, poses);
+  checkSizes(scans, poses);
   auto near = [&](const Pose& pose) {
     const double dx = std::max({square.xmin - pose.t.x(), 0.0, pose.t.x() - square.xmax});
     const double dy = std::max({square.ymin - pose.t.y(), 0.0, pose.t.y() - square.ymax});
     return std::hypot(dx, dy) <= reach;
   };
   std::vector<std::size_t> indices;
-  for (std::size_t i = 0; i < dataset.size(); ++i) {
+  for (std::size_t i = 0; i < scans.size(); ++i) {
     if (near((*poses[0])[i]) || near((*poses[1])[i])) indices.push_back(i);
   }
   auto inside = [&](const Vec3& p) {
@@ -194,7 +194,7 @@ std::array<PointCloud, 2> squareMaps(const io::Dataset& dataset,
   const Vec3 corner = latticeCorner(Vec3(square.xmin, square.ymin, 0.0), voxel);
   using Part = std::array<PointCloud, 2>;
   const std::function<Part(std::size_t)> read = [&](std::size_t i) {
-    const PointCloud scan = voxel::downsample(dataset.loadScan(i), voxel);
+    const PointCloud scan = voxel::downsample(scans.load(i), voxel);
     Part part;
     for (std::size_t k = 0; k < 2; ++k) {
       if (near((*poses[k])[i])) part[k] = movedNear(scan, (*poses[k])[i], corner, inside);

@@ -10,7 +10,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
-#include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/render/map_picture.hpp"
 #include "map_change.hpp"
 
@@ -26,7 +26,7 @@ struct BeforeAfterMaps {
 
 // How far a scan's points reach horizontally (95th percentile over the
 // first, middle and last scans; m).
-double sensorReach(const io::Dataset& dataset);
+double sensorReach(const io::ScanSource& scans);
 
 // The overview's voxel: `voxel`, or coarser where the map (the
 // trajectories' extent plus `reach` either side) is so large that half of
@@ -36,13 +36,13 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 
 // Every scan read once (in parallel batches, merged in scan order: the same
 // maps for any thread count), downsampled to `voxel` in its own frame.
-BeforeAfterMaps streamBeforeAfter(const io::Dataset& dataset,
+BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses,
                                   double voxel, int pixels, double moments_cell);
 
 // The points inside `square` of the scans whose pose lies within `reach`
 // (m) of it, merged at `voxel`, for each pose set.
-std::array<PointCloud, 2> squareMaps(const io::Dataset& dataset,
+std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses,
                                      double voxel, const Box2& square, double reach);
 

@@ -30,16 +30,23 @@ std::vector<Pose> syntheticPoses() {
   return poses;
 }
 
-void writeSyntheticDataset(const std::filesystem::path& dir, const std::vector<Pose>& poses) {
-  std::filesystem::create_directories(dir / "Scans");
+std::vector<PointCloud> syntheticScans(const std::vector<Pose>& poses) {
   const std::vector<Vec3> world = scenePoints();
+  std::vector<PointCloud> scans(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const Pose to_sensor = poses[i].inverse();
-    PointCloud scan;
-    for (const Vec3& p : world) scan.add((to_sensor * p).cast<float>(), 1.0f);
+    for (const Vec3& p : world) scans[i].add((to_sensor * p).cast<float>(), 1.0f);
+  }
+  return scans;
+}
+
+void writeSyntheticDataset(const std::filesystem::path& dir, const std::vector<Pose>& poses) {
+  std::filesystem::create_directories(dir / "Scans");
+  const std::vector<PointCloud> scans = syntheticScans(poses);
+  for (std::size_t i = 0; i < scans.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof(name), "%06zu.pcd", i);
-    io::writePcd(dir / "Scans" / name, scan);
+    io::writePcd(dir / "Scans" / name, scans[i]);
   }
   Trajectory trajectory;
   trajectory.poses = poses;

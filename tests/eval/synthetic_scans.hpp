@@ -7,11 +7,14 @@
 #include <filesystem>
 #include <vector>
 
+#include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 
 namespace hba::test {
 
 std::vector<Pose> syntheticPoses();
+// The scans (sensor frame) of the scene seen from `poses`, as the dataset holds them.
+std::vector<PointCloud> syntheticScans(const std::vector<Pose>& poses);
 // Writes the dataset into `dir` with `poses` (one per scan of syntheticPoses()).
 void writeSyntheticDataset(const std::filesystem::path& dir, const std::vector<Pose>& poses);
 

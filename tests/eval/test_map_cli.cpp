@@ -4,9 +4,11 @@
 #include <cstdlib>
 #include <regex>
 
+#include "hba/eval/merged_map.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "synthetic_scans.hpp"
 #include "test_support.hpp"
 
@@ -75,6 +77,23 @@ TEST(MapCli, PclReadsTheMapWithTheSamePointCount) {
   EXPECT_NE(header.find("element vertex " + std::to_string(map.size()) + "\n"), std::string::npos)
       << header;
   EXPECT_EQ(io::readPly(tmp / "pcl.ply").size(), map.size());
+}
+
+// `hba map` merges the dataset's scans as buildMergedMap merges the same
+// scans held in memory: the same file, byte for byte.
+TEST(MapCli, SameMapAsTheScansMergedFromMemory) {
+  TempDir tmp;
+  writeSyntheticDataset(tmp / "seq", syntheticPoses());
+  const CommandResult run = runCommand(cliPath().string() + " map " + (tmp / "seq").string() + " -o " +
+                                       (tmp / "map.pcd").string() + " --voxel 0.1 --color scan");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<Pose> poses = io::readPoses(tmp / "seq" / "odom_poses.txt").poses;  // as the tool reads them
+  eval::MapSettings settings;
+  settings.voxel = 0.1;
+  settings.color = eval::MapColor::Scan;
+  const io::MemoryScanSource scans(syntheticScans(syntheticPoses()));
+  io::writePcd(tmp / "memory.pcd", eval::buildMergedMap(scans, poses, settings));
+  EXPECT_EQ(readText(tmp / "map.pcd"), readText(tmp / "memory.pcd"));
 }
 
 TEST(MapCli, WritesPlyAndRefusesToWriteIntoTheInput) {

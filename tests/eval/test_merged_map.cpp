@@ -1,8 +1,13 @@
 // Streaming voxel merge of posed scans.
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "hba/core/error.hpp"
+#include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
+#include "hba/io/scan_source.hpp"
+#include "synthetic_scans.hpp"
 
 namespace hba::eval {
 namespace {
@@ -62,6 +67,37 @@ TEST(MergedMap, DownsampleMapOfAWorldCloud) {
   EXPECT_EQ(map.size(), 4u);
   EXPECT_FALSE(map.hasIntensity());
   EXPECT_THROW(parseEnum<MapColor>("rainbow"), Error);
+}
+
+// Scans that are no folder on disk: merged as a merger fed them one by one.
+TEST(MergedMap, ScansInMemoryAreMergedWithTheirPoses) {
+  const std::vector<Pose> poses = test::syntheticPoses();
+  const std::vector<PointCloud> scans = test::syntheticScans(poses);
+  const io::MemoryScanSource source(scans);
+  MapSettings s;
+  s.voxel = 0.1;
+  s.color = MapColor::Scan;
+  const PointCloud map = buildMergedMap(source, poses, s);
+  VoxelMerger merger(s);
+  for (std::size_t i = 0; i < scans.size(); ++i) merger.add(scans[i], poses[i], static_cast<std::uint32_t>(i));
+  const PointCloud expected = merger.result();
+  ASSERT_GT(map.size(), 1000u);
+  EXPECT_EQ(map.points, expected.points);
+  EXPECT_EQ(map.intensity, expected.intensity);
+  EXPECT_THROW(buildMergedMap(source, {poses.front()}, s), Error);
+}
+
+TEST(MapEntropy, WrongPosesBlurAMapOfScansInMemory) {
+  const std::vector<Pose> poses = test::syntheticPoses();
+  const io::MemoryScanSource source(test::syntheticScans(poses));
+  std::vector<Pose> wrong = poses;
+  wrong[2].t.x() += 0.15;  // a doubled wall
+  MmeSettings entropy;
+  entropy.radius = 0.2;
+  const MmeResult good = meanMapEntropy(buildMergedMap(source, poses, MapSettings{}), entropy);
+  const MmeResult bad = meanMapEntropy(buildMergedMap(source, wrong, MapSettings{}), entropy);
+  ASSERT_GT(good.used, 100u);
+  EXPECT_GT(bad.mme, good.mme + 0.2);
 }
 
 }  // namespace

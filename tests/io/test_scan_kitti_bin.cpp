@@ -49,5 +49,27 @@ TEST(KittiBin, RejectsSizesThatAreNotWholeRecordsAndBadPaths) {
   EXPECT_TRUE(readKittiBin(dir / "empty.bin").empty());
 }
 
+// Scratch files (the pyramid's keyframes) hold exactly the bytes of a KITTI scan.
+TEST(KittiBin, ScratchFilesHoldTheSameBytes) {
+  test::TempDir dir;
+  for (const bool with_intensity : {true, false}) {
+    const PointCloud cloud = test::makeCloud(200, with_intensity);
+    writeKittiBin(dir / "atomic.bin", cloud);
+    writeScratchKittiBin(dir / "scratch.bin", cloud);
+    EXPECT_EQ(test::readText(dir / "scratch.bin"), test::readText(dir / "atomic.bin"));
+  }
+  test::expectErrorAbout(dir / "none" / "a.bin", "cannot write",
+                         [&] { writeScratchKittiBin(dir / "none" / "a.bin", test::makeCloud(1, true)); });
+}
+
+TEST(KittiBin, PointCountFromTheSizeAlone) {
+  test::TempDir dir;
+  writeKittiBin(dir / "a.bin", test::makeCloud(37, true));
+  EXPECT_EQ(kittiBinPointCount(dir / "a.bin"), 37u);
+  test::writeText(dir / "odd.bin", std::string(33, '\0'));
+  test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16", [&] { kittiBinPointCount(dir / "odd.bin"); });
+  test::expectErrorAbout(dir / "none.bin", "cannot read the file size", [&] { kittiBinPointCount(dir / "none.bin"); });
+}
+
 }  // namespace
 }  // namespace hba::io

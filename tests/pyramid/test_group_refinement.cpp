@@ -43,7 +43,7 @@ std::size_t totalPoints() {
 }
 
 std::vector<Pose> run(const HbaSettings& settings, HbaReport& report) {
-  const MemoryScanSource source(lap().scans, 0.0);
+  const io::MemoryScanSource source(lap().scans);
   report.layers = 3;  // as if a pyramid had run
   return refineAndCheck(source, lap().initial, lap().initial, settings, report);
 }

@@ -1,14 +1,22 @@
-// The pyramid as a library: runHierarchicalBa on simulated scans held in memory.
+// The pyramid as a library: runHierarchicalBa on simulated scans held in
+// memory (and once read from a folder).
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <filesystem>
 #include <random>
+#include <string>
 
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
+#include "hba/io/dataset.hpp"
+#include "hba/io/pcd.hpp"
+#include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/sim/simulation.hpp"
 #include "simulated_sequence.hpp"
+#include "test_support.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -36,7 +44,8 @@ double ate(const Trajectory& truth, const std::vector<Pose>& poses) {
 }
 
 HbaResult optimize(const HbaSettings& settings) {
-  const MemoryScanSource source(simulated().scans, settings.scan_voxel);
+  // The scans as simulated: the pyramid downsamples them to settings.scan_voxel.
+  const io::MemoryScanSource source(simulated().scans);
   return runHierarchicalBa(source, simulated().initial, settings);
 }
 
@@ -79,6 +88,31 @@ TEST(HierarchicalBa, SameResultWithOneAndTwoThreads) {
   }
 }
 
+// The same scans from a dataset folder and from memory: the same poses, bit
+// for bit; the report times reading and downsampling either way.
+TEST(HierarchicalBa, ScansFromMemoryAndFromAFolderGiveTheSamePoses) {
+  hba::test::TempDir dir;
+  std::filesystem::create_directories(dir / "Scans");
+  for (std::size_t i = 0; i < simulated().scans.size(); ++i) {
+    io::writePcd(dir / "Scans" / (std::to_string(100000 + i) + ".pcd"), simulated().scans[i]);
+  }
+  io::writePoses(dir / "odom_poses.txt", Trajectory{simulated().initial, {}}, io::PoseFormat::Kitti);
+  const io::Dataset dataset = io::Dataset::open(dir.path());
+  HbaSettings settings;
+  settings.outer_iterations = 1;
+  const HbaResult from_folder = runHierarchicalBa(io::DatasetScanSource(dataset), simulated().initial, settings);
+  const HbaResult from_memory = optimize(settings);
+  ASSERT_EQ(from_folder.poses.size(), from_memory.poses.size());
+  for (std::size_t i = 0; i < from_folder.poses.size(); ++i) {
+    EXPECT_EQ(from_folder.poses[i].t, from_memory.poses[i].t) << "frame " << i;
+    EXPECT_EQ(from_folder.poses[i].q.coeffs(), from_memory.poses[i].q.coeffs()) << "frame " << i;
+  }
+  for (const HbaReport* report : {&from_folder.report, &from_memory.report}) {
+    EXPECT_GT(report->seconds_read, 0.0);
+    EXPECT_GT(report->seconds_downsample, 0.0);
+  }
+}
+
 TEST(HierarchicalBa, FeaturelessScansLeavePosesUnchangedWithAWarning) {
   // Points filling a volume (foliage-like): no voxel passes the plane test.
   std::vector<PointCloud> scans(12);
@@ -89,8 +123,10 @@ TEST(HierarchicalBa, FeaturelessScansLeavePosesUnchangedWithAWarning) {
     poses[i].t = Vec3(0.2 * static_cast<double>(i), 0, 0);
     for (int k = 0; k < 3000; ++k) scans[i].add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)));
   }
-  const MemoryScanSource source(scans, 0.0);
-  const HbaResult result = runHierarchicalBa(source, poses, HbaSettings());
+  const io::MemoryScanSource source(scans);
+  HbaSettings settings;
+  settings.scan_voxel = 0.0;  // every point of the volume
+  const HbaResult result = runHierarchicalBa(source, poses, settings);
   ASSERT_EQ(result.poses.size(), poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     EXPECT_EQ(result.poses[i].t, poses[i].t);
@@ -100,9 +136,9 @@ TEST(HierarchicalBa, FeaturelessScansLeavePosesUnchangedWithAWarning) {
 }
 
 TEST(HierarchicalBa, RejectsMismatchedInput) {
-  const MemoryScanSource source(std::vector<PointCloud>(3), 0.0);
+  const io::MemoryScanSource source(std::vector<PointCloud>(3));
   EXPECT_THROW(runHierarchicalBa(source, std::vector<Pose>(4), HbaSettings()), Error);
-  const MemoryScanSource empty(std::vector<PointCloud>{}, 0.0);
+  const io::MemoryScanSource empty(std::vector<PointCloud>{});
   EXPECT_THROW(runHierarchicalBa(empty, {}, HbaSettings()), Error);
 }
 

@@ -4,7 +4,9 @@
 
 #include <filesystem>
 
+#include "hba/io/kitti_bin.hpp"
 #include "keyframe_store.hpp"
+#include "test_support.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -33,6 +35,17 @@ TEST(KeyframeStore, RoundTripsPointsExactly) {
   const PointCloud empty;
   store.store(1, empty);
   EXPECT_TRUE(store.load(1).empty());
+}
+
+// Keyframe files are io's KITTI scans, byte for byte.
+TEST(KeyframeStore, WritesKittiScans) {
+  PointCloud cloud;
+  for (int i = 0; i < 50; ++i) cloud.add(Vec3f(0.3f * static_cast<float>(i), 1.0f / 3.0f, -2.0f), 0.5f);
+  const KeyframeStore store(1);
+  store.store(0, cloud);
+  hba::test::TempDir dir;
+  io::writeKittiBin(dir / "expected.bin", cloud);
+  EXPECT_EQ(hba::test::readText(store.folder() / "0.bin"), hba::test::readText(dir / "expected.bin"));
 }
 
 TEST(KeyframeStore, RemovesItsFolder) {

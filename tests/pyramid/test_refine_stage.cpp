@@ -8,7 +8,9 @@
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/eval/trajectory_error.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/sim/simulation.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
 #include "consistency.hpp"
 #include "refine_stage.hpp"
 #include "simulated_sequence.hpp"
@@ -38,7 +40,9 @@ double ate(const std::vector<Pose>& poses) {
 
 std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                       HbaReport& report) {
-  const MemoryScanSource source(simulated().scans, settings.scan_voxel);
+  // The refinement is given layer-1 scans at the scan voxel, as the pyramid passes them.
+  const io::MemoryScanSource scans(simulated().scans);
+  const voxel::DownsampledScanSource source(scans, settings.scan_voxel);
   report.layers = 3;  // as if a pyramid had run
   return refineAndCheck(source, simulated().initial, hierarchy, settings, report);
 }

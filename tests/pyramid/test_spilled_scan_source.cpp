@@ -12,7 +12,7 @@ namespace hba::pyramid {
 namespace {
 
 // Counts its loads; scan i has i + 1 points, with intensity for even i.
-class CountingSource : public ScanSource {
+class CountingSource : public io::ScanSource {
  public:
   std::size_t size() const override { return 40; }
   PointCloud load(std::size_t i) const override {

@@ -10,6 +10,7 @@
 #include "../eval/synthetic_scans.hpp"
 #include "map_change.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_source.hpp"
 #include "test_support.hpp"
 
 namespace hba::render {
@@ -119,6 +120,36 @@ TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
                                     " --crop 1,2 -o " + (tmp / "x.png").string());
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(tmp / "x.png"));
+}
+
+// Pictures of scans held in memory are the PNGs `hba render` draws from the
+// same scans in a folder, byte for byte: one map, and before/after.
+TEST(RenderCli, SamePicturesFromScansInMemory) {
+  test::TempDir tmp;
+  test::writeSyntheticDataset(tmp / "seq", test::syntheticPoses());
+  Trajectory shifted;
+  for (Pose p : test::syntheticPoses()) {
+    p.t.x() -= 0.2;
+    shifted.poses.push_back(p);
+  }
+  io::writePoses(tmp / "after.txt", shifted, io::PoseFormat::Kitti);
+  const std::string base = test::cliPath().string() + " render " + (tmp / "seq").string() + " --width 900 --height 600";
+  ASSERT_EQ(test::runCommand(base + " -o " + (tmp / "map.png").string()).exit_code, 0);
+  const auto compare = test::runCommand(base + " --compare " + (tmp / "after.txt").string() + " --gt " +
+                                        (tmp / "seq" / "odom_poses.txt").string() + " -o " + (tmp / "cmp.png").string());
+  ASSERT_EQ(compare.exit_code, 0) << compare.output;
+
+  // The poses as the tool reads them from the files.
+  const std::vector<Pose> before = io::readPoses(tmp / "seq" / "odom_poses.txt").poses;
+  const std::vector<Pose> after = io::readPoses(tmp / "after.txt").poses;
+  const io::MemoryScanSource scans(test::syntheticScans(test::syntheticPoses()));
+  RenderSettings settings;
+  settings.width = 900;
+  settings.height = 600;
+  writeMapPicture(scans, before, nullptr, tmp / "memory_map.png", settings);
+  writeBeforeAfter(scans, before, after, &before, tmp / "memory_cmp.png", settings);
+  EXPECT_EQ(test::readText(tmp / "memory_map.png"), test::readText(tmp / "map.png"));
+  EXPECT_EQ(test::readText(tmp / "memory_cmp.png"), test::readText(tmp / "cmp.png"));
 }
 
 }  // namespace

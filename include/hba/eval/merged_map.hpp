@@ -11,7 +11,7 @@
 #include "hba/core/enum_names.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
-#include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/voxel/voxel_index.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
@@ -66,11 +66,10 @@ class VoxelMerger {
   std::vector<Cell> cells_;
 };
 
-// Streams every scan of `dataset` through a VoxelMerger with `poses` (one per
-// scan; the dataset's own trajectory when `poses` is empty). When the first
-// pose is more than 10 km out, the map's points are relative to its position
-// (the map's `origin`). Throws hba::Error.
-PointCloud buildMergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses,
+// Streams every scan of `scans` through a VoxelMerger with `poses` (one per
+// scan). When the first pose is more than 10 km out, the map's points are
+// relative to its position (the map's `origin`). Throws hba::Error.
+PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
                           const MapSettings& settings);
 
 // Downsamples a cloud that is already in the world frame (a map file).

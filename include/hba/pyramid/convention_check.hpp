@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 
 namespace hba::pyramid {
 
@@ -55,7 +55,7 @@ struct ConventionSettings {
 };
 
 // Reads at most max_stretches * stretch_scans scans. Throws what the source throws.
-ConventionCheck checkConventions(const ScanSource& scans, const std::vector<Pose>& poses,
+ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<Pose>& poses,
                                  const GivenConventions& given = {}, const ConventionSettings& settings = {});
 
 }  // namespace hba::pyramid

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
-#include "hba/pyramid/scan_source.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
@@ -128,9 +128,11 @@ struct HbaResult {
   HbaReport report;
 };
 
-// Throws hba::Error if the pose count differs from the scan count or the
-// settings are inconsistent. Scans are only read.
-HbaResult runHierarchicalBa(const ScanSource& scans, const std::vector<Pose>& initial,
+// `scans` as read (sensor frame, full density: a dataset's or scans in
+// memory); they are downsampled to settings.scan_voxel as they are loaded,
+// and only read. Throws hba::Error if the pose count differs from the scan
+// count or the settings are inconsistent, and what `scans` throws.
+HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings);
 
 }  // namespace hba::pyramid

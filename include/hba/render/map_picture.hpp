@@ -12,7 +12,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
-#include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
 #include "hba/render/image.hpp"
 
 namespace hba::render {
@@ -75,18 +75,18 @@ struct Picture {
 // Draws the panels side by side with one shared view. Throws hba::Error.
 Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& settings);
 
-// For `hba optimize`: merges the dataset's scans once with `before` and once
+// For `hba optimize`: merges the scans once with `before` and once
 // with `after` (one pose per scan each), and writes the two maps side by side
 // ("initial poses" left, "optimized poses" right) with the trajectories
 // drawn on them; `ground_truth` (may be null) is drawn on both after a rigid
 // alignment onto `after`, since ground truth may live in another frame.
 // The PNG is written atomically. Throws hba::Error.
-void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& before,
+void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
                       const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
                       const std::filesystem::path& out_png, const RenderSettings& settings = {});
 
 // One panel: the map of `poses` with that trajectory (and ground truth).
-void writeMapPicture(const io::Dataset& dataset, const std::vector<Pose>& poses,
+void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
                      const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
                      const RenderSettings& settings = {});
 

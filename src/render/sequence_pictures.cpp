@@ -1,4 +1,4 @@
-// The dataset-level entry points: merge the maps, then draw them.
+// The entry points on a sequence of scans: merge the maps, then draw them.
 #include "hba/core/error.hpp"
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
@@ -14,10 +14,10 @@
 namespace hba::render {
 namespace {
 
-PointCloud mergedMap(const io::Dataset& dataset, const std::vector<Pose>& poses, const RenderSettings& settings) {
+PointCloud mergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses, const RenderSettings& settings) {
   eval::MapSettings map;
   map.voxel = settings.voxel;
-  return eval::buildMergedMap(dataset, poses, map);
+  return eval::buildMergedMap(scans, poses, map);
 }
 
 // Ground truth moved onto `reference` when both pair up by index; as given otherwise.
@@ -48,7 +48,7 @@ Image stacked(const Image& upper, const Image& lower) {
 // row zooms on the square where the planes got thinnest, coloured by their
 // thickness (a doubled wall is thick, a crisp one thin). Nothing when no
 // plane got thinner. Its points come from the scans taken near the square.
-std::optional<Image> thicknessZoom(const io::Dataset& dataset, const std::array<const std::vector<Pose>*, 2>& poses,
+std::optional<Image> thicknessZoom(const io::ScanSource& scans, const std::array<const std::vector<Pose>*, 2>& poses,
                                    const BeforeAfterMaps& maps, const std::vector<MapPanel>& panels,
                                    const RenderSettings& settings) {
   Eigen::AlignedBox3d box;
@@ -60,7 +60,7 @@ std::optional<Image> thicknessZoom(const io::Dataset& dataset, const std::array<
   if (!region) return std::nullopt;
   // Scans within a few tens of metres give the square its dense points.
   constexpr double kReach = 40.0;
-  std::array<PointCloud, 2> fine = squareMaps(dataset, poses, settings.voxel, *region, kReach);
+  std::array<PointCloud, 2> fine = squareMaps(scans, poses, settings.voxel, *region, kReach);
   std::vector<MapPanel> zoom(2);
   for (std::size_t k = 0; k < 2; ++k) {
     zoom[k].values = (k == 0 ? before : after).perPoint(fine[k]);
@@ -77,7 +77,7 @@ std::optional<Image> thicknessZoom(const io::Dataset& dataset, const std::array<
   return renderPanels(zoom, z).image;
 }
 
-void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& before,
+void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
                       const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
                       const std::filesystem::path& out_png, const RenderSettings& settings) {
   const std::array<const std::vector<Pose>*, 2> poses{&before, &after};
@@ -91,7 +91,7 @@ void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& befor
     for (MapPanel& panel : panels) panel.trajectories.insert(panel.trajectories.begin(), {"ground truth", gt, kGroundTruthColor});
   }
   if (settings.crop) {  // one region at full resolution, no zoom row
-    std::array<PointCloud, 2> fine = squareMaps(dataset, poses, settings.voxel, *settings.crop,
+    std::array<PointCloud, 2> fine = squareMaps(scans, poses, settings.voxel, *settings.crop,
                                                 std::numeric_limits<double>::infinity());
     for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
     writePng(out_png, renderPanels(panels, settings).image);
@@ -99,21 +99,21 @@ void writeBeforeAfter(const io::Dataset& dataset, const std::vector<Pose>& befor
   }
   constexpr double kThicknessCell = 1.0;  // m: a patch of wall
   // Two panels side by side: each about half the picture's width.
-  BeforeAfterMaps maps = streamBeforeAfter(dataset, poses, settings.voxel, settings.width / 2, kThicknessCell);
+  BeforeAfterMaps maps = streamBeforeAfter(scans, poses, settings.voxel, settings.width / 2, kThicknessCell);
   for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
   RenderSettings overview = settings;
   overview.voxel = maps.overview_voxel;  // the points' footprint
   const Image whole = renderPanels(panels, overview).image;
-  const std::optional<Image> zoom = thicknessZoom(dataset, poses, maps, panels, settings);
+  const std::optional<Image> zoom = thicknessZoom(scans, poses, maps, panels, settings);
   writePng(out_png, zoom ? stacked(whole, *zoom) : whole);
 }
 
-void writeMapPicture(const io::Dataset& dataset, const std::vector<Pose>& poses,
+void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
                      const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
                      const RenderSettings& settings) {
   std::vector<MapPanel> panels(1);
   panels[0].title = "map";
-  panels[0].map = mergedMap(dataset, poses, settings);
+  panels[0].map = mergedMap(scans, poses, settings);
   panels[0].trajectories.push_back({"poses", poses, kOptimizedColor});
   if (ground_truth) {
     panels[0].trajectories.insert(panels[0].trajectories.begin(),

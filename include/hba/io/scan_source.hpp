@@ -1,0 +1,49 @@
+#pragma once
+// Where scans come from, for every command and module that reads them
+// (merged maps, pictures, the pyramid): a count and scan i on demand, so a
+// sequence need not be a folder on disk. Sources compose: a source may wrap
+// another (downsampling, keeping scans on disk, timing their loads).
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+
+namespace hba::io {
+
+class Dataset;
+
+class ScanSource {
+ public:
+  virtual ~ScanSource() = default;
+  virtual std::size_t size() const = 0;
+  // Scan i in its sensor frame. Thread-safe. Throws hba::Error (an index
+  // out of range, an unreadable scan).
+  virtual PointCloud load(std::size_t i) const = 0;
+};
+
+// The scans of a dataset, as Dataset::loadScan reads them (scans saved in
+// the world frame moved back into their sensor frame). Keeps a reference:
+// the dataset must outlive the source.
+class DatasetScanSource : public ScanSource {
+ public:
+  explicit DatasetScanSource(const Dataset& dataset) : dataset_(dataset) {}
+  std::size_t size() const override;
+  PointCloud load(std::size_t i) const override;
+
+ private:
+  const Dataset& dataset_;
+};
+
+// Scans held in memory (tests, generated sequences, other programs' data).
+class MemoryScanSource : public ScanSource {
+ public:
+  explicit MemoryScanSource(std::vector<PointCloud> scans) : scans_(std::move(scans)) {}
+  std::size_t size() const override { return scans_.size(); }
+  PointCloud load(std::size_t i) const override;
+
+ private:
+  std::vector<PointCloud> scans_;
+};
+
+}  // namespace hba::io
