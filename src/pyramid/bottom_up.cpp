@@ -185,29 +185,4 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
   return outcome;
 }
 
-Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int stride,
-                      std::unique_ptr<KeyframeStore> keyframes) {
-  Layer upper;
-  const std::size_t n = outcome.windows.size();
-  upper.anchors.reserve(n);
-  upper.poses.reserve(n);
-  upper.distance_m.reserve(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const WindowOutcome& window = outcome.windows[j];
-    upper.anchors.push_back(lower.anchors[window.window.first]);
-    upper.distance_m.push_back(lower.distance_m[window.window.first]);
-    if (j == 0) {
-      upper.poses.push_back(window.optimized.front());
-    } else {
-      // T_j = T_{j-1} * (relative pose of frame s in window j-1, optimized).
-      const WindowOutcome& previous = outcome.windows[j - 1];
-      const auto s = static_cast<std::size_t>(stride);
-      upper.poses.push_back(upper.poses.back() *
-                            relative(previous.optimized.front(), previous.optimized[s]));
-    }
-  }
-  upper.keyframes = std::move(keyframes);
-  return upper;
-}
-
 }  // namespace hba::pyramid

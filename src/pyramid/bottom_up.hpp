@@ -26,10 +26,4 @@ LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const HbaSettings& settings, const KeyframeStore* next,
                            double keyframe_voxel, StageTimes& times, const std::string& progress_label);
 
-// Layer i+1 from layer i's windows: keyframe j is window j, anchored at its
-// first frame, posed by chaining the windows' optimized relative poses
-// (the paper's eq. 1), so local corrections reach the upper layer.
-Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int stride,
-                      std::unique_ptr<KeyframeStore> keyframes);
-
 }  // namespace hba::pyramid

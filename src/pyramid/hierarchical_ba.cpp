@@ -13,6 +13,7 @@
 #include "hba/graph/pose_graph.hpp"
 #include "refine_stage.hpp"
 #include "top_down.hpp"
+#include "upper_layer.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -115,7 +116,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
     outcome.report.seconds = secondsSince(start);
     logLayer(outcome.report);
     report.layer_reports.push_back(outcome.report);
-    Layer upper = buildUpperLayer(layer, outcome, settings.stride, std::move(keyframes));
+    Layer upper = buildUpperLayer(layer, outcome, std::move(keyframes));
     local.push_back(std::move(outcome));
     layer = std::move(upper);
   }
@@ -135,7 +136,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
   report.layer_reports.push_back(top.report);
   addStageTimes(times, report);
 
-  std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized, settings.stride);
+  std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized);
   IterationReport iteration_report;
   iteration_report.iteration = iteration;
   if (settings.top_down == TopDownMode::DirectAssign) {

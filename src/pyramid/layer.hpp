@@ -38,4 +38,12 @@ struct LayerOutcome {
   LayerReport report;
 };
 
+// The plan a layer's windows followed.
+inline std::vector<Window> windowsOf(const LayerOutcome& outcome) {
+  std::vector<Window> plan;
+  plan.reserve(outcome.windows.size());
+  for (const WindowOutcome& window : outcome.windows) plan.push_back(window.window);
+  return plan;
+}
+
 }  // namespace hba::pyramid
