@@ -1,6 +1,10 @@
 #pragma once
+#include <string>
+#include <vector>
+
 #include "hba/pyramid/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
+#include "keyframe_store.hpp"
 #include "layer.hpp"
 
 namespace hba::pyramid {
@@ -17,10 +21,11 @@ struct StageTimes {
 };
 
 // Runs one BA per window of `layer` (in parallel) and turns each window's
-// Hessian into pose-graph factors. The layer's clouds are streamed from
-// `clouds` in batches, so memory stays bounded by a few windows' worth of
-// clouds. With `next` set, each window's plane points, downsampled to
-// `keyframe_voxel`, are stored there as keyframe j of the next layer.
+// Hessian into pose-graph factors. `windows` must form a plan of the layer
+// (checkWindowPlan). The layer's clouds are streamed from `clouds` in
+// batches (window_batches.hpp), so memory stays bounded by a few windows'
+// worth of clouds. With `next` set, each window's plane points, downsampled
+// to `keyframe_voxel`, are stored there as keyframe j of the next layer.
 LayerOutcome optimizeLayer(const Layer& layer, const ScanSource& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,

@@ -93,14 +93,7 @@ std::vector<Pose> iterate(const ScanSource& scans, const std::vector<Pose>& pose
                           const HbaSettings& settings, int layers, int iteration,
                           HbaReport& report) {
   StageTimes times;
-  Layer layer;
-  layer.poses = poses;
-  layer.anchors.resize(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) layer.anchors[i] = i;
-  layer.distance_m.assign(poses.size(), 0.0);
-  for (std::size_t i = 1; i < poses.size(); ++i) {
-    layer.distance_m[i] = layer.distance_m[i - 1] + (poses[i].t - poses[i - 1].t).norm();
-  }
+  Layer layer = scanLayer(poses);
 
   std::vector<LayerOutcome> local;  // layers 1 .. layers-1
   for (int level = 1; level < layers; ++level) {
