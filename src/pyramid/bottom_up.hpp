@@ -1,5 +1,9 @@
 #pragma once
+#include <string>
+#include <vector>
+
 #include "hba/pyramid/settings.hpp"
+#include "keyframe_store.hpp"
 #include "layer.hpp"
 #include "timed_clouds.hpp"
 
@@ -17,20 +21,14 @@ struct StageTimes {
 };
 
 // Runs one BA per window of `layer` (in parallel) and turns each window's
-// Hessian into pose-graph factors. The layer's clouds are streamed from
-// `clouds` in batches (their load times added to `times`), so memory stays
-// bounded by a few windows' worth of clouds. With `next` set, each
-// window's plane points, downsampled to `keyframe_voxel`, are stored there
-// as keyframe j of the next layer.
+// Hessian into pose-graph factors. `windows` must form a plan of the layer
+// (checkWindowPlan). The layer's clouds are streamed from `clouds` in
+// batches (window_batches.hpp; their load times added to `times`), so memory stays bounded by a few windows'
+// worth of clouds. With `next` set, each window's plane points, downsampled
+// to `keyframe_voxel`, are stored there as keyframe j of the next layer.
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
                            const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
                            const HbaSettings& settings, const KeyframeStore* next,
                            double keyframe_voxel, StageTimes& times, const std::string& progress_label);
-
-// Layer i+1 from layer i's windows: keyframe j is window j, anchored at its
-// first frame, posed by chaining the windows' optimized relative poses
-// (the paper's eq. 1), so local corrections reach the upper layer.
-Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome, int stride,
-                      std::unique_ptr<KeyframeStore> keyframes);
 
 }  // namespace hba::pyramid

@@ -19,6 +19,7 @@
 #include "refine_stage.hpp"
 #include "timed_clouds.hpp"
 #include "top_down.hpp"
+#include "upper_layer.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -114,14 +115,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
                           const HbaSettings& settings, int layers, int iteration,
                           HbaReport& report) {
   StageTimes times;
-  Layer layer;
-  layer.poses = poses;
-  layer.anchors.resize(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) layer.anchors[i] = i;
-  layer.distance_m.assign(poses.size(), 0.0);
-  for (std::size_t i = 1; i < poses.size(); ++i) {
-    layer.distance_m[i] = layer.distance_m[i - 1] + (poses[i].t - poses[i - 1].t).norm();
-  }
+  Layer layer = scanLayer(poses);
 
   std::vector<LayerOutcome> local;  // layers 1 .. layers-1
   for (int level = 1; level < layers; ++level) {
@@ -138,7 +132,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     outcome.report.seconds = secondsSince(start);
     logLayer(outcome.report);
     report.layer_reports.push_back(outcome.report);
-    Layer upper = buildUpperLayer(layer, outcome, settings.stride, std::move(keyframes));
+    Layer upper = buildUpperLayer(layer, outcome, std::move(keyframes));
     local.push_back(std::move(outcome));
     layer = std::move(upper);
   }
@@ -159,7 +153,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
   report.layer_reports.push_back(top.report);
   addStageTimes(times, report);
 
-  std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized, settings.stride);
+  std::vector<Pose> assigned = directAssign(local, top.windows.front().optimized);
   IterationReport iteration_report;
   iteration_report.iteration = iteration;
   if (settings.top_down == TopDownMode::DirectAssign) {

@@ -24,6 +24,10 @@ struct Layer {
   std::unique_ptr<KeyframeStore> keyframes;  // null for layer 1
 };
 
+// Layer 1: the input frames at `poses`, each anchored at itself, with the
+// path along the poses.
+Layer scanLayer(const std::vector<Pose>& poses);
+
 // What the BA of one window left behind (its Hessian is turned into
 // factors at once, so it is not kept).
 struct WindowOutcome {
@@ -37,5 +41,13 @@ struct LayerOutcome {
   std::vector<WindowOutcome> windows;
   LayerReport report;
 };
+
+// The plan a layer's windows followed.
+inline std::vector<Window> windowsOf(const LayerOutcome& outcome) {
+  std::vector<Window> plan;
+  plan.reserve(outcome.windows.size());
+  for (const WindowOutcome& window : outcome.windows) plan.push_back(window.window);
+  return plan;
+}
 
 }  // namespace hba::pyramid

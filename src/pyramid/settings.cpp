@@ -48,17 +48,6 @@ int paperLayerCount(std::size_t frames, int window, int stride, int threads) {
   return std::clamp(layers, 1, maxLayerCount(frames, window, stride));
 }
 
-int maxLayerCount(std::size_t frames, int window, int stride) {
-  int layers = 1;
-  std::size_t n = frames;
-  // Another layer pays off only while the current one has more than one window.
-  while (n > static_cast<std::size_t>(window)) {
-    n = planWindows(n, window, stride).size();
-    ++layers;
-  }
-  return layers;
-}
-
 int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
   constexpr int kPaperThreads = 8;  // Table I of the paper
   return paperLayerCount(frames, settings.window, settings.stride, kPaperThreads);

@@ -26,4 +26,16 @@ inline Sequence simulateSequence(const sim::SimulationConfig& config) {
   return s;
 }
 
+// A drive of `frames` frames with a small solid-state sensor (small scans,
+// fast tests) and drifting odometry.
+inline sim::SimulationConfig smallDriveConfig(std::size_t frames) {
+  sim::SimulationConfig config;
+  config.seed = 11;
+  config.trajectory.frames = frames;
+  config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
+  config.drift.translation = 0.03;
+  config.drift.rotation_deg_per_m = 0.05;
+  return config;
+}
+
 }  // namespace hba::pyramid::test

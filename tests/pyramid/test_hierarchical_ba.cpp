@@ -113,6 +113,36 @@ TEST(HierarchicalBa, ScansFromMemoryAndFromAFolderGiveTheSamePoses) {
   }
 }
 
+// Window 6, stride 4 on 40 frames: the last layer-1 window holds 4 frames,
+// so keyframes and direct assignment must follow the plan's uneven tail.
+HbaSettings unevenTailSettings() {
+  HbaSettings settings;
+  settings.window = 6;
+  settings.stride = 4;
+  settings.top_down = TopDownMode::DirectAssign;
+  settings.refine = false;
+  return settings;
+}
+
+TEST(HierarchicalBa, UnevenLastWindowsStillImprove) {
+  const HbaResult result = optimize(unevenTailSettings());
+  EXPECT_GE(result.report.layers, 3);
+  ASSERT_EQ(result.poses.size(), simulated().initial.size());
+  EXPECT_LT(ate(simulated().truth, result.poses), ate(simulated().truth, simulated().initial) / 2.0);
+}
+
+TEST(HierarchicalBa, SameInputGivesTheSamePosesBitForBit) {
+  for (const HbaSettings& settings : {HbaSettings(), unevenTailSettings()}) {
+    const std::vector<Pose> first = optimize(settings).poses;
+    const std::vector<Pose> second = optimize(settings).poses;
+    ASSERT_EQ(first.size(), second.size());
+    for (std::size_t i = 0; i < first.size(); ++i) {
+      EXPECT_EQ(first[i].t, second[i].t) << "frame " << i;
+      EXPECT_EQ(first[i].q.coeffs(), second[i].q.coeffs()) << "frame " << i;
+    }
+  }
+}
+
 TEST(HierarchicalBa, FeaturelessScansLeavePosesUnchangedWithAWarning) {
   // Points filling a volume (foliage-like): no voxel passes the plane test.
   std::vector<PointCloud> scans(12);

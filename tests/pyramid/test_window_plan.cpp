@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "hba/core/error.hpp"
 #include "hba/pyramid/settings.hpp"
 #include "hba/pyramid/window_plan.hpp"
@@ -61,6 +63,51 @@ TEST(WindowPlan, RejectsWindowsThatDoNotOverlap) {
   EXPECT_THROW(planWindows(100, 10, 10), Error);
   EXPECT_THROW(planWindows(100, 10, 0), Error);
   EXPECT_THROW(planWindows(100, 1, 1), Error);
+}
+
+TEST(WindowPlan, OwnFramesRunToTheNextWindow) {
+  const std::vector<Window> uneven{{0, 6}, {3, 6}, {7, 7}};
+  EXPECT_EQ(ownFrames(uneven, 0).first, 0u);
+  EXPECT_EQ(ownFrames(uneven, 0).count, 3u);
+  EXPECT_EQ(ownFrames(uneven, 1).first, 3u);
+  EXPECT_EQ(ownFrames(uneven, 1).count, 4u);
+  EXPECT_EQ(ownFrames(uneven, 2).first, 7u);  // the last window: all its frames
+  EXPECT_EQ(ownFrames(uneven, 2).count, 7u);
+  EXPECT_EQ(planFrames(uneven), 14u);
+  // Every frame is owned by exactly one window.
+  const auto plan = planWindows(1003, 10, 5);
+  std::size_t next = 0;
+  for (std::size_t j = 0; j < plan.size(); ++j) {
+    EXPECT_EQ(ownFrames(plan, j).first, next);
+    next += ownFrames(plan, j).count;
+  }
+  EXPECT_EQ(next, 1003u);
+}
+
+TEST(WindowPlan, CheckAcceptsPlannedAndUnevenPlans) {
+  for (std::size_t n : {1u, 2u, 10u, 11u, 57u, 1003u}) {
+    EXPECT_NO_THROW(checkWindowPlan(planWindows(n, 10, 5), n)) << n;
+  }
+  EXPECT_NO_THROW(checkWindowPlan({{0, 6}, {3, 6}, {7, 7}}, 14));
+}
+
+TEST(WindowPlan, CheckRejectsPlansThatCannotChain) {
+  auto message = [](const std::vector<Window>& plan, std::size_t frames) {
+    try {
+      checkWindowPlan(plan, frames);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message({}, 3).find("no windows"), std::string::npos);
+  EXPECT_NE(message({{1, 5}}, 6).find("does not start at frame 0"), std::string::npos);
+  // A gap: window 1 starts after window 0's last frame.
+  EXPECT_NE(message({{0, 4}, {4, 4}}, 8).find("window 1 (frames 4-7) does not start inside window 0"),
+            std::string::npos);
+  EXPECT_NE(message({{0, 4}, {0, 4}}, 4).find("does not start inside"), std::string::npos);
+  EXPECT_NE(message({{0, 4}, {2, 0}}, 4).find("window 1 is empty"), std::string::npos);
+  EXPECT_NE(message({{0, 4}, {2, 4}}, 9).find("end at frame 6"), std::string::npos);
 }
 
 TEST(LayerCount, PaperFormula) {

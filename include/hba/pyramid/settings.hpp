@@ -8,6 +8,7 @@
 #include "hba/core/enum_names.hpp"
 #include "hba/graph/information.hpp"
 #include "hba/graph/window_factors.hpp"
+#include "hba/pyramid/window_plan.hpp"  // maxLayerCount
 
 namespace hba::pyramid {
 
@@ -116,10 +117,6 @@ double keyframeVoxel(const HbaSettings& settings, int layer);
 // The paper's optimal layer count l* = floor(1/2 log_s(3 N^2 (s^3 - s) n / w^3)),
 // clamped to [1, the number of layers the sequence can hold].
 int paperLayerCount(std::size_t frames, int window, int stride, int threads);
-// Largest layer count for which every layer below the top has >= 2 windows'
-// worth of frames (the top layer then holds at least `window` frames, or the
-// whole sequence if it is shorter).
-int maxLayerCount(std::size_t frames, int window, int stride);
 // The layer count hba uses when settings.layers == 0: the paper's formula
 // with its own n = 8 threads, whatever this machine has, so that the same
 // command builds the same pyramid (and gives the same poses) everywhere.

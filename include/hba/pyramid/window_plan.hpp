@@ -1,5 +1,8 @@
 #pragma once
-// Which frames of a layer each local window covers.
+// Which frames of a layer each local window covers. Everything after the
+// plan (keyframe poses and anchors, direct assignment, the next layer's
+// size) reads the windows' own first frame and count, never a stride, so a
+// plan with uneven windows works unchanged.
 #include <cstddef>
 #include <vector>
 
@@ -15,7 +18,26 @@ struct Window {
 // stride that leaves a frame uncovered and may be shorter than `window` (it
 // still overlaps its predecessor by window - stride frames). A layer with
 // at most `window` frames is one window. Keyframe j of the next layer is
-// window j, anchored at frame j * stride.
+// window j, anchored at the window's first frame.
 std::vector<Window> planWindows(std::size_t frames, int window, int stride);
+
+// Throws hba::Error unless `windows` is a usable plan of a layer of
+// `frames` frames: the first window starts at frame 0, each later window
+// starts after its predecessor and inside it (so keyframe poses chain),
+// and the last one ends at the layer's last frame.
+void checkWindowPlan(const std::vector<Window>& windows, std::size_t frames);
+
+// The frames keyframe j stands for when its pose is handed down: from its
+// window's first frame up to the next window's first frame; the last window
+// stands for all its frames. `windows` must be a plan (checkWindowPlan).
+Window ownFrames(const std::vector<Window>& windows, std::size_t j);
+
+// Frames of the layer a plan covers (the end of its last window).
+std::size_t planFrames(const std::vector<Window>& windows);
+
+// Largest layer count for which every layer below the top has more than one
+// window (the top layer then holds at least `window` frames, or the whole
+// sequence if it is shorter). Layer i+1 has one frame per window of layer i.
+int maxLayerCount(std::size_t frames, int window, int stride);
 
 }  // namespace hba::pyramid

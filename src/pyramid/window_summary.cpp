@@ -1,0 +1,31 @@
+#include "window_summary.hpp"
+
+#include <vector>
+
+#include "hba/graph/window_factors.hpp"
+
+namespace hba::pyramid {
+
+WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba::BaResult& result,
+                              const HbaSettings& settings) {
+  WindowSummary out;
+  out.outcome.window = window;
+  out.outcome.optimized = result.poses;
+  out.outcome.has_planes = result.num_planes > 0;
+  const auto first = layer.anchors.begin() + static_cast<long>(window.first);
+  const std::vector<std::size_t> anchors(first, first + static_cast<long>(window.count));
+  out.outcome.factors = graph::windowFactors(result.hessian, result.poses, anchors,
+                                             settings.factor_pairs, settings.information);
+  out.cost_before = result.initial_cost;
+  out.cost_after = result.final_cost;
+  out.planes = result.num_planes;
+  out.plane_points = result.num_plane_points;
+  out.iterations = result.iterations;
+  out.rounds = result.rounds;
+  out.trusted = result.trusted;
+  for (double r : result.plane_rms_initial) out.sq_rms_before += r * r;
+  for (double r : result.plane_rms_final) out.sq_rms_after += r * r;
+  return out;
+}
+
+}  // namespace hba::pyramid
