@@ -2,6 +2,9 @@
 # so every library, tool and test links the same settings.
 add_library(hba_warnings INTERFACE)
 target_compile_options(hba_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow=local)
+if(HBA_WERROR)
+  target_compile_options(hba_warnings INTERFACE -Werror)
+endif()
 
 if(HBA_SANITIZE)
   target_compile_options(hba_warnings INTERFACE

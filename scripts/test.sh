@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
-# The README's test command: installs the dependencies, builds, runs every test.
+# The README's test command: installs the dependencies, checks the format,
+# builds with warnings as errors, runs every test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
-bash scripts/build.sh
+# Unformatted code and compiler warnings fail the run, as they fail CI.
+bash scripts/check_format.sh
+bash scripts/build.sh -DHBA_WERROR=ON
 cd build
 ctest --output-on-failure -j "${HBA_JOBS:-$(nproc)}" --timeout 900

@@ -7,13 +7,13 @@
 
 #include "commands.hpp"
 #include "enum_choice.hpp"
-#include "output_dir.hpp"
-#include "number_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/render/error_plot.hpp"
+#include "number_checks.hpp"
+#include "output_dir.hpp"
 
 namespace hba::cli {
 namespace {
@@ -43,11 +43,11 @@ std::string statsRow(const std::string& prefix, const char* name, const eval::Er
 
 std::string table(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
   const std::string prefix = args.label.empty() ? "" : args.label + "  ";
-  std::string out = fmt::format(
-      "{}{} of {} estimated poses matched by {}, alignment {}{}; RPE over {} {}\n", prefix,
-      r.matched, r.estimate_count, hba::toString(r.association_used), args.align,
-      args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
-      args.delta_unit);
+  std::string out =
+      fmt::format("{}{} of {} estimated poses matched by {}, alignment {}{}; RPE over {} {}\n", prefix,
+                  r.matched, r.estimate_count, hba::toString(r.association_used), args.align,
+                  args.align == "sim3" ? fmt::format(" (scale {:.6f})", r.alignment.scale) : "", args.delta,
+                  args.delta_unit);
   out += fmt::format("{}{:<14} {:>11} {:>11} {:>11} {:>11} {:>11} {:>11}\n", prefix, "", "rmse", "mean",
                      "median", "std", "min", "max");
   out += statsRow(prefix, "ATE trans m", r.ate.translation_m);
@@ -64,7 +64,8 @@ nlohmann::json statsJson(const eval::ErrorStats& s) {
 
 nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation& r) {
   nlohmann::json rotation = nlohmann::json::array();
-  for (int i = 0; i < 3; ++i) rotation.push_back({r.alignment.R(i, 0), r.alignment.R(i, 1), r.alignment.R(i, 2)});
+  for (int i = 0; i < 3; ++i)
+    rotation.push_back({r.alignment.R(i, 0), r.alignment.R(i, 1), r.alignment.R(i, 2)});
   return {
       {"label", args.label},
       {"gt", args.gt},
@@ -78,7 +79,8 @@ nlohmann::json reportJson(const EvalArgs& args, const eval::TrajectoryEvaluation
         {"rotation", rotation},
         {"translation", {r.alignment.t.x(), r.alignment.t.y(), r.alignment.t.z()}},
         {"scale", r.alignment.scale}}},
-      {"ate", {{"translation_m", statsJson(r.ate.translation_m)}, {"rotation_deg", statsJson(r.ate.rotation_deg)}}},
+      {"ate",
+       {{"translation_m", statsJson(r.ate.translation_m)}, {"rotation_deg", statsJson(r.ate.rotation_deg)}}},
       {"rpe",
        {{"delta", args.delta},
         {"delta_unit", args.delta_unit},
@@ -97,7 +99,8 @@ void run(const EvalArgs& args) {
 
   if (!args.json.empty()) refuseToReplace(args.json, args.force);
   if (!args.plot.empty()) {
-    if (std::filesystem::path(args.plot).extension() != ".png") failAt(args.plot, "the plot must be a .png file");
+    if (std::filesystem::path(args.plot).extension() != ".png")
+      failAt(args.plot, "the plot must be a .png file");
     refuseToReplace(args.plot, args.force);
   }
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
@@ -105,10 +108,10 @@ void run(const EvalArgs& args) {
   const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
   const double share = static_cast<double>(result.matched) / static_cast<double>(result.estimate_count);
   if (share < args.min_matched && result.association_used == eval::AssociationMode::Index) {
-    throw Error(fmt::format("{}: only {} of {} estimated poses have a ground-truth pose at their index in {} "
-                            "({} poses; --min-matched {}): are they the same sequence?",
-                            args.est, result.matched, result.estimate_count, args.gt, gt.size(),
-                            args.min_matched));
+    throw Error(
+        fmt::format("{}: only {} of {} estimated poses have a ground-truth pose at their index in {} "
+                    "({} poses; --min-matched {}): are they the same sequence?",
+                    args.est, result.matched, result.estimate_count, args.gt, gt.size(), args.min_matched));
   }
   if (share < args.min_matched) {
     throw Error(fmt::format(
@@ -138,7 +141,8 @@ void run(const EvalArgs& args) {
     spdlog::info("wrote {}", args.plot);
   }
   if (!args.json.empty()) {
-    writeFileAtomically(args.json, [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
+    writeFileAtomically(args.json,
+                        [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
   }
 }
 
@@ -152,19 +156,22 @@ void registerEvalCommand(CLI::App& app) {
   command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(CLI::ExistingFile);
   const auto formats = oneOf<io::PoseFormat>();
   command->add_option("--gt-format", args->gt_format, "Format of --gt (default: detected)")->check(formats);
-  command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")->check(formats);
+  command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")
+      ->check(formats);
   command->add_option("--align", args->align, "Alignment of the estimate onto the ground truth")
       ->check(oneOf<eval::Alignment>())
       ->capture_default_str();
-  command->add_option("--assoc", args->assoc,
-                      "Pose pairing: auto = by time when both files have timestamps, else by index")
+  command
+      ->add_option("--assoc", args->assoc,
+                   "Pose pairing: auto = by time when both files have timestamps, else by index")
       ->check(oneOf<eval::AssociationMode>())
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
       ->check(nonNegative())
       ->capture_default_str();
-  command->add_option("--min-matched", args->min_matched,
-                      "Fail when fewer than this share of estimated poses pair with ground truth")
+  command
+      ->add_option("--min-matched", args->min_matched,
+                   "Fail when fewer than this share of estimated poses pair with ground truth")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--delta", args->delta, "RPE distance between compared poses")

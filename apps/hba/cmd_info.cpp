@@ -3,12 +3,12 @@
 // (PCD headers and .bin file sizes give the point counts).
 #include <tbb/parallel_for.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <exception>
 #include <iostream>
-#include <fmt/format.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "number_checks.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/scan_file_summary.hpp"
+#include "number_checks.hpp"
 
 namespace hba::cli {
 namespace {
@@ -110,9 +110,8 @@ void printText(const io::Dataset& dataset, const Summary& s) {
             << "layout:      " << dataset.layout() << "\n"
             << "scans:       " << dataset.size() << " (" << extension << ") in "
             << dataset.scansDir().string() << "\n"
-            << "poses:       " << dataset.trajectory().size() << " ("
-            << hba::toString(dataset.poseFormat()) << ") from " << dataset.posesFile().string()
-            << "\n";
+            << "poses:       " << dataset.trajectory().size() << " (" << hba::toString(dataset.poseFormat())
+            << ") from " << dataset.posesFile().string() << "\n";
   if (!dataset.calibrationFile().empty()) {
     std::cout << "calibration: camera poses turned into LiDAR poses with Tr of "
               << dataset.calibrationFile().string() << "\n";
@@ -127,9 +126,10 @@ void printText(const io::Dataset& dataset, const Summary& s) {
                            printable(s.extent_min.y()), printable(s.extent_max.y()),
                            printable(s.extent_min.z()), printable(s.extent_max.z()));
   if (s.has_duration) {
-    const std::string source = dataset.stampsSource() == "times file" ? dataset.timesFile().filename().string()
-                               : dataset.stampsSource() == "scan names" ? "the scan names"
-                                                                        : dataset.posesFile().filename().string();
+    const std::string source =
+        dataset.stampsSource() == "times file"   ? dataset.timesFile().filename().string()
+        : dataset.stampsSource() == "scan names" ? "the scan names"
+                                                 : dataset.posesFile().filename().string();
     std::cout << fmt::format("duration:    {:.2f} s (timestamps from {})\n", s.duration_s, source);
   } else {
     std::cout << "duration:    unknown (no timestamps: give --times FILE)\n";
@@ -140,8 +140,10 @@ void printText(const io::Dataset& dataset, const Summary& s) {
   if (dataset.scansInWorld()) std::cout << "scans:       saved in the world frame (--scans-in-world)\n";
   const double far = std::max(s.extent_min.cwiseAbs().maxCoeff(), s.extent_max.cwiseAbs().maxCoeff());
   if (far > 1e4) {
-    std::cout << fmt::format("coordinates: {:.0f} km from the origin; hba works relative to the first "
-                             "pose (no precision lost)\n", far / 1000.0);
+    std::cout << fmt::format(
+        "coordinates: {:.0f} km from the origin; hba works relative to the first "
+        "pose (no precision lost)\n",
+        far / 1000.0);
   }
 }
 
@@ -161,7 +163,9 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
       {"scans_in_world", dataset.scansInWorld()},
       {"points_per_scan",
-       {{"min", s.points.min}, {"median", s.points.median}, {"max", s.points.max},
+       {{"min", s.points.min},
+        {"median", s.points.median},
+        {"max", s.points.max},
         {"scans_looked_at", s.points.scans_looked_at}}},
       {"fields", s.fields},
       {"scan_encoding", s.scan_encoding},
@@ -190,8 +194,9 @@ void registerInfoCommand(CLI::App& app) {
   auto* command = app.add_subcommand(
       "info", "Show what a dataset folder holds: layout, scans, poses, points, trajectory");
   options->dataset.addTo(command);
-  command->add_option("--sample", options->sample,
-                      "Look at N evenly spaced scans for the point statistics (0 = all)")
+  command
+      ->add_option("--sample", options->sample,
+                   "Look at N evenly spaced scans for the point statistics (0 = all)")
       ->check(nonNegative());
   command->add_flag("--json", options->json, "Print a JSON document instead of text");
   command->callback([options] { runInfo(*options); });

@@ -5,15 +5,15 @@
 #include <string>
 
 #include "commands.hpp"
-#include "enum_choice.hpp"
-#include "number_checks.hpp"
-#include "output_dir.hpp"
 #include "dataset_args.hpp"
+#include "enum_choice.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/pcd.hpp"
-#include "hba/io/scan_source.hpp"
 #include "hba/io/ply.hpp"
+#include "hba/io/scan_source.hpp"
+#include "number_checks.hpp"
+#include "output_dir.hpp"
 
 namespace hba::cli {
 namespace {
@@ -59,9 +59,10 @@ void registerMapCommand(CLI::App& app) {
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
       ->check(nonNegative())
       ->capture_default_str();
-  command->add_option("--color", args->color,
-                      "What the intensity field carries: none (mean intensity), scan (scan index), "
-                      "height (z)")
+  command
+      ->add_option("--color", args->color,
+                   "What the intensity field carries: none (mean intensity), scan (scan index), "
+                   "height (z)")
       ->check(oneOf<eval::MapColor>())
       ->capture_default_str();
   command->callback([args] { run(*args); });

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "commands.hpp"
-#include "number_checks.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
@@ -13,6 +12,7 @@
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
 #include "hba/io/scan_source.hpp"
+#include "number_checks.hpp"
 
 namespace hba::cli {
 namespace {
@@ -28,7 +28,6 @@ struct MmeArgs {
   bool exclude_self = false;
   bool sample = false;
 };
-
 
 void run(MmeArgs& args) {
   args.map.rule = args.first_point ? eval::VoxelRule::FirstPoint : eval::VoxelRule::Centroid;
@@ -53,17 +52,17 @@ void run(MmeArgs& args) {
   spdlog::info("map of {} points built in {:.2f} s, entropy in {:.2f} s", map.size(), merge_seconds,
                secondsSince(start) - merge_seconds);
   if (result.used == 0) throw Error("no map point has enough neighbours: MME is undefined");
-  fmt::print("MME {:.6f} ({} of {} points with {} {} neighbours within {} m; map voxel {} m)\n",
-             result.mme, result.used, result.points, args.entropy.strictly_more ? ">" : ">=",
-             args.entropy.min_neighbors, args.entropy.radius, args.map.voxel);
+  fmt::print("MME {:.6f} ({} of {} points with {} {} neighbours within {} m; map voxel {} m)\n", result.mme,
+             result.used, result.points, args.entropy.strictly_more ? ">" : ">=", args.entropy.min_neighbors,
+             args.entropy.radius, args.map.voxel);
 }
 
 }  // namespace
 
 void registerMmeCommand(CLI::App& app) {
   auto args = std::make_shared<MmeArgs>();
-  auto* command = app.add_subcommand(
-      "mme", "Mean map entropy of the merged map (lower = crisper); DIR or --map FILE");
+  auto* command =
+      app.add_subcommand("mme", "Mean map entropy of the merged map (lower = crisper); DIR or --map FILE");
   args->data.addTo(command);
   command->get_option("DIR")->required(false);
   command->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin) instead of a dataset")
@@ -74,8 +73,9 @@ void registerMmeCommand(CLI::App& app) {
   command->add_option("--radius", args->entropy.radius, "Neighbourhood radius (m)")
       ->check(positive())
       ->capture_default_str();
-  command->add_option("--min-neighbors", args->entropy.min_neighbors,
-                      "Points with no more neighbours than this are left out")
+  command
+      ->add_option("--min-neighbors", args->entropy.min_neighbors,
+                   "Points with no more neighbours than this are left out")
       ->check(nonNegative())
       ->capture_default_str();
   auto* rules = command->add_option_group("Rule variants", "Alternative MME conventions (docs/eval.md)");

@@ -76,8 +76,7 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset, const io
   const std::optional<Trajectory> gt = groundTruth(args, dataset);
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
-  render::writeBeforeAfter(scans, dataset.trajectory().poses, optimized,
-                           gt ? &gt->poses : nullptr, png);
+  render::writeBeforeAfter(scans, dataset.trajectory().poses, optimized, gt ? &gt->poses : nullptr, png);
 }
 
 // The sensor poses in three formats, and the poses of the frame the input
@@ -85,8 +84,9 @@ void writePicture(const OptimizeArgs& args, const io::Dataset& dataset, const io
 std::vector<std::string> writeOptimizedPoses(const fs::path& out, const io::Dataset& dataset,
                                              const std::vector<Pose>& poses) {
   if (!dataset.trajectory().hasStamps()) {
-    spdlog::info("no timestamps (none in the trajectory, no times.txt, scans not named by time): "
-                 "poses_tum.txt carries the scan index as time; give --times FILE for real stamps");
+    spdlog::info(
+        "no timestamps (none in the trajectory, no times.txt, scans not named by time): "
+        "poses_tum.txt carries the scan index as time; give --times FILE for real stamps");
   }
   Trajectory optimized;
   optimized.poses = poses;
@@ -124,34 +124,40 @@ nlohmann::json checkConventions(const OptimizeArgs& args, const io::ScanSource& 
   given.scans_in_world = dataset.scansInWorld();
   given.extrinsic = !dataset.inputFrame().empty();
   const pyramid::ConventionCheck check = pyramid::checkConventions(source, dataset.trajectory().poses, given);
-  if (check.verdict != pyramid::ConventionVerdict::AsGiven) throw Error(dataset.root().string() + ": " + check.message);
+  if (check.verdict != pyramid::ConventionVerdict::AsGiven)
+    throw Error(dataset.root().string() + ": " + check.message);
   if (check.stretches == 0) {
     spdlog::info("convention check: the path has no stretch long enough to tell");
     return "not enough motion to tell";
   }
-  spdlog::info("convention check: the poses as given make the crispest map ({:.2f}; inverted {:.2f}, "
-               "no poses {:.2f}, of a turned body {:.2f})",
-               check.as_given, check.inverted, check.in_world, check.turned);
-  return {{"stretches", check.stretches}, {"as_given", check.as_given}, {"inverted", check.inverted},
-          {"no_poses", check.in_world}, {"turned_body", check.turned}};
+  spdlog::info(
+      "convention check: the poses as given make the crispest map ({:.2f}; inverted {:.2f}, "
+      "no poses {:.2f}, of a turned body {:.2f})",
+      check.as_given, check.inverted, check.in_world, check.turned);
+  return {{"stretches", check.stretches},
+          {"as_given", check.as_given},
+          {"inverted", check.inverted},
+          {"no_poses", check.in_world},
+          {"turned_body", check.turned}};
 }
 
 void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io::Dataset& dataset,
                  const pyramid::HbaSettings& settings, const nlohmann::json& conventions) {
   nlohmann::json report = pyramid::reportToJson(result.report);
   report["convention_check"] = conventions;
-  report["input"] = {{"dataset", fs::absolute(dataset.root()).string()},
-                     {"layout", dataset.layout()},
-                     {"poses", fs::absolute(dataset.posesFile()).string()},
-                     {"pose_format", hba::toString(dataset.poseFormat())},
-                     {"scans", dataset.size()},
-                     {"stamps", dataset.stampsSource().empty() ? "none (scan index)" : dataset.stampsSource()},
-                     {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
-                     {"scans_in_world", dataset.scansInWorld()}};
+  report["input"] = {
+      {"dataset", fs::absolute(dataset.root()).string()},
+      {"layout", dataset.layout()},
+      {"poses", fs::absolute(dataset.posesFile()).string()},
+      {"pose_format", hba::toString(dataset.poseFormat())},
+      {"scans", dataset.size()},
+      {"stamps", dataset.stampsSource().empty() ? "none (scan index)" : dataset.stampsSource()},
+      {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
+      {"scans_in_world", dataset.scansInWorld()}};
   report["settings"] = pyramid::settingsToJson(settings);
   report["peak_memory_mib"] = peakMemoryMiB();
-  writeFileAtomically(out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; },
-                      false);
+  writeFileAtomically(
+      out / "report.json", [&](std::ostream& os) { os << report.dump(2) << '\n'; }, false);
 }
 
 void run(const OptimizeArgs& args) {
@@ -165,9 +171,9 @@ void run(const OptimizeArgs& args) {
   if (args.output.empty()) throw CLI::RequiredError("--output");
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
-  settings.threads = static_cast<int>(std::min<std::size_t>(
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
-      static_cast<std::size_t>(tbb::info::default_concurrency())));
+  settings.threads = static_cast<int>(
+      std::min<std::size_t>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
+                            static_cast<std::size_t>(tbb::info::default_concurrency())));
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
@@ -179,21 +185,20 @@ void run(const OptimizeArgs& args) {
   const io::DatasetScanSource scans(dataset);
   const nlohmann::json conventions =
       checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset);
-  spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(),
-               dataset.layout(), dataset.size(), dataset.posesFile().string());
+  spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
+               dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
   spdlog::info("threads: {}", settings.threads);
 
-  const pyramid::HbaResult result =
-      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings);
+  const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, conventions);
 
   if (!args.no_render) writePicture(args, dataset, scans, result.poses, out);
   staging.commit();
-  spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total,
-               peakMemoryMiB(), staging.destination().string());
+  spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
+               staging.destination().string());
   spdlog::info("wrote {}, report.json{}", fmt::format("{}", fmt::join(written, ", ")),
                args.no_render ? "" : ", before_after.png");
 }
@@ -202,8 +207,8 @@ void run(const OptimizeArgs& args) {
 
 void registerOptimizeCommand(CLI::App& app) {
   auto args = std::make_shared<OptimizeArgs>();
-  auto* command = app.add_subcommand(
-      "optimize", "Optimize the poses of a sequence (hierarchical BA + pose graph)");
+  auto* command =
+      app.add_subcommand("optimize", "Optimize the poses of a sequence (hierarchical BA + pose graph)");
   args->data.addTo(command);
   command->get_option("DIR")->required(false);
   command->add_option("-o,--output", args->output,
@@ -212,8 +217,9 @@ void registerOptimizeCommand(CLI::App& app) {
                     "Print every setting (defaults, --config, flags) as a commented YAML file for "
                     "--config, and stop");
   command->add_flag("--force", args->force, "Replace a non-empty output folder (as a whole, at the end)");
-  command->add_option("--gt", args->ground_truth,
-                      "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
+  command
+      ->add_option("--gt", args->ground_truth,
+                   "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
       ->check(CLI::ExistingFile);
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-convention-check", args->no_convention_check,

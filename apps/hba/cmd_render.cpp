@@ -5,13 +5,13 @@
 #include <string>
 
 #include "commands.hpp"
-#include "number_checks.hpp"
-#include "output_dir.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/render/map_picture.hpp"
+#include "number_checks.hpp"
+#include "output_dir.hpp"
 
 namespace hba::cli {
 namespace {
@@ -33,7 +33,8 @@ std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::string& pa
 }
 
 void run(RenderArgs& args) {
-  if (std::filesystem::path(args.output).extension() != ".png") failAt(args.output, "the picture must be a .png file");
+  if (std::filesystem::path(args.output).extension() != ".png")
+    failAt(args.output, "the picture must be a .png file");
   if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);
   args.settings.side_view = !args.no_side;
 
@@ -57,20 +58,26 @@ void run(RenderArgs& args) {
 
 void registerRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
-  auto* command = app.add_subcommand(
-      "render", "PNG of the merged map seen from above (and the side), with trajectories; "
-                "--compare draws before and after side by side");
+  auto* command =
+      app.add_subcommand("render",
+                         "PNG of the merged map seen from above (and the side), with trajectories; "
+                         "--compare draws before and after side by side");
   args->data.addTo(command);
   command->add_option("-o,--output", args->output, "Output picture (.png)")->required();
   command->add_flag("--force", args->force, "Replace an existing output file");
-  command->add_option("--compare", args->compare,
-                      "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
+  command
+      ->add_option("--compare", args->compare,
+                   "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
       ->check(CLI::ExistingFile);
   command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
       ->check(CLI::ExistingFile);
   command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
-  command->add_option("--width", args->settings.width, "Picture width (px)")->check(CLI::Range(200, 16384))->capture_default_str();
-  command->add_option("--height", args->settings.height, "Picture height (px)")->check(CLI::Range(200, 16384))->capture_default_str();
+  command->add_option("--width", args->settings.width, "Picture width (px)")
+      ->check(CLI::Range(200, 16384))
+      ->capture_default_str();
+  command->add_option("--height", args->settings.height, "Picture height (px)")
+      ->check(CLI::Range(200, 16384))
+      ->capture_default_str();
   command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m; 0 = keep all)")
       ->check(nonNegative())
       ->capture_default_str();

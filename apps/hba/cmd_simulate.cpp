@@ -5,10 +5,10 @@
 
 #include "commands.hpp"
 #include "enum_choice.hpp"
-#include "number_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/sim/simulation.hpp"
+#include "number_checks.hpp"
 
 namespace hba::cli {
 namespace {
@@ -69,12 +69,12 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
 void run(const SimulateArgs& args) {
   const auto start = Clock::now();
   const sim::Simulation simulation = sim::prepareSimulation(configFrom(args));
-  spdlog::info("world: {} triangles, {} spheres; path {:.0f} m over {} frames; sensor {} "
-               "({} rays/frame)",
-               simulation.world.triangles().size(), simulation.world.spheres().size(),
-               pathLength(simulation.truth.poses), simulation.truth.size(),
-               hba::toString(simulation.config.sensor.model),
-               simulation.config.sensor.raysPerFrame());
+  spdlog::info(
+      "world: {} triangles, {} spheres; path {:.0f} m over {} frames; sensor {} "
+      "({} rays/frame)",
+      simulation.world.triangles().size(), simulation.world.spheres().size(),
+      pathLength(simulation.truth.poses), simulation.truth.size(),
+      hba::toString(simulation.config.sensor.model), simulation.config.sensor.raysPerFrame());
   sim::WriteOptions options;
   options.force = args.force;
   options.poses_only = args.poses_only;
@@ -85,8 +85,8 @@ void run(const SimulateArgs& args) {
   };
   sim::writeSimulation(simulation, args.output, options);
   const double seconds = secondsSince(start);
-  spdlog::info("wrote {} ({} frames in {:.1f} s, {:.1f} frames/s)", args.output,
-               simulation.truth.size(), seconds, simulation.truth.size() / seconds);
+  spdlog::info("wrote {} ({} frames in {:.1f} s, {:.1f} frames/s)", args.output, simulation.truth.size(),
+               seconds, simulation.truth.size() / seconds);
 }
 
 }  // namespace
@@ -97,15 +97,14 @@ void registerSimulateCommand(CLI::App& app) {
       "simulate",
       "Write a synthetic LiDAR sequence (HBA layout: pcd/, pose.json with drifting initial "
       "poses, gt.txt ground truth in TUM format, times.txt, sim.yaml)");
-  command->add_option("-o,--output", args->output, "Output folder (must be empty or absent)")
-      ->required();
+  command->add_option("-o,--output", args->output, "Output folder (must be empty or absent)")->required();
   command->add_option("--frames", args->frames, "Number of frames (10 Hz)")
       ->check(positive())
       ->capture_default_str();
-  command->add_option("--seed", args->seed, "Random seed (same seed, same files)")
-      ->capture_default_str();
-  command->add_option("--trajectory", args->trajectory,
-                      "block | figure8 | street | a KITTI/TUM/HBA trajectory file")
+  command->add_option("--seed", args->seed, "Random seed (same seed, same files)")->capture_default_str();
+  command
+      ->add_option("--trajectory", args->trajectory,
+                   "block | figure8 | street | a KITTI/TUM/HBA trajectory file")
       ->capture_default_str();
   command->add_option("--speed", args->speed, "Vehicle speed in m/s (procedural paths)")
       ->capture_default_str();
@@ -115,32 +114,35 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_option("--noise", args->noise, "Range noise sigma in m (default: 0.02)");
   command->add_option("--dropout", args->dropout, "Probability a return is lost (default: 0.02)");
   command->add_option("--max-range", args->max_range, "Maximum range in m (default: preset)");
-  command->add_option("--drift-translation", args->drift_translation,
-                      "Odometry translation drift, fraction of distance (0.01 = 1 %)")
+  command
+      ->add_option("--drift-translation", args->drift_translation,
+                   "Odometry translation drift, fraction of distance (0.01 = 1 %)")
       ->capture_default_str();
-  command->add_option("--drift-rotation", args->drift_rotation,
-                      "Odometry heading drift in deg per metre")
+  command->add_option("--drift-rotation", args->drift_rotation, "Odometry heading drift in deg per metre")
       ->capture_default_str();
-  command->add_option("--jitter-translation", args->jitter_translation,
-                      "Per-frame odometry noise on top of the drift, sigma per axis (m)")
+  command
+      ->add_option("--jitter-translation", args->jitter_translation,
+                   "Per-frame odometry noise on top of the drift, sigma per axis (m)")
       ->default_val(args->jitter_translation);
-  command->add_option("--jitter-rotation", args->jitter_rotation,
-                      "Per-frame odometry noise on top of the drift, sigma per axis (deg)")
+  command
+      ->add_option("--jitter-rotation", args->jitter_rotation,
+                   "Per-frame odometry noise on top of the drift, sigma per axis (deg)")
       ->default_val(args->jitter_rotation);
-  command->add_option("--scene", args->scene,
-                      "mixed | city (dense buildings) | open (sparse structure, vegetation) | indoor "
-                      "(corridors and halls under a ceiling)")
+  command
+      ->add_option("--scene", args->scene,
+                   "mixed | city (dense buildings) | open (sparse structure, vegetation) | indoor "
+                   "(corridors and halls under a ceiling)")
       ->check(oneOf<sim::Scene>())
       ->default_val(args->scene);
-  command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")
-      ->capture_default_str();
+  command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")->capture_default_str();
   command->add_flag("--loop-closed", args->loop_closed,
                     "Initial poses = truth + small independent noise (no drift)");
   command->add_flag("--poses-only", args->poses_only,
                     "Write pose.json, gt.txt, times.txt and sim.yaml but no scans (same bytes as a full "
                     "run; pair with optimize --poses to reuse another run's scans)");
-  command->add_option("--downsample", args->downsample,
-                      "Voxel size in m to thin each scan (0 = keep every return)")
+  command
+      ->add_option("--downsample", args->downsample,
+                   "Voxel size in m to thin each scan (0 = keep every return)")
       ->capture_default_str();
   command->add_flag("--force", args->force, "Replace a non-empty output folder");
   command->add_option("--progress-every", args->progress_every, "Log progress every N frames")

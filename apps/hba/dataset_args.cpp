@@ -46,14 +46,14 @@ Pose parsePoseArgument(const std::string& text, const std::string& flag) {
 }
 
 void DatasetArgs::addTo(CLI::App* command) {
-  command->add_option("DIR", dir, "Dataset folder (HBA, scans+trajectory, or KITTI layout)")
-      ->required();
+  command->add_option("DIR", dir, "Dataset folder (HBA, scans+trajectory, or KITTI layout)")->required();
   command->add_option("--scans", scans, "Folder of scans (overrides detection)");
   command->add_option("--poses", poses, "Trajectory file (overrides detection)");
-  command->add_option("--format", format, "Format of the --poses file")
-      ->check(oneOf<io::PoseFormat>());
+  command->add_option("--format", format, "Format of the --poses file")->check(oneOf<io::PoseFormat>());
   command->add_option("--times", times, "Timestamps, one per scan and line (seconds)");
-  auto* conventions = command->add_option_group("Conventions", "When the input is not sensor-to-world poses of sensor-frame scans (docs/io_datasets.md)");
+  auto* conventions = command->add_option_group(
+      "Conventions",
+      "When the input is not sensor-to-world poses of sensor-frame scans (docs/io_datasets.md)");
   conventions->add_flag("--invert-poses", invert_poses, "The poses map world to sensor: invert them");
   conventions->add_option("--extrinsic", extrinsic,
                           "The poses are of another body (IMU, base): T_body_sensor as "
@@ -77,8 +77,8 @@ io::Dataset DatasetArgs::open() const {
   io::Dataset dataset = io::Dataset::open(dir, overrides);
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.
   spdlog::debug("dataset {}: layout {}, {} scans in {}, poses {} ({})", dataset.root().string(),
-               dataset.layout(), dataset.size(), dataset.scansDir().string(),
-               dataset.posesFile().string(), hba::toString(dataset.poseFormat()));
+                dataset.layout(), dataset.size(), dataset.scansDir().string(), dataset.posesFile().string(),
+                hba::toString(dataset.poseFormat()));
   for (const io::DatasetNote& note : dataset.notes()) {
     if (note.level == io::DatasetNote::Level::Warning) {
       spdlog::warn("{}", note.text);

@@ -11,12 +11,12 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "number_checks.hpp"
-#include "progress_display.hpp"
-#include "usage_errors.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
+#include "number_checks.hpp"
+#include "progress_display.hpp"
+#include "usage_errors.hpp"
 
 namespace {
 
@@ -48,8 +48,9 @@ void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
 int main(int argc, char** argv) {
   // Before any thread starts: Ctrl-C then removes unfinished outputs.
   hba::startInterruptWatcher();
-  CLI::App app{"hba: turns a drifting LiDAR sequence into a globally consistent map\n"
-               "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
+  CLI::App app{
+      "hba: turns a drifting LiDAR sequence into a globally consistent map\n"
+      "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
   app.name("hba");
   app.set_version_flag("--version", std::string(HBA_VERSION));
   app.require_subcommand(1);
@@ -59,13 +60,13 @@ int main(int argc, char** argv) {
   bool verbose = false;
   bool quiet = false;
   std::string log_file;
-  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
-      ->check(hba::cli::nonNegative());
+  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")->check(hba::cli::nonNegative());
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
   app.add_option("--log-file", log_file, "Also write every message, with times, to this file");
-  app.footer("Exit codes: 0 success, 1 failure (bad input, a run that could not finish), 2 usage error.\n"
-             "Logs go to stderr, results to stdout. Docs: README.md and docs/.");
+  app.footer(
+      "Exit codes: 0 success, 1 failure (bad input, a run that could not finish), 2 usage error.\n"
+      "Logs go to stderr, results to stdout. Docs: README.md and docs/.");
 
   hba::cli::registerInfoCommand(app);
   hba::cli::registerSimulateCommand(app);
@@ -81,13 +82,13 @@ int main(int argc, char** argv) {
     setUpLogging(verbose, quiet, log_file);
     hba::cli::installProgressDisplay(!quiet && ::isatty(STDERR_FILENO) != 0);
     if (threads > 0) {
-      thread_limit = std::make_unique<tbb::global_control>(
-          tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+      thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                           static_cast<std::size_t>(threads));
     }
   });
 
   setUpLogging(false, false, "");  // until the flags are known
-  if (argc == 1) {  // `hba` alone: what it can do
+  if (argc == 1) {                 // `hba` alone: what it can do
     std::cout << app.help();
     return hba::cli::kExitSuccess;
   }

@@ -5,8 +5,8 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <memory>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "hba/core/progress.hpp"

@@ -41,14 +41,17 @@ void SettingFlags::addTo(CLI::App* command) {
     switch (typed.type) {
       case SettingType::Switch:
         // A switch's flag turns it off (--no-refine).
-        group->add_flag_callback(setting.flag, [&slot] { slot = false; }, help);
+        group->add_flag_callback(
+            setting.flag, [&slot] { slot = false; }, help);
         continue;
       case SettingType::Integer:
       case SettingType::Count:
-        option = group->add_option_function<long long>(setting.flag, [&slot](const long long& v) { slot = v; }, help);
+        option = group->add_option_function<long long>(
+            setting.flag, [&slot](const long long& v) { slot = v; }, help);
         break;
       case SettingType::Real:
-        option = group->add_option_function<double>(setting.flag, [&slot](const double& v) { slot = v; }, help);
+        option = group->add_option_function<double>(
+            setting.flag, [&slot](const double& v) { slot = v; }, help);
         break;
       case SettingType::Choice:
         option = group->add_option_function<std::string>(

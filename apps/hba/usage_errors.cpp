@@ -23,7 +23,8 @@ std::vector<std::string> flagNames(const CLI::App* app) {
     for (const CLI::Option* option : app->get_options()) {
       for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
     }
-    for (const CLI::App* group : app->get_subcommands([](const CLI::App* a) { return a->get_name().empty(); })) {
+    for (const CLI::App* group :
+         app->get_subcommands([](const CLI::App* a) { return a->get_name().empty(); })) {
       for (const CLI::Option* option : group->get_options()) {
         for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
       }

@@ -25,8 +25,8 @@ void BM_PlaneCostCluster(benchmark::State& state) {
   std::mt19937 rng(1);
   const int frames = static_cast<int>(state.range(0));
   const auto poses = test::randomPoses(rng, frames, 5.0);
-  const auto plane = test::randomPlane(rng, poses, firstFrames(frames),
-                                       static_cast<int>(state.range(1)), 0.02);
+  const auto plane =
+      test::randomPlane(rng, poses, firstFrames(frames), static_cast<int>(state.range(1)), 0.02);
   const FrameTransforms transforms(poses);
   for (auto _ : state) benchmark::DoNotOptimize(planeCost(plane.observation, transforms));
 }
@@ -36,8 +36,8 @@ void BM_PlaneDerivativesCluster(benchmark::State& state) {
   std::mt19937 rng(1);
   const int frames = static_cast<int>(state.range(0));
   const auto poses = test::randomPoses(rng, frames, 5.0);
-  const auto plane = test::randomPlane(rng, poses, firstFrames(frames),
-                                       static_cast<int>(state.range(1)), 0.02);
+  const auto plane =
+      test::randomPlane(rng, poses, firstFrames(frames), static_cast<int>(state.range(1)), 0.02);
   const FrameTransforms transforms(poses);
   for (auto _ : state) {
     const PlaneLinearization lin = linearizePlane(plane.observation, transforms);
@@ -51,8 +51,8 @@ void BM_PlaneDerivativesPointwise(benchmark::State& state) {
   std::mt19937 rng(1);
   const int frames = static_cast<int>(state.range(0));
   const auto poses = test::randomPoses(rng, frames, 5.0);
-  const auto plane = test::randomPlane(rng, poses, firstFrames(frames),
-                                       static_cast<int>(state.range(1)), 0.02);
+  const auto plane =
+      test::randomPlane(rng, poses, firstFrames(frames), static_cast<int>(state.range(1)), 0.02);
   for (auto _ : state) {
     benchmark::DoNotOptimize(test::pointwisePlaneDerivatives(plane.sensor_points, poses));
   }
@@ -77,23 +77,21 @@ PlaneProblem makeProblem(int frames, int planes, int per_plane, std::vector<Pose
 // Args: frames, planes, frames per plane.
 void BM_ProblemLinearize(benchmark::State& state) {
   std::vector<Pose> poses;
-  const PlaneProblem problem =
-      makeProblem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                  static_cast<int>(state.range(2)), poses);
+  const PlaneProblem problem = makeProblem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                                           static_cast<int>(state.range(2)), poses);
   for (auto _ : state) benchmark::DoNotOptimize(problem.linearize(poses));
   state.SetItemsProcessed(state.iterations() * state.range(1));  // planes
 }
 BENCHMARK(BM_ProblemLinearize)
-    ->Args({10, 400, 6})       // a local window
-    ->Args({300, 3000, 10})    // a top layer
+    ->Args({10, 400, 6})     // a local window
+    ->Args({300, 3000, 10})  // a top layer
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 void BM_ProblemCost(benchmark::State& state) {
   std::vector<Pose> poses;
-  const PlaneProblem problem =
-      makeProblem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
-                  static_cast<int>(state.range(2)), poses);
+  const PlaneProblem problem = makeProblem(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                                           static_cast<int>(state.range(2)), poses);
   for (auto _ : state) benchmark::DoNotOptimize(problem.cost(poses));
   state.SetItemsProcessed(state.iterations() * state.range(1));
 }

@@ -88,8 +88,7 @@ void BM_RealWindowLinearize(benchmark::State& state) {
   if (!w) return state.SkipWithError("HBA_BENCH_WINDOW is not set");
   const Association association = associate(w->pointers(), w->poses, planesAt(1.0), 0.05);
   for (auto _ : state) benchmark::DoNotOptimize(association.problem.linearize(w->poses));
-  state.SetItemsProcessed(state.iterations() *
-                          static_cast<std::int64_t>(association.problem.numPlanes()));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(association.problem.numPlanes()));
 }
 BENCHMARK(BM_RealWindowLinearize)->Unit(benchmark::kMillisecond);
 
@@ -98,8 +97,7 @@ void BM_RealWindowCost(benchmark::State& state) {
   if (!w) return state.SkipWithError("HBA_BENCH_WINDOW is not set");
   const Association association = associate(w->pointers(), w->poses, planesAt(1.0), 0.05);
   for (auto _ : state) benchmark::DoNotOptimize(association.problem.cost(w->poses));
-  state.SetItemsProcessed(state.iterations() *
-                          static_cast<std::int64_t>(association.problem.numPlanes()));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(association.problem.numPlanes()));
 }
 BENCHMARK(BM_RealWindowCost)->Unit(benchmark::kMillisecond);
 

@@ -26,7 +26,8 @@ void BM_MergeHku1(benchmark::State& state) {
   const auto dataset = hba::io::Dataset::open(kHku1);
   const hba::io::DatasetScanSource scans(dataset);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(hba::eval::buildMergedMap(scans, dataset.trajectory().poses, hba::eval::MapSettings{}));
+    benchmark::DoNotOptimize(
+        hba::eval::buildMergedMap(scans, dataset.trajectory().poses, hba::eval::MapSettings{}));
   }
 }
 BENCHMARK(BM_MergeHku1)->Unit(benchmark::kMillisecond);

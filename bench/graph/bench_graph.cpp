@@ -51,8 +51,8 @@ Problem makeProblem(int n, Start start) {
       hba::graph::RelativePoseFactor f;
       f.from = static_cast<std::size_t>(i);
       f.to = static_cast<std::size_t>(i + spacing);
-      f.measurement = hba::relative(truth[f.from], truth[f.to]) *
-                      hba::se3Exp(randomTangent(rng, 0.01, 0.001));
+      f.measurement =
+          hba::relative(truth[f.from], truth[f.to]) * hba::se3Exp(randomTangent(rng, 0.01, 0.001));
       f.information = information;
       p.factors.push_back(f);
     }
@@ -66,16 +66,14 @@ Problem makeProblem(int n, Start start) {
   p.initial = {truth.front()};
   for (int i = 1; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    p.initial.push_back(start == Near
-                            ? truth[k] * hba::se3Exp(randomTangent(rng, 0.05, 0.005))
-                            : p.initial.back() * p.factors[k - 1].measurement);
+    p.initial.push_back(start == Near ? truth[k] * hba::se3Exp(randomTangent(rng, 0.05, 0.005))
+                                      : p.initial.back() * p.factors[k - 1].measurement);
   }
   return p;
 }
 
 void BM_OptimizePoseGraph(benchmark::State& state) {
-  const Problem p =
-      makeProblem(static_cast<int>(state.range(0)), static_cast<Start>(state.range(2)));
+  const Problem p = makeProblem(static_cast<int>(state.range(0)), static_cast<Start>(state.range(2)));
   hba::graph::PoseGraphSettings settings;
   settings.threads = static_cast<int>(state.range(1));
   int iterations = 0;

@@ -95,14 +95,13 @@ int main(int argc, char** argv) {
   app.add_option("DIR", dir, "Dataset folder (any layout hba reads)")->required();
   app.add_option("--voxel", voxel, "Downsampling voxel (m), as optimize's --scan-voxel")
       ->capture_default_str();
-  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
 
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0) {
-    thread_limit = std::make_unique<tbb::global_control>(
-        tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                         static_cast<std::size_t>(threads));
   }
   try {
     run(dir, voxel);

@@ -35,9 +35,9 @@ void BM_SimulateFrame(benchmark::State& state) {
     frame = (frame + 37) % simulation.truth.size();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));  // frames/s
-  state.counters["rays/s"] = benchmark::Counter(
-      static_cast<double>(state.iterations() * simulation.config.sensor.raysPerFrame()),
-      benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations() * simulation.config.sensor.raysPerFrame()),
+                         benchmark::Counter::kIsRate);
   state.counters["points/frame"] = static_cast<double>(points) / state.iterations();
   state.SetLabel(hba::toString(model));
 }
@@ -66,17 +66,14 @@ void BM_BuildWorld(benchmark::State& state) {
 }
 
 void allSensors(benchmark::internal::Benchmark* b) {
-  for (SensorModel m : {SensorModel::Vlp16, SensorModel::Hdl32, SensorModel::Hdl64,
-                        SensorModel::Os128, SensorModel::Livox}) {
+  for (SensorModel m :
+       {SensorModel::Vlp16, SensorModel::Hdl32, SensorModel::Hdl64, SensorModel::Os128, SensorModel::Livox}) {
     b->Arg(static_cast<int>(m));
   }
 }
 
 BENCHMARK(BM_SimulateFrame)->Apply(allSensors)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_SimulateFramesAllCores)
-    ->Apply(allSensors)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+BENCHMARK(BM_SimulateFramesAllCores)->Apply(allSensors)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_BuildWorld)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

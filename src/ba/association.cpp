@@ -15,8 +15,7 @@ namespace {
 // Mean and scatter of one run of points, in one pass of sums relative to
 // its first point (the points lie in one voxel: no cancellation), made
 // exactly symmetric.
-PointCluster clusterOf(const PointCloud& scan, const voxel::PointRef* begin,
-                       const voxel::PointRef* end) {
+PointCluster clusterOf(const PointCloud& scan, const voxel::PointRef* begin, const voxel::PointRef* end) {
   ShiftedMoments moments(scan.points[begin->index].cast<double>());
   for (const voxel::PointRef* r = begin; r != end; ++r) moments.add(scan.points[r->index].cast<double>());
   PointCluster cluster;
@@ -42,8 +41,7 @@ PlaneObservation observationOf(const voxel::PlaneFeature& feature,
     std::size_t stop = start;
     while (stop < refs.size() && refs[stop].frame == refs[start].frame) ++stop;
     const std::uint32_t frame = refs[start].frame;
-    obs.clusters.push_back({frame, clusterOf(*scans[frame], refs.data() + start,
-                                             refs.data() + stop)});
+    obs.clusters.push_back({frame, clusterOf(*scans[frame], refs.data() + start, refs.data() + stop)});
     start = stop;
   }
   return obs;
@@ -59,8 +57,7 @@ std::vector<PlaneObservation> buildObservations(const std::vector<voxel::PlaneFe
   return out;
 }
 
-std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual,
-                                        double reject_ratio) {
+std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, double reject_ratio) {
   std::vector<std::size_t> order(residual.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   const auto drop = static_cast<std::size_t>(

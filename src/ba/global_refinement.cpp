@@ -19,15 +19,13 @@ namespace {
 // little; the first round's figures go to `result`, the time and
 // iterations add up over calls.
 void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
-                 const RefinementSettings& settings, const MotionPrior& prior,
-                 RefinementResult& result) {
+                 const RefinementSettings& settings, const MotionPrior& prior, RefinementResult& result) {
   result.poses = initial;
   // At most this many rounds: the ETA is an upper bound.
   Progress progress("refinement", static_cast<std::size_t>(settings.association_rounds), "rounds");
   for (int round = 0; round < settings.association_rounds; ++round, progress.advance()) {
     const auto start = Clock::now();
-    Association association =
-        associate(scans, result.poses, settings.planes, settings.reject_ratio);
+    Association association = associate(scans, result.poses, settings.planes, settings.reject_ratio);
     // The points of each plane are summed into its clusters: their indices
     // (8 bytes a plane point) are not needed by the LM.
     association.features = {};
@@ -57,8 +55,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
 }
 
 // The pairs in `slid` and `reach` pairs either side, ascending, unique.
-std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t reach,
-                               std::size_t pairs) {
+std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t reach, std::size_t pairs) {
   std::vector<std::size_t> out;
   for (const std::size_t k : slid) {
     for (std::size_t j = k >= reach ? k - reach : 0; j <= std::min(pairs - 1, k + reach); ++j) {
@@ -72,10 +69,8 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 
 }  // namespace
 
-RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
-                                const std::vector<Pose>& initial,
-                                const RefinementSettings& settings,
-                                const std::vector<double>& path_m,
+RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+                                const RefinementSettings& settings, const std::vector<double>& path_m,
                                 const std::vector<Pose>& reference) {
   if (scans.size() != initial.size()) {
     throw Error("refinement: " + std::to_string(scans.size()) + " scans but " +
@@ -94,8 +89,8 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
   for (int attempt = 0;; ++attempt) {
     solveRounds(scans, initial, settings, prior, result);
     if (!settings.motion_prior.enabled || initial.size() < 2) break;
-    const std::vector<std::size_t> slid = stepsBeyondThePrior(
-        anchor, result.poses, path_m, settings.slide_prior, settings.slide_sigmas);
+    const std::vector<std::size_t> slid =
+        stepsBeyondThePrior(anchor, result.poses, path_m, settings.slide_prior, settings.slide_sigmas);
     if (slid.empty()) break;
     if (attempt == settings.max_holds) {
       result.still_sliding = slid.size();

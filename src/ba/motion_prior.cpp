@@ -11,8 +11,8 @@ namespace hba::ba {
 namespace {
 
 void validate(const MotionPriorSettings& s) {
-  const bool ok = s.translation_sigma > 0.0 && s.translation_per_m >= 0.0 &&
-                  s.rotation_sigma_deg > 0.0 && s.rotation_per_m_deg >= 0.0 && s.point_sigma > 0.0 &&
+  const bool ok = s.translation_sigma > 0.0 && s.translation_per_m >= 0.0 && s.rotation_sigma_deg > 0.0 &&
+                  s.rotation_per_m_deg >= 0.0 && s.point_sigma > 0.0 &&
                   std::isfinite(s.translation_sigma + s.translation_per_m + s.rotation_sigma_deg +
                                 s.rotation_per_m_deg + s.point_sigma);
   if (!ok) {
@@ -67,8 +67,7 @@ MotionPrior neighbourPrior(const std::vector<Pose>& initial, const std::vector<d
     term.measurement = relative(initial[k], initial[k + 1]);
     const double d = path_m.empty() ? term.measurement.t.norm() : path_m[k];
     const double sigma_t = settings.translation_sigma + settings.translation_per_m * d;
-    const double sigma_r =
-        (settings.rotation_sigma_deg + settings.rotation_per_m_deg * d) * M_PI / 180.0;
+    const double sigma_r = (settings.rotation_sigma_deg + settings.rotation_per_m_deg * d) * M_PI / 180.0;
     term.weight.diagonal() << Vec3::Constant(point_variance / (sigma_t * sigma_t)),
         Vec3::Constant(point_variance / (sigma_r * sigma_r));
     terms.push_back(term);

@@ -105,8 +105,7 @@ Mat3 planeScatter(const PlaneObservation& plane, const FrameTransforms& frames) 
 
 double planeCost(const PlaneObservation& plane, const FrameTransforms& frames) {
   const Mat3 scatter = planeScatter(plane, frames);
-  const double l1 =
-      Eigen::SelfAdjointEigenSolver<Mat3>(scatter, Eigen::EigenvaluesOnly).eigenvalues()(0);
+  const double l1 = Eigen::SelfAdjointEigenSolver<Mat3>(scatter, Eigen::EigenvaluesOnly).eigenvalues()(0);
   return std::max(l1, 0.0);  // rounding can make a perfect plane slightly negative
 }
 
@@ -125,8 +124,7 @@ void planeTerms(const PlaneObservation& plane, const FrameTransforms& frames, Pl
   terms.gradient.resize(F);
   terms.z.resize(F);
   terms.diagonal.resize(F);
-  terms.weights << (world.n > 0.0 ? -2.0 / world.n : 0.0),
-      eigenGapWeight(lambda(0), lambda(1), lambda(2)),
+  terms.weights << (world.n > 0.0 ? -2.0 / world.n : 0.0), eigenGapWeight(lambda(0), lambda(1), lambda(2)),
       eigenGapWeight(lambda(0), lambda(2), lambda(2));
 
   for (std::size_t a = 0; a < F; ++a) {
@@ -159,8 +157,7 @@ void planeTerms(const PlaneObservation& plane, const FrameTransforms& frames, Pl
     D.bottomLeftCorner<3, 3>() = D.topRightCorner<3, 3>().transpose();
     D.bottomRightCorner<3, 3>() = 2.0 * hat_u.transpose() * second_moment * hat_u;
     // ... plus the second-order term of Exp(dphi) in the rotation block.
-    D.bottomRightCorner<3, 3>() +=
-        y * u.transpose() + u * y.transpose() - 2.0 * u.dot(y) * Mat3::Identity();
+    D.bottomRightCorner<3, 3>() += y * u.transpose() + u * y.transpose() - 2.0 * u.dot(y) * Mat3::Identity();
   }
 }
 

@@ -20,8 +20,7 @@ PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num
       }
       // linearize() relies on this order to build only half the Hessian.
       if (a > 0 && clusters[a].frame <= clusters[a - 1].frame) {
-        throw Error("plane problem: plane " + std::to_string(p) +
-                    " lists its frames out of order or twice");
+        throw Error("plane problem: plane " + std::to_string(p) + " lists its frames out of order or twice");
       }
     }
   }

@@ -24,8 +24,6 @@ void PointCluster::merge(const PointCluster& other) {
   count = total;
 }
 
-Mat3 PointCluster::covariance() const {
-  return count > 0.0 ? Mat3(scatter / count) : Mat3::Zero();
-}
+Mat3 PointCluster::covariance() const { return count > 0.0 ? Mat3(scatter / count) : Mat3::Zero(); }
 
 }  // namespace hba::ba

@@ -1,13 +1,13 @@
 #include "hba/ba/sparse_lm.hpp"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <utility>
 
+#include <tbb/parallel_for.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <tbb/parallel_for.h>
 
 #include "hba/core/relative_pose_error.hpp"
 
@@ -29,9 +29,10 @@ struct PriorBlock {
 struct ObservationIndex {
   std::vector<std::uint32_t> plane_begin;  // observations of plane p: [plane_begin[p], plane_begin[p+1])
   std::vector<std::uint32_t> frame_of;     // per observation
-  std::vector<std::uint32_t> frame_begin;  // observations of frame i: uses[frame_begin[i] .. frame_begin[i+1])
-  std::vector<std::uint32_t> uses;         // observation indices, in plane order within a frame
-  std::vector<std::uint32_t> plane_of;     // per observation
+  std::vector<std::uint32_t>
+      frame_begin;                      // observations of frame i: uses[frame_begin[i] .. frame_begin[i+1])
+  std::vector<std::uint32_t> uses;      // observation indices, in plane order within a frame
+  std::vector<std::uint32_t> plane_of;  // per observation
 
   ObservationIndex(const PlaneProblem& problem, std::size_t frames) {
     plane_begin.push_back(0);
@@ -61,8 +62,8 @@ std::vector<std::size_t> planeChunks(const ObservationIndex& index, std::size_t 
                                      std::size_t partial_bytes, std::size_t budget) {
   const std::size_t observations = index.frame_of.size();
   const std::size_t by_memory = budget / std::max<std::size_t>(partial_bytes, 1);
-  const std::size_t chunks = std::clamp<std::size_t>(
-      std::min({std::size_t{64}, by_memory, observations / 4096}), 1, 64);
+  const std::size_t chunks =
+      std::clamp<std::size_t>(std::min({std::size_t{64}, by_memory, observations / 4096}), 1, 64);
   std::vector<std::size_t> begin{0};
   for (std::size_t c = 1; c < chunks; ++c) {
     const std::size_t target = observations * c / chunks;
@@ -89,8 +90,8 @@ struct FrameSums {
 // gradient products), per plane the weights.
 class FactoredSystem {
  public:
-  FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior,
-                 const ObservationIndex& index, const std::vector<Pose>& poses)
+  FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior, const ObservationIndex& index,
+                 const std::vector<Pose>& poses)
       : index_(index), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
     const std::size_t planes = problem.numPlanes();
@@ -104,8 +105,8 @@ class FactoredSystem {
     // Planes linearized in parallel chunks, each summing into its own
     // per-frame gradient and blocks (16 MB in all); the chunks are then
     // added in order (deterministic). No plane's full linearization is kept.
-    const std::vector<std::size_t> build = planeChunks(
-        index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{16} << 20);
+    const std::vector<std::size_t> build =
+        planeChunks(index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{16} << 20);
     std::vector<FrameSums> partial(build.size() - 1);
     tbb::parallel_for(std::size_t{0}, partial.size(), [&](std::size_t c) {
       FrameSums& sums = partial[c];
@@ -163,8 +164,7 @@ class FactoredSystem {
         const std::uint32_t k = index_.uses[u];
         const std::uint32_t p = index_.plane_of[k];
         const Eigen::Matrix<float, 6, 3> left =
-            Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() *
-            weights_[p].asDiagonal();
+            Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]).transpose() * weights_[p].asDiagonal();
         for (std::uint32_t l = index_.plane_begin[p]; l < index_.plane_begin[p + 1]; ++l) {
           const auto col = static_cast<Eigen::Index>(6 * index_.frame_of[l]);
           H.block<6, 6>(row, col) +=
@@ -173,7 +173,8 @@ class FactoredSystem {
       }
     });
     for (const PriorBlock& block : prior_) {
-      H.block<6, 6>(6 * static_cast<Eigen::Index>(block.a), 6 * static_cast<Eigen::Index>(block.b)) += block.ab;
+      H.block<6, 6>(6 * static_cast<Eigen::Index>(block.a), 6 * static_cast<Eigen::Index>(block.b)) +=
+          block.ab;
       H.block<6, 6>(6 * static_cast<Eigen::Index>(block.b), 6 * static_cast<Eigen::Index>(block.a)) +=
           block.ab.transpose();
     }
@@ -231,7 +232,7 @@ class FactoredSystem {
   const ObservationIndex& index_;
   std::size_t frames_ = 0;
   std::vector<std::size_t> chunk_begin_;  // planes of chunk c: [chunk_begin_[c], chunk_begin_[c+1])
-  std::vector<float> z_;  // 3x6 column-major per observation
+  std::vector<float> z_;                  // 3x6 column-major per observation
   std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;
@@ -297,8 +298,7 @@ Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd&
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
   const double r0 = r.norm();
-  for (int k = 0; k < settings.cg_max_iterations && r.norm() > settings.cg_relative_tolerance * r0;
-       ++k) {
+  for (int k = 0; k < settings.cg_max_iterations && r.norm() > settings.cg_relative_tolerance * r0; ++k) {
     const Eigen::VectorXd Ap = apply(p);
     const double curvature = p.dot(Ap);
     if (!(curvature > 0.0)) {
@@ -336,8 +336,7 @@ Mat6 positiveInverse(const Mat6& block) {
 }
 
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                        const SparseLmSettings& settings,
-                                        const MotionPrior& prior) {
+                                        const SparseLmSettings& settings, const MotionPrior& prior) {
   auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
   const ObservationIndex index(problem, poses.size());
 
@@ -360,8 +359,8 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
     ++summary.iterations;
 
     const Eigen::VectorXd scale = dampingScale(*system);
-    Eigen::VectorXd step = dense ? solveDampedDense(H, g, scale, mu)
-                                 : solveDamped(*system, scale, mu, settings);
+    Eigen::VectorXd step =
+        dense ? solveDampedDense(H, g, scale, mu) : solveDamped(*system, scale, mu, settings);
     double largest = 0.0;  // of the step, relative to the caps
     for (std::size_t i = 0; i < poses.size(); ++i) {
       largest = std::max({largest, step.segment<3>(6 * i).norm() / settings.max_step_m,

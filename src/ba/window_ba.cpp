@@ -27,9 +27,10 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
       !(settings.relative_cost_tolerance >= 0.0) ||
       !(settings.planes.voxel_size > 0.0 && std::isfinite(settings.planes.voxel_size)) ||
       !(settings.final_voxel_size >= 0.0 && std::isfinite(settings.final_voxel_size))) {
-    throw Error("window BA: invalid settings (need max_iterations >= 0, association_rounds >= 1, "
-                "0 <= reject_ratio < 1, relative_cost_tolerance >= 0, voxel_size > 0, "
-                "final_voxel_size >= 0)");
+    throw Error(
+        "window BA: invalid settings (need max_iterations >= 0, association_rounds >= 1, "
+        "0 <= reject_ratio < 1, relative_cost_tolerance >= 0, voxel_size > 0, "
+        "final_voxel_size >= 0)");
   }
 }
 
@@ -48,8 +49,8 @@ std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> co
   return costs;
 }
 
-std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
-    const std::vector<voxel::PlaneFeature>& features, const std::vector<const PointCloud*>& scans) {
+std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(const std::vector<voxel::PlaneFeature>& features,
+                                                             const std::vector<const PointCloud*>& scans) {
   // Marks instead of sorting: linear in the points, and keyframes hold millions.
   std::vector<std::vector<bool>> used(scans.size());
   for (std::size_t f = 0; f < scans.size(); ++f) used[f].assign(scans[f]->size(), false);
@@ -67,9 +68,8 @@ std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(
 
 }  // namespace
 
-BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
-                        const std::vector<Pose>& initial, const BaSettings& settings,
-                        const std::vector<double>& path_m) {
+BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+                        const BaSettings& settings, const std::vector<double>& path_m) {
   validate(scans, initial, settings);
   const MotionPrior full_prior = neighbourPrior(initial, path_m, settings.motion_prior);
   const MotionPrior no_prior;
@@ -80,9 +80,8 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
   Association last;
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
-  const double finest = settings.final_voxel_size > 0.0
-                            ? std::min(settings.final_voxel_size, coarsest)
-                            : coarsest;
+  const double finest =
+      settings.final_voxel_size > 0.0 ? std::min(settings.final_voxel_size, coarsest) : coarsest;
   const int halvings = static_cast<int>(std::ceil(std::log2(coarsest / finest) - 1e-9));
   BaSettings round_settings = settings;
   for (int round = 0; round < settings.association_rounds + halvings; ++round) {
@@ -112,10 +111,10 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
     // frames pulled apart far beyond what the prior allows (planes that
     // merge unrelated surfaces can make a map look crisper while frames
     // slide by metres).
-    const bool slid = settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
-                      !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior,
-                                           settings.slide_sigmas)
-                           .empty();
+    const bool slid =
+        settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
+        !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior, settings.slide_sigmas)
+             .empty();
     if (slid || result.fixed_map_cost_final > result.fixed_map_cost_initial) {
       result.trusted = false;
       result.poses = initial;

@@ -18,9 +18,8 @@ namespace {
 // Unique per process and call, so concurrent writers never share a temp file.
 fs::path temporaryNameFor(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
-  return target.parent_path() /
-         ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
-          std::to_string(counter++));
+  return target.parent_path() / ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) +
+                                 "." + std::to_string(counter++));
 }
 
 std::string describeErrno(int err) {
@@ -56,8 +55,8 @@ AtomicFile::AtomicFile(fs::path target, bool binary)
   const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
   if (!fs::is_directory(dir)) failAt(target_, "the output folder does not exist");
   errno = 0;
-  out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
-                          : std::ios::out | std::ios::trunc);
+  out_.open(temp_,
+            binary ? std::ios::out | std::ios::binary | std::ios::trunc : std::ios::out | std::ios::trunc);
   if (!out_) failAt(target_, "cannot create a file here: " + describeErrno(errno));
 }
 

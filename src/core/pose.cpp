@@ -2,11 +2,9 @@
 
 namespace hba {
 
-Pose::Pose(const Quat& rotation, const Vec3& translation)
-    : q(rotation.normalized()), t(translation) {}
+Pose::Pose(const Quat& rotation, const Vec3& translation) : q(rotation.normalized()), t(translation) {}
 
-Pose::Pose(const Mat3& rotation, const Vec3& translation)
-    : q(Quat(rotation).normalized()), t(translation) {}
+Pose::Pose(const Mat3& rotation, const Vec3& translation) : q(Quat(rotation).normalized()), t(translation) {}
 
 Pose Pose::fromMatrix(const Mat4& m) {
   return Pose(Mat3(m.topLeftCorner<3, 3>()), Vec3(m.topRightCorner<3, 1>()));

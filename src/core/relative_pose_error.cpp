@@ -24,8 +24,7 @@ RelativePoseErrorJacobians relativePoseErrorJacobians(const Pose& measurement, c
 
   const Mat3 Rm_t_Ra_t = measurement.R().transpose() * from.R().transpose();
   // J_r^-1(phi) = J_l^-1(-phi).
-  const Mat3 rotation_block =
-      so3LeftJacobianInverse(-Vec3(out.error.tail<3>())) * to.R().transpose();
+  const Mat3 rotation_block = so3LeftJacobianInverse(-Vec3(out.error.tail<3>())) * to.R().transpose();
 
   out.d_from.setZero();
   out.d_from.topLeftCorner<3, 3>() = -Rm_t_Ra_t;

@@ -8,8 +8,7 @@ namespace hba::eval {
 
 Pose Similarity::apply(const Pose& pose) const { return Pose(Mat3(R * pose.R()), apply(pose.t)); }
 
-Similarity umeyama(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
-                   bool with_scale) {
+Similarity umeyama(const std::vector<Vec3>& source, const std::vector<Vec3>& target, bool with_scale) {
   if (source.size() != target.size()) throw Error("alignment: point lists differ in length");
   const std::size_t n = source.size();
   if (n < 3) throw Error("alignment needs at least 3 matched poses, got " + std::to_string(n));

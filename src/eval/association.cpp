@@ -11,9 +11,9 @@ namespace hba::eval {
 
 Association associateByIndex(std::size_t reference_count, std::size_t estimate_count) {
   if (reference_count != estimate_count) {
-    throw Error("association by index needs equal pose counts, got " +
-                std::to_string(reference_count) + " reference and " +
-                std::to_string(estimate_count) + " estimated poses (use time association)");
+    throw Error("association by index needs equal pose counts, got " + std::to_string(reference_count) +
+                " reference and " + std::to_string(estimate_count) +
+                " estimated poses (use time association)");
   }
   Association a;
   a.reference.resize(reference_count);
@@ -25,8 +25,7 @@ Association associateByIndex(std::size_t reference_count, std::size_t estimate_c
 namespace {
 
 // Index (into `stamps`) of the stamp nearest to t, given `order` sorting stamps.
-std::size_t nearestStamp(const std::vector<double>& stamps, const std::vector<std::size_t>& order,
-                         double t) {
+std::size_t nearestStamp(const std::vector<double>& stamps, const std::vector<std::size_t>& order, double t) {
   const auto it = std::lower_bound(order.begin(), order.end(), t,
                                    [&](std::size_t k, double value) { return stamps[k] < value; });
   if (it == order.end()) return order.back();
@@ -77,8 +76,8 @@ Association associateByTime(const std::vector<double>& reference_stamps,
   return a;
 }
 
-Association associate(const Trajectory& reference, const Trajectory& estimate,
-                      AssociationMode mode, double max_time_diff) {
+Association associate(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode,
+                      double max_time_diff) {
   const bool stamped = reference.hasStamps() && estimate.hasStamps();
   if (mode == AssociationMode::Time || (mode == AssociationMode::Auto && stamped)) {
     return associateByTime(reference.stamps, estimate.stamps, max_time_diff);

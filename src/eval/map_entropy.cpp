@@ -34,7 +34,10 @@ class MomentCollector {
  public:
   MomentCollector(const std::vector<Vec3f>& points, const Vec3f& query, float radius_sq,
                   std::uint32_t query_index, bool count_query)
-      : points_(points), query_(query), radius_sq_(radius_sq), query_index_(query_index),
+      : points_(points),
+        query_(query),
+        radius_sq_(radius_sq),
+        query_index_(query_index),
         count_query_(count_query) {}
 
   std::size_t size() const { return count_; }
@@ -94,16 +97,16 @@ MmeResult meanMapEntropy(const PointCloud& map, const MmeSettings& settings) {
   std::vector<double> entropy(map.size(), kSkipped);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, map.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      MomentCollector neighbours(map.points, map.points[i], radius_sq, static_cast<std::uint32_t>(i),
-                                 settings.count_query);
-      tree.findNeighbors(neighbours, map.points[i].data(), nanoflann::SearchParams());
-      if (neighbours.size() < needed) continue;
-      const double det = neighbours.covariance(settings.sample_covariance).determinant();
-      // A degenerate (exactly planar or linear) neighbourhood has no finite entropy.
-      if (det > 0.0) entropy[i] = 0.5 * (3.0 * kLogTwoPiE + std::log(det));
-    }
-  });
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        MomentCollector neighbours(map.points, map.points[i], radius_sq,
+                                                   static_cast<std::uint32_t>(i), settings.count_query);
+                        tree.findNeighbors(neighbours, map.points[i].data(), nanoflann::SearchParams());
+                        if (neighbours.size() < needed) continue;
+                        const double det = neighbours.covariance(settings.sample_covariance).determinant();
+                        // A degenerate (exactly planar or linear) neighbourhood has no finite entropy.
+                        if (det > 0.0) entropy[i] = 0.5 * (3.0 * kLogTwoPiE + std::log(det));
+                      }
+                    });
 
   double sum = 0.0;  // in point order: the same result for any thread count
   for (double h : entropy) {

@@ -54,9 +54,15 @@ PointCloud VoxelMerger::result() const {
     }
     float value = 0.0f;
     switch (settings_.color) {
-      case MapColor::None: value = static_cast<float>(cell.intensity_sum / cell.count); break;
-      case MapColor::Scan: value = static_cast<float>(cell.first_scan); break;
-      case MapColor::Height: value = static_cast<float>(origin_.z() + p.z()); break;
+      case MapColor::None:
+        value = static_cast<float>(cell.intensity_sum / cell.count);
+        break;
+      case MapColor::Scan:
+        value = static_cast<float>(cell.first_scan);
+        break;
+      case MapColor::Height:
+        value = static_cast<float>(origin_.z() + p.z());
+        break;
     }
     out.add(p, value);
   }

@@ -34,8 +34,8 @@ PoseErrors absoluteErrors(const std::vector<Pose>& reference, const std::vector<
   return {summarize(std::move(translation)), summarize(std::move(rotation))};
 }
 
-std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Pose>& reference,
-                                                          double delta, DeltaUnit unit) {
+std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Pose>& reference, double delta,
+                                                          DeltaUnit unit) {
   if (!(delta > 0.0)) throw Error("RPE delta must be > 0");
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   const std::size_t n = reference.size();
@@ -82,8 +82,7 @@ TrajectoryEvaluation evaluateTrajectory(const Trajectory& reference, const Traje
   result.reference_count = reference.size();
   result.estimate_count = estimate.size();
 
-  const Association pairs =
-      associate(reference, estimate, options.association, options.max_time_diff);
+  const Association pairs = associate(reference, estimate, options.association, options.max_time_diff);
   result.association_used = pairs.mode;
   result.matched = pairs.size();
 

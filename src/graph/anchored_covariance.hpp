@@ -19,8 +19,7 @@ void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pos
 
 // Covariance of all frames but `anchor` (in frame order) given that frame
 // `anchor` is held fixed; nullopt when the Hessian carries no information.
-std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian,
-                                                  std::size_t anchor,
+std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian, std::size_t anchor,
                                                   const InformationSettings& settings);
 
 // The frame that holds the gauge: the window's first, as in the BA itself.
@@ -28,8 +27,7 @@ inline constexpr std::size_t kGaugeFrame = 0;
 
 // Information of the relative pose a -> b from that covariance.
 Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,
-                                     const std::vector<Pose>& poses, std::size_t anchor,
-                                     std::size_t a, std::size_t b,
-                                     const InformationSettings& settings);
+                                     const std::vector<Pose>& poses, std::size_t anchor, std::size_t a,
+                                     std::size_t b, const InformationSettings& settings);
 
 }  // namespace hba::graph

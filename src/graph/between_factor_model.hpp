@@ -12,8 +12,7 @@ namespace hba::graph {
 
 class BetweenFactorModel : public FactorModel {
  public:
-  BetweenFactorModel(std::size_t from, std::size_t to, const Pose& measurement,
-                     const Mat6& information);
+  BetweenFactorModel(std::size_t from, std::size_t to, const Pose& measurement, const Mat6& information);
 
   std::vector<std::size_t> nodes() const override { return {from_, to_}; }
   void validate(std::size_t num_poses, const std::string& label) const override;

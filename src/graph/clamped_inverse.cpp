@@ -7,8 +7,7 @@
 
 namespace hba::graph {
 
-std::optional<Eigen::MatrixXd> clampedInverse(const Eigen::MatrixXd& matrix,
-                                              double min_eigen_ratio) {
+std::optional<Eigen::MatrixXd> clampedInverse(const Eigen::MatrixXd& matrix, double min_eigen_ratio) {
   if (matrix.size() == 0 || !matrix.allFinite()) return std::nullopt;
   const Eigen::MatrixXd symmetric = 0.5 * (matrix + matrix.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(symmetric);

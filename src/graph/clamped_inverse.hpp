@@ -11,7 +11,6 @@ namespace hba::graph {
 // at least `min_eigen_ratio` times the largest one, so that a direction the
 // data does not constrain becomes weak but finite. nullopt when the largest
 // eigenvalue is not positive (no information at all) or not finite.
-std::optional<Eigen::MatrixXd> clampedInverse(const Eigen::MatrixXd& matrix,
-                                              double min_eigen_ratio);
+std::optional<Eigen::MatrixXd> clampedInverse(const Eigen::MatrixXd& matrix, double min_eigen_ratio);
 
 }  // namespace hba::graph

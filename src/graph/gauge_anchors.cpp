@@ -55,8 +55,7 @@ double spreadOffLine(const std::vector<Vec3>& points) {
   return std::sqrt(std::max(moments[0] + moments[1], 0.0));
 }
 
-std::vector<GaugeAnchor> componentAnchors(std::size_t num_nodes,
-                                          const std::vector<GaugeInput>& factors,
+std::vector<GaugeAnchor> componentAnchors(std::size_t num_nodes, const std::vector<GaugeInput>& factors,
                                           double min_prior_spread) {
   SmallestRootSets sets(num_nodes);
   std::vector<bool> touched(num_nodes, false);
@@ -84,8 +83,7 @@ std::vector<GaugeAnchor> componentAnchors(std::size_t num_nodes,
   return anchors;
 }
 
-std::vector<std::size_t> gaugeAnchors(std::size_t num_nodes,
-                                      const std::vector<RelativePoseFactor>& factors) {
+std::vector<std::size_t> gaugeAnchors(std::size_t num_nodes, const std::vector<RelativePoseFactor>& factors) {
   std::vector<GaugeInput> inputs;
   inputs.reserve(factors.size());
   for (const RelativePoseFactor& f : factors) inputs.push_back({{f.from, f.to}, {}});

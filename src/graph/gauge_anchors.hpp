@@ -33,9 +33,7 @@ enum class GaugeHold {
 struct GaugeAnchor {
   std::size_t node = 0;
   GaugeHold hold = GaugeHold::Pose;
-  bool operator==(const GaugeAnchor& other) const {
-    return node == other.node && hold == other.hold;
-  }
+  bool operator==(const GaugeAnchor& other) const { return node == other.node && hold == other.hold; }
 };
 
 // Root-sum-square distance of `points` from their best-fitting line: the
@@ -48,13 +46,11 @@ double spreadOffLine(const std::vector<Vec3>& points);
 // `min_prior_spread` off their line; the smallest node's Orientation when it
 // has other Position pins; the smallest node's whole Pose otherwise. Node
 // indices must already be valid.
-std::vector<GaugeAnchor> componentAnchors(std::size_t num_nodes,
-                                          const std::vector<GaugeInput>& factors,
+std::vector<GaugeAnchor> componentAnchors(std::size_t num_nodes, const std::vector<GaugeInput>& factors,
                                           double min_prior_spread);
 
 // The rule for relative factors alone: the smallest node of every component
 // that has a factor, ascending.
-std::vector<std::size_t> gaugeAnchors(std::size_t num_nodes,
-                                      const std::vector<RelativePoseFactor>& factors);
+std::vector<std::size_t> gaugeAnchors(std::size_t num_nodes, const std::vector<RelativePoseFactor>& factors);
 
 }  // namespace hba::graph

@@ -31,9 +31,8 @@ void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pos
   if (poses.size() < 2) throw Error("graph information: a window needs at least two poses");
   if (hessian.rows() != expected || hessian.cols() != expected) {
     throw Error("graph information: Hessian is " + std::to_string(hessian.rows()) + "x" +
-                std::to_string(hessian.cols()) + ", expected " + std::to_string(expected) +
-                "x" + std::to_string(expected) + " for " + std::to_string(poses.size()) +
-                " poses");
+                std::to_string(hessian.cols()) + ", expected " + std::to_string(expected) + "x" +
+                std::to_string(expected) + " for " + std::to_string(poses.size()) + " poses");
   }
   if (!hessian.allFinite()) throw Error("graph information: Hessian has non-finite entries");
   if (!(settings.point_sigma > 0.0) || !std::isfinite(settings.point_sigma)) {
@@ -47,8 +46,7 @@ void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pos
   }
 }
 
-std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian,
-                                                  std::size_t anchor,
+std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian, std::size_t anchor,
                                                   const InformationSettings& settings) {
   // cost / (2 sigma^2) is the negative log-likelihood of Gaussian distances.
   const double to_fisher = 1.0 / (2.0 * settings.point_sigma * settings.point_sigma);
@@ -59,9 +57,8 @@ std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian
 }
 
 Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,
-                                     const std::vector<Pose>& poses, std::size_t anchor,
-                                     std::size_t a, std::size_t b,
-                                     const InformationSettings& settings) {
+                                     const std::vector<Pose>& poses, std::size_t anchor, std::size_t a,
+                                     std::size_t b, const InformationSettings& settings) {
   const Mat6 fallback = settings.fallback_information * Mat6::Identity();
   if (!covariance) return fallback;
 
@@ -79,8 +76,7 @@ Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covar
   for (int i = 0; i < 2; ++i) {
     for (int j = 0; j < 2; ++j) {
       if (frames[i] == anchor || frames[j] == anchor) continue;
-      cov_error += *jacobians[i] *
-                   covariance->block<6, 6>(blockStart(frames[i]), blockStart(frames[j])) *
+      cov_error += *jacobians[i] * covariance->block<6, 6>(blockStart(frames[i]), blockStart(frames[j])) *
                    jacobians[j]->transpose();
     }
   }
@@ -89,13 +85,13 @@ Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covar
   return *information;
 }
 
-Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses,
-                             std::size_t a, std::size_t b, const InformationSettings& settings) {
+Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses, std::size_t a,
+                             std::size_t b, const InformationSettings& settings) {
   validateWindowHessian(hessian, poses, settings);
   if (a == b) throw Error("graph information: a relative pose needs two distinct frames");
   if (a >= poses.size() || b >= poses.size()) {
-    throw Error("graph information: frame index out of range (window of " +
-                std::to_string(poses.size()) + " poses)");
+    throw Error("graph information: frame index out of range (window of " + std::to_string(poses.size()) +
+                " poses)");
   }
   return relativeInformationFromAnchored(anchoredCovariance(hessian, kGaugeFrame, settings), poses,
                                          kGaugeFrame, a, b, settings);

@@ -7,8 +7,7 @@ namespace hba::graph {
 // The costs' ambient Jacobians are the tangent ones times tangentToAmbient,
 // whose translation columns are [I; 0]: times PlusJacobian = [I; 0] below,
 // Ceres gets exactly the translation columns of the tangent Jacobian.
-bool OrientationHeldManifold::Plus(const double* x, const double* delta,
-                                   double* x_plus_delta) const {
+bool OrientationHeldManifold::Plus(const double* x, const double* delta, double* x_plus_delta) const {
   for (int k = 0; k < 3; ++k) x_plus_delta[k] = x[k] + delta[k];
   for (int k = 3; k < 7; ++k) x_plus_delta[k] = x[k];
   return true;

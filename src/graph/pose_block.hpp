@@ -9,8 +9,7 @@ namespace hba::graph {
 using PoseBlock = std::array<double, 7>;
 
 inline PoseBlock toPoseBlock(const Pose& pose) {
-  return {pose.t.x(),     pose.t.y(),     pose.t.z(),    pose.q.x(),
-          pose.q.y(),     pose.q.z(),     pose.q.w()};
+  return {pose.t.x(), pose.t.y(), pose.t.z(), pose.q.x(), pose.q.y(), pose.q.z(), pose.q.w()};
 }
 
 inline Pose poseFromBlock(const double* block) {

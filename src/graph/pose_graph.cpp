@@ -30,8 +30,7 @@ void validate(const std::vector<Pose>& initial, const FactorGraph& factors,
   }
   for (std::size_t k = 0; k < factors.size(); ++k) {
     const FactorModel& model = *factors.models()[k];
-    model.validate(initial.size(),
-                   "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
+    model.validate(initial.size(), "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
   }
   if (settings.max_iterations < 0) throw Error("pose graph: max_iterations must be >= 0");
   if (settings.threads < 0) throw Error("pose graph: threads must be >= 0");
@@ -175,16 +174,14 @@ double factorGraphCost(const std::vector<Pose>& poses, const FactorGraph& factor
   for (std::size_t k = 0; k < factors.size(); ++k) {
     const FactorModel& model = *factors.models()[k];
     for (const std::size_t node : model.nodes()) {
-      checkNode(node, poses.size(),
-                "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
+      checkNode(node, poses.size(), "pose graph: factor " + std::to_string(k) + " (" + model.name() + ")");
     }
     cost += model.cost(poses);
   }
   return cost;
 }
 
-double poseGraphCost(const std::vector<Pose>& poses,
-                     const std::vector<RelativePoseFactor>& factors) {
+double poseGraphCost(const std::vector<Pose>& poses, const std::vector<RelativePoseFactor>& factors) {
   return factorGraphCost(poses, FactorGraph(factors));
 }
 

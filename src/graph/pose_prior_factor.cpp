@@ -18,16 +18,14 @@ class PosePriorCost final : public ceres::SizedCostFunction<6, 7> {
   PosePriorCost(const Pose& measurement, const Mat6& sqrt_information)
       : measurement_(measurement), sqrt_information_(sqrt_information) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Pose pose = poseFromBlock(parameters[0]);
     Eigen::Map<Vec6> residual(residuals);
     if (!jacobians || !jacobians[0]) {
       residual = sqrt_information_ * relativePoseError(measurement_, kWorldOrigin, pose);
       return true;
     }
-    const RelativePoseErrorJacobians e =
-        relativePoseErrorJacobians(measurement_, kWorldOrigin, pose);
+    const RelativePoseErrorJacobians e = relativePoseErrorJacobians(measurement_, kWorldOrigin, pose);
     residual = sqrt_information_ * e.error;
     // As in RelativePoseCost: tangentToAmbient undoes the manifold's lift.
     Eigen::Map<Eigen::Matrix<double, 6, 7, Eigen::RowMajor>> d_pose(jacobians[0]);
@@ -64,8 +62,7 @@ class PosePriorModel final : public FactorModel {
     return e.dot(f_.information * e);
   }
   ceres::CostFunction* newCost() const override {
-    return new PosePriorCost(f_.measurement,
-                             informationRoot<6>(f_.information, "pose prior information"));
+    return new PosePriorCost(f_.measurement, informationRoot<6>(f_.information, "pose prior information"));
   }
 
  private:

@@ -14,8 +14,7 @@ class PositionPriorCost final : public ceres::SizedCostFunction<3, 7> {
   PositionPriorCost(const Vec3& position, const Mat3& sqrt_information)
       : position_(position), sqrt_information_(sqrt_information) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Eigen::Map<const Vec3> t(parameters[0]);
     Eigen::Map<Vec3> residual(residuals);
     residual = sqrt_information_ * (t - position_);

@@ -16,8 +16,7 @@ Mat6 squareRootInformation(const Mat6& information);
 class RelativePoseCost final : public ceres::SizedCostFunction<6, 7, 7> {
  public:
   RelativePoseCost(const Pose& measurement, const Mat6& sqrt_information);
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override;
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
 
  private:
   Pose measurement_;

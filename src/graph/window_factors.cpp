@@ -45,8 +45,7 @@ void checkNodes(const std::vector<std::size_t>& layer1_indices, std::size_t coun
 std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<Pose>& optimized_window_poses,
                                               const std::vector<std::size_t>& layer1_indices,
-                                              FactorPairs pairs,
-                                              const InformationSettings& settings) {
+                                              FactorPairs pairs, const InformationSettings& settings) {
   const std::vector<Pose>& poses = optimized_window_poses;
   validateWindowHessian(hessian, poses, settings);
   checkNodes(layer1_indices, poses.size());

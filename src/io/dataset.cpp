@@ -20,8 +20,8 @@ void checkDatasetFolder(const fs::path& dir) {
   if (!fs::is_directory(dir, ec)) failAt(dir, "is not a folder (expected a dataset folder)");
 }
 
-std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_dir,
-                     const fs::path& poses_file, const fs::path& first_scan) {
+std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_dir, const fs::path& poses_file,
+                     const fs::path& first_scan) {
   if (overrides.scans_dir && overrides.poses_file) return "explicit";
   if (scans_dir.filename() == "pcd" && poses_file.filename() == "pose.json") return "hba";
   if (scanFormatFromExtension(first_scan) == ScanFormat::KittiBin) return "kitti";
@@ -30,8 +30,8 @@ std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_di
 
 std::string countsDiffer(std::size_t scans, const fs::path& scans_dir, std::size_t poses,
                          const fs::path& poses_file) {
-  return "scans and poses differ in number: " + std::to_string(scans) + " scans in " +
-         scans_dir.string() + " but " + std::to_string(poses) + " poses in " + poses_file.string();
+  return "scans and poses differ in number: " + std::to_string(scans) + " scans in " + scans_dir.string() +
+         " but " + std::to_string(poses) + " poses in " + poses_file.string();
 }
 
 template <typename T>
@@ -46,7 +46,8 @@ std::vector<T> pick(const std::vector<T>& values, const std::vector<std::size_t>
 
 void Dataset::noteStampUnit(const fs::path& file, const std::string& unit) {
   if (unit.empty()) return;
-  notes_.push_back({DatasetNote::Level::Info, file.string() + ": the stamps are in " + unit + "; read as seconds"});
+  notes_.push_back(
+      {DatasetNote::Level::Info, file.string() + ": the stamps are in " + unit + "; read as seconds"});
 }
 
 // The scans' own stamps: --times FILE (must fit), else the names, else a
@@ -125,8 +126,8 @@ void Dataset::checkStampsIncrease() {
     if (stamps[i] > stamps[i - 1]) continue;
     const fs::path& source = stamps_source_ == "times file" ? times_file_ : poses_file_;
     notes_.push_back({DatasetNote::Level::Warning,
-                      source.string() + ": the timestamps do not increase at scan " + std::to_string(i) + " (" +
-                          std::to_string(stamps[i - 1]) + " then " + std::to_string(stamps[i]) +
+                      source.string() + ": the timestamps do not increase at scan " + std::to_string(i) +
+                          " (" + std::to_string(stamps[i - 1]) + " then " + std::to_string(stamps[i]) +
                           "); outputs keep them as given"});
     return;
   }
@@ -136,7 +137,8 @@ void Dataset::checkStampsIncrease() {
 void Dataset::convertPoses(const DatasetOverrides& overrides) {
   if (overrides.invert_poses) {
     for (Pose& pose : trajectory_.poses) pose = pose.inverse();
-    notes_.push_back({DatasetNote::Level::Info, "poses inverted (--invert-poses): the file holds world-to-sensor poses"});
+    notes_.push_back(
+        {DatasetNote::Level::Info, "poses inverted (--invert-poses): the file holds world-to-sensor poses"});
   }
   // KITTI ground-truth poses are of camera 0: T_world_cam. The LiDAR's pose
   // is T_world_cam * Tr, and left-multiplying by Tr^-1 makes the world the
@@ -161,12 +163,13 @@ void Dataset::convertPoses(const DatasetOverrides& overrides) {
     frame_right_ = *lidar_to_camera;
     calibration_file_ = calib;
     input_frame_ = "camera";
-    notes_.push_back({DatasetNote::Level::Info, "KITTI camera poses turned into LiDAR poses with Tr of " +
-                                                    calib.string()});
+    notes_.push_back({DatasetNote::Level::Info,
+                      "KITTI camera poses turned into LiDAR poses with Tr of " + calib.string()});
   } else if (overrides.extrinsic) {
     frame_right_ = *overrides.extrinsic;
     input_frame_ = "body";
-    notes_.push_back({DatasetNote::Level::Info, "poses of the body frame turned into sensor poses with --extrinsic"});
+    notes_.push_back(
+        {DatasetNote::Level::Info, "poses of the body frame turned into sensor poses with --extrinsic"});
   }
   for (Pose& pose : trajectory_.poses) pose = frame_left_ * pose * frame_right_;
 }
@@ -188,15 +191,14 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
                            : detail::findScansDir(dir, dataset.notes_);
   detail::ScanFiles scans = detail::listScans(dataset.scans_dir_);
   dataset.scan_paths_ = std::move(scans.paths);
-  dataset.poses_file_ =
-      overrides.poses_file ? detail::resolveOverride(dir, *overrides.poses_file, "poses file")
-                           : detail::findTrajectoryFile(dir, dataset.scans_dir_, dataset.notes_);
+  dataset.poses_file_ = overrides.poses_file
+                            ? detail::resolveOverride(dir, *overrides.poses_file, "poses file")
+                            : detail::findTrajectoryFile(dir, dataset.scans_dir_, dataset.notes_);
   dataset.pose_format_ =
       overrides.pose_format ? *overrides.pose_format : detectPoseFormat(dataset.poses_file_);
   dataset.trajectory_ = readPoses(dataset.poses_file_, dataset.pose_format_);
   dataset.noteStampUnit(dataset.poses_file_, stampsToSeconds(dataset.trajectory_.stamps));
-  dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_,
-                             dataset.scan_paths_.front());
+  dataset.layout_ = layoutOf(overrides, dataset.scans_dir_, dataset.poses_file_, dataset.scan_paths_.front());
   dataset.pairScansWithPoses(std::move(scans.stamps), overrides);
   dataset.checkStampsIncrease();
   dataset.convertPoses(overrides);

@@ -15,14 +15,14 @@ namespace fs = std::filesystem;
 namespace {
 
 // pcd/ first: the original HBA layout.
-constexpr std::array<const char*, 9> kScanFolderNames = {
-    "pcd", "Scans", "scans", "velodyne", "clouds", "pcds", "PCD", "pointclouds", "frames"};
+constexpr std::array<const char*, 9> kScanFolderNames = {"pcd",  "Scans", "scans",       "velodyne", "clouds",
+                                                         "pcds", "PCD",   "pointclouds", "frames"};
 
 // Odometry first (the drifting input HBA is meant to refine), loop-closed or
 // optimized trajectories last.
 constexpr std::array<const char*, 10> kTrajectoryNames = {
-    "odom_poses.txt", "pose.json",      "poses.txt",          "poses.json",     "traj.txt",
-    "trajectory.txt", "odometry.txt",   "poses_kitti.txt",    "poses_tum.txt",  "optimized_poses.txt"};
+    "odom_poses.txt", "pose.json",    "poses.txt",       "poses.json",    "traj.txt",
+    "trajectory.txt", "odometry.txt", "poses_kitti.txt", "poses_tum.txt", "optimized_poses.txt"};
 
 // Text files that sit beside trajectories but are not one.
 constexpr std::array<const char*, 5> kNotTrajectories = {"calib.txt", "times.txt", "timestamps.txt",
@@ -47,8 +47,7 @@ bool isRegularFile(const fs::path& path) {
 // KITTI odometry keeps poses as <sequence>.txt (00.txt ... 21.txt).
 bool looksLikeKittiSequenceFile(const fs::path& path) {
   const std::string stem = path.stem().string();
-  return path.extension() == ".txt" && stem.size() == 2 && std::isdigit(stem[0]) &&
-         std::isdigit(stem[1]);
+  return path.extension() == ".txt" && stem.size() == 2 && std::isdigit(stem[0]) && std::isdigit(stem[1]);
 }
 
 // Files of unknown name that might be a trajectory: *.txt, *.json, *.tum.
@@ -61,8 +60,7 @@ std::vector<fs::path> unknownTrajectoryCandidates(const fs::path& root) {
     const std::string ext = path.extension().string();
     if (name.front() == '.' || !entry.is_regular_file(ec)) continue;
     if (ext != ".txt" && ext != ".json" && ext != ".tum") continue;
-    if (std::find(kNotTrajectories.begin(), kNotTrajectories.end(), name) != kNotTrajectories.end())
-      continue;
+    if (std::find(kNotTrajectories.begin(), kNotTrajectories.end(), name) != kNotTrajectories.end()) continue;
     found.push_back(path);
   }
   std::sort(found.begin(), found.end());
@@ -85,13 +83,13 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
     if (fs::is_directory(dir, ec) && containsScanFile(dir)) candidates.push_back(dir);
   }
   if (candidates.size() > 1) {
-    failAt(root, "several folders hold scans (" + joined(fileNames(candidates)) +
-                     "); choose one with --scans");
+    failAt(root,
+           "several folders hold scans (" + joined(fileNames(candidates)) + "); choose one with --scans");
   }
   if (candidates.size() == 1) return candidates.front();
   if (containsScanFile(root)) {
-    notes.push_back({DatasetNote::Level::Info, "no scans subfolder; using the scans in " +
-                                                    root.string() + " itself"});
+    notes.push_back(
+        {DatasetNote::Level::Info, "no scans subfolder; using the scans in " + root.string() + " itself"});
     return root;
   }
   failAt(root, "no scans found: none of the folders " + joined(asStrings(kScanFolderNames)) +
@@ -106,23 +104,24 @@ fs::path findTrajectoryFile(const fs::path& root, const fs::path& scans_dir, Not
   }
   // The original HBA layout pairs pcd/ with pose.json: prefer it there.
   const auto hba_pose = std::find(known.begin(), known.end(), root / "pose.json");
-  if (scans_dir.filename() == "pcd" && hba_pose != known.end()) std::rotate(known.begin(), hba_pose, hba_pose + 1);
+  if (scans_dir.filename() == "pcd" && hba_pose != known.end())
+    std::rotate(known.begin(), hba_pose, hba_pose + 1);
   // KITTI odometry: <sequence>.txt beside velodyne/ (e.g. 00/00.txt).
   if (known.empty()) {
     for (const fs::path& path : unknownTrajectoryCandidates(root)) {
       if (looksLikeKittiSequenceFile(path)) known.push_back(path);
     }
     if (known.size() > 1) {
-      failAt(root, "several KITTI sequence pose files (" + joined(fileNames(known)) +
-                       "); choose one with --poses");
+      failAt(root,
+             "several KITTI sequence pose files (" + joined(fileNames(known)) + "); choose one with --poses");
     }
   }
   if (!known.empty()) {
     if (known.size() > 1) {
       std::vector<fs::path> others(known.begin() + 1, known.end());
-      notes.push_back({DatasetNote::Level::Info,
-                       "using " + known.front().filename().string() + "; also found " +
-                           joined(fileNames(others)) + " (pick one with --poses)"});
+      notes.push_back({DatasetNote::Level::Info, "using " + known.front().filename().string() +
+                                                     "; also found " + joined(fileNames(others)) +
+                                                     " (pick one with --poses)"});
     }
     return known.front();
   }
@@ -147,8 +146,7 @@ fs::path resolveOverride(const fs::path& root, const fs::path& path, const char*
     return path;
   }
   if (fs::exists(root / path, ec)) return root / path;
-  failAt(path, std::string(what) + " not found (looked in the working folder and in " +
-                   root.string() + ")");
+  failAt(path, std::string(what) + " not found (looked in the working folder and in " + root.string() + ")");
 }
 
 }  // namespace hba::io::detail

@@ -54,8 +54,8 @@ std::filesystem::path findTrajectoryFile(const std::filesystem::path& root,
                                          const std::filesystem::path& scans_dir, Notes& notes);
 // An override path as the user typed it: absolute, else relative to the
 // working folder, else relative to `root`. Throws hba::Error if not found.
-std::filesystem::path resolveOverride(const std::filesystem::path& root,
-                                      const std::filesystem::path& path, const char* what);
+std::filesystem::path resolveOverride(const std::filesystem::path& root, const std::filesystem::path& path,
+                                      const char* what);
 
 // --- dataset_sidecars.cpp: calib.txt ---
 

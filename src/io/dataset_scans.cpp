@@ -4,8 +4,8 @@
 #include <cctype>
 #include <cstdint>
 #include <optional>
-#include <string_view>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 #include "dataset_parts.hpp"
@@ -37,22 +37,23 @@ std::string lowercaseExtension(const fs::path& path) {
 // The value of the last run of digits in the file's stem.
 std::uint64_t numberInName(const fs::path& path) {
   const std::string stem = path.stem().string();
-  const auto last_digit = std::find_if(stem.rbegin(), stem.rend(),
-                                       [](unsigned char c) { return std::isdigit(c) != 0; });
+  const auto last_digit =
+      std::find_if(stem.rbegin(), stem.rend(), [](unsigned char c) { return std::isdigit(c) != 0; });
   if (last_digit == stem.rend()) {
-    failAt(path, "cannot order the scans: this file name has no number (expected names like "
-                 "000012.pcd or 12.pcd)");
+    failAt(path,
+           "cannot order the scans: this file name has no number (expected names like "
+           "000012.pcd or 12.pcd)");
   }
-  const auto first_digit = std::find_if(last_digit, stem.rend(),
-                                        [](unsigned char c) { return std::isdigit(c) == 0; });
+  const auto first_digit =
+      std::find_if(last_digit, stem.rend(), [](unsigned char c) { return std::isdigit(c) == 0; });
   const std::string digits(first_digit.base(), last_digit.base());
   if (digits.size() > 18) failAt(path, "the number in this file name is too long");
   return std::stoull(digits);
 }
 
 bool allDigits(std::string_view text) {
-  return !text.empty() && std::all_of(text.begin(), text.end(),
-                                      [](unsigned char c) { return std::isdigit(c) != 0; });
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](unsigned char c) { return std::isdigit(c) != 0; });
 }
 
 // The time a file is named by, in nanoseconds: "1577836980.099104600"
@@ -112,14 +113,13 @@ void checkConsecutive(const std::vector<NumberedScan>& scans) {
                             prev.path.filename().string() + "; remove one of them");
     }
     if (next.number != prev.number + 1) {
-      const std::string missing =
-          next.number == prev.number + 2
-              ? "number " + std::to_string(prev.number + 1) + " is missing"
-              : "numbers " + std::to_string(prev.number + 1) + " to " +
-                    std::to_string(next.number - 1) + " are missing";
-      failAt(prev.path.parent_path(), "gap in the scan numbering: " +
-                                          prev.path.filename().string() + " is followed by " +
-                                          next.path.filename().string() + " (" + missing + ")");
+      const std::string missing = next.number == prev.number + 2
+                                      ? "number " + std::to_string(prev.number + 1) + " is missing"
+                                      : "numbers " + std::to_string(prev.number + 1) + " to " +
+                                            std::to_string(next.number - 1) + " are missing";
+      failAt(prev.path.parent_path(), "gap in the scan numbering: " + prev.path.filename().string() +
+                                          " is followed by " + next.path.filename().string() + " (" +
+                                          missing + ")");
     }
   }
 }
@@ -149,9 +149,8 @@ ScanFiles listScans(const fs::path& dir) {
 
   std::vector<NumberedScan> scans;
   scans.reserve(files.size());
-  const bool named_by_time = std::all_of(files.begin(), files.end(), [](const fs::path& path) {
-    return nanosecondsInName(path).has_value();
-  });
+  const bool named_by_time = std::all_of(
+      files.begin(), files.end(), [](const fs::path& path) { return nanosecondsInName(path).has_value(); });
   for (fs::path& path : files) {
     const std::uint64_t key = named_by_time ? *nanosecondsInName(path) : numberInName(path);
     scans.push_back({key, std::move(path)});

@@ -1,6 +1,6 @@
 // Files that sit beside the trajectory: KITTI's calib.txt and times.txt.
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -54,8 +54,7 @@ std::optional<Pose> readKittiLidarToCamera(const fs::path& calib_file) {
     const NumberRow row = parseCalibValues(calib_file, line, std::string_view(text).substr(colon + 1));
     if (row.values.size() != 12) {
       failAt(calib_file, "line " + std::to_string(line) + ": " + key +
-                             " needs 12 numbers (row-major 3x4), found " +
-                             std::to_string(row.values.size()));
+                             " needs 12 numbers (row-major 3x4), found " + std::to_string(row.values.size()));
     }
     return poseFromRow(calib_file, row, PoseFormat::Kitti);
   }

@@ -76,12 +76,12 @@ TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<
     offsets.push_back(std::abs(offset));
   }
   if (match.kept_scans.empty() || match.kept_scans.size() * 2 < scan_stamps.size()) {
-    failAt(scans_dir, fmt::format("only {} of {} scans (named by time, {:.3f} to {:.3f} s) have a pose "
-                                  "within {:.3f} s in {} ({:.3f} to {:.3f} s); are both in seconds of the "
-                                  "same clock?",
-                                  match.kept_scans.size(), scan_stamps.size(), scan_stamps.front(),
-                                  scan_stamps.back(), tolerance, poses_file.string(), pose_stamps.front(),
-                                  pose_stamps.back()));
+    failAt(scans_dir,
+           fmt::format("only {} of {} scans (named by time, {:.3f} to {:.3f} s) have a pose "
+                       "within {:.3f} s in {} ({:.3f} to {:.3f} s); are both in seconds of the "
+                       "same clock?",
+                       match.kept_scans.size(), scan_stamps.size(), scan_stamps.front(), scan_stamps.back(),
+                       tolerance, poses_file.string(), pose_stamps.front(), pose_stamps.back()));
   }
   std::sort(left_out.begin(), left_out.end());
   std::sort(offsets.begin(), offsets.end());
@@ -95,9 +95,8 @@ TimeMatch matchByTime(const std::vector<double>& scan_stamps, const std::vector<
                                  left_out.size(), scan_stamps.size(), tolerance, describeLeftOut(left_out))});
   }
   if (match.pose_of_scan.size() < pose_stamps.size()) {
-    notes.push_back({DatasetNote::Level::Info,
-                     fmt::format("{} poses have no scan and are not used",
-                                 pose_stamps.size() - match.pose_of_scan.size())});
+    notes.push_back({DatasetNote::Level::Info, fmt::format("{} poses have no scan and are not used",
+                                                           pose_stamps.size() - match.pose_of_scan.size())});
   }
   return match;
 }

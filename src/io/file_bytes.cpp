@@ -40,8 +40,7 @@ FileBytes readUpTo(const fs::path& path, std::size_t limit) {
   std::error_code ec;
   const std::uintmax_t size_on_disk = fs::file_size(path, ec);
   if (ec) failAt(path, "cannot get the file size: " + ec.message());
-  const std::size_t capacity =
-      size_on_disk < limit ? static_cast<std::size_t>(size_on_disk) : limit;
+  const std::size_t capacity = size_on_disk < limit ? static_cast<std::size_t>(size_on_disk) : limit;
   std::unique_ptr<char[]> data;
   try {
     data.reset(new char[capacity == 0 ? 1 : capacity]);
@@ -60,8 +59,6 @@ FileBytes readUpTo(const fs::path& path, std::size_t limit) {
 
 FileBytes readFileBytes(const fs::path& path) { return readUpTo(path, SIZE_MAX); }
 
-FileBytes readFileHead(const fs::path& path, std::size_t max_bytes) {
-  return readUpTo(path, max_bytes);
-}
+FileBytes readFileHead(const fs::path& path, std::size_t max_bytes) { return readUpTo(path, max_bytes); }
 
 }  // namespace hba::io::detail

@@ -16,9 +16,8 @@ std::unique_ptr<char[]> lzfDecompress(std::string_view compressed, std::size_t e
     failAt(path, "compressed block is larger than LZF allows");
   }
   if (expected_size / kMaxLzfExpansion > compressed.size()) {
-    failAt(path, "compressed block of " + std::to_string(compressed.size()) +
-                     " bytes cannot hold " + std::to_string(expected_size) +
-                     " bytes of points (the sizes in the file lie)");
+    failAt(path, "compressed block of " + std::to_string(compressed.size()) + " bytes cannot hold " +
+                     std::to_string(expected_size) + " bytes of points (the sizes in the file lie)");
   }
   std::unique_ptr<char[]> raw(new char[expected_size == 0 ? 1 : expected_size]);
   // liblzf checks every back reference and length against both buffers
@@ -41,9 +40,8 @@ std::size_t lzfCompressAppend(std::string_view raw, std::string& out, const fs::
   const std::size_t capacity = raw.size() + raw.size() / 16 + 64;
   const std::size_t start = out.size();
   out.resize(start + capacity);
-  const unsigned int written =
-      lzf_compress(raw.data(), static_cast<unsigned int>(raw.size()), &out[start],
-                   static_cast<unsigned int>(capacity));
+  const unsigned int written = lzf_compress(raw.data(), static_cast<unsigned int>(raw.size()), &out[start],
+                                            static_cast<unsigned int>(capacity));
   if (written == 0) failAt(path, "LZF compression failed");
   out.resize(start + written);
   return written;

@@ -18,7 +18,6 @@ std::unique_ptr<char[]> lzfDecompress(std::string_view compressed, std::size_t e
                                       const std::filesystem::path& path);
 
 // Appends the LZF compression of `raw` to `out` and returns its size in bytes.
-std::size_t lzfCompressAppend(std::string_view raw, std::string& out,
-                              const std::filesystem::path& path);
+std::size_t lzfCompressAppend(std::string_view raw, std::string& out, const std::filesystem::path& path);
 
 }  // namespace hba::io::detail

@@ -27,8 +27,7 @@ PointColumns pcdColumns(const PcdHeader& header, const PcdLayout& layout, FirstO
 }
 
 std::string describeSize(const PcdHeader& header, const PcdLayout& layout) {
-  return std::to_string(header.points) + " points of " + std::to_string(layout.point_bytes) +
-         " bytes";
+  return std::to_string(header.points) + " points of " + std::to_string(layout.point_bytes) + " bytes";
 }
 
 std::uint32_t loadUint32(const char* p) { return loadUnaligned<std::uint32_t>(p, false); }
@@ -51,8 +50,8 @@ PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header, const
   return cloud;
 }
 
-PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header,
-                               const PcdLayout& layout, const fs::path& path) {
+PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                               const fs::path& path) {
   const std::uint64_t expected = checkedMul(header.points, layout.point_bytes, path, "data size");
   if (expected == 0 && body.size() < 8) return {};  // some writers omit the sizes of nothing
   if (body.size() < 8) failAt(path, "truncated: the compressed block sizes are missing");
@@ -64,13 +63,11 @@ PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header,
                      std::to_string(expected) + " bytes)");
   }
   if (compressed_size > body.size() - 8) {
-    failAt(path, "truncated: the compressed block should have " +
-                     std::to_string(compressed_size) + " bytes but only " +
-                     std::to_string(body.size() - 8) + " follow");
+    failAt(path, "truncated: the compressed block should have " + std::to_string(compressed_size) +
+                     " bytes but only " + std::to_string(body.size() - 8) + " follow");
   }
   if (expected == 0) return {};
-  const std::unique_ptr<char[]> raw =
-      lzfDecompress(body.substr(8, compressed_size), raw_size, path);
+  const std::unique_ptr<char[]> raw = lzfDecompress(body.substr(8, compressed_size), raw_size, path);
   // Field f's values start after every earlier field's values for all points.
   const std::size_t n = static_cast<std::size_t>(header.points);
   const PointColumns columns = pcdColumns(

@@ -67,8 +67,8 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
     std::string_view word = nextWord(words);
     if (word.empty()) continue;
     if (points_read == header.points) {
-      failAt(path, where + ": more points than the " + std::to_string(header.points) +
-                       " the header declares");
+      failAt(path,
+             where + ": more points than the " + std::to_string(header.points) + " the header declares");
     }
     double values[4] = {0, 0, 0, 0};
     std::size_t word_index = 0;

@@ -33,7 +33,7 @@ struct PcdLayout {
   std::vector<std::size_t> first_words;   // index of each field's first word on an ascii line
   std::size_t point_bytes = 0;
   std::size_t words_per_point = 0;
-  std::size_t x = 0, y = 0, z = 0;        // field indices
+  std::size_t x = 0, y = 0, z = 0;  // field indices
   std::optional<std::size_t> intensity;
 };
 
@@ -44,9 +44,9 @@ PcdLayout pcdLayout(const PcdHeader& header, const std::filesystem::path& path);
 // against `body` before touching it.
 PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
                           const std::filesystem::path& path);
-PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header,
-                           const PcdLayout& layout, const std::filesystem::path& path);
-PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header,
-                               const PcdLayout& layout, const std::filesystem::path& path);
+PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                           const std::filesystem::path& path);
+PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                               const std::filesystem::path& path);
 
 }  // namespace hba::io::detail

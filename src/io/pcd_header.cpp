@@ -38,8 +38,7 @@ std::uint64_t parseCount(std::string_view key, std::string_view value, const fs:
   }
   const std::optional<std::uint64_t> number = parseUnsigned(value);
   if (!number) {
-    failAt(path, std::string(key) + " must be a whole number that fits 64 bits, got " +
-                     quoteToken(value));
+    failAt(path, std::string(key) + " must be a whole number that fits 64 bits, got " + quoteToken(value));
   }
   return *number;
 }
@@ -58,8 +57,8 @@ PcdEncoding parseEncoding(std::string_view rest, const fs::path& path) {
     if (equalsIgnoreCase(value, "binary")) return PcdEncoding::Binary;
     if (equalsIgnoreCase(value, "binary_compressed")) return PcdEncoding::BinaryCompressed;
   }
-  failAt(path, "unknown DATA encoding " + quoteToken(value) +
-                   " (expected ascii, binary or binary_compressed)");
+  failAt(path,
+         "unknown DATA encoding " + quoteToken(value) + " (expected ascii, binary or binary_compressed)");
 }
 
 template <typename T>
@@ -69,8 +68,7 @@ void setOnce(std::optional<T>& slot, T value, std::string_view key, const fs::pa
 }
 
 // Stores one header line; returns true for the DATA line, which ends the header.
-bool takeHeaderLine(std::string_view key, std::string_view rest, RawHeader& raw,
-                    const fs::path& path) {
+bool takeHeaderLine(std::string_view key, std::string_view rest, RawHeader& raw, const fs::path& path) {
   const auto is = [&](std::string_view name) { return equalsIgnoreCase(key, name); };
   if (is("VERSION") || is("VIEWPOINT")) return false;  // nothing hba needs
   if (is("FIELDS") || is("COLUMNS")) {
@@ -100,8 +98,8 @@ void checkListLength(const std::optional<std::vector<std::string_view>>& list, s
                      std::size_t field_count, const fs::path& path) {
   if (!list) failAt(path, "the header has no " + std::string(key) + " line");
   if (list->size() != field_count) {
-    failAt(path, std::string(key) + " lists " + std::to_string(list->size()) +
-                     " values but FIELDS lists " + std::to_string(field_count));
+    failAt(path, std::string(key) + " lists " + std::to_string(list->size()) + " values but FIELDS lists " +
+                     std::to_string(field_count));
   }
 }
 
@@ -114,11 +112,10 @@ PcdField makeField(std::string_view name, std::string_view size_word, std::strin
   if (type != 'F' && type != 'I' && type != 'U') {
     failAt(path, "unknown TYPE " + quoteToken(type_word) + where + " (expected F, I or U)");
   }
-  const bool size_ok = type == 'F' ? (size == 4 || size == 8)
-                                   : (size == 1 || size == 2 || size == 4 || size == 8);
+  const bool size_ok =
+      type == 'F' ? (size == 4 || size == 8) : (size == 1 || size == 2 || size == 4 || size == 8);
   if (!size_ok) {
-    failAt(path, "SIZE " + std::to_string(size) + " does not fit TYPE " + std::string(1, type) +
-                     where);
+    failAt(path, "SIZE " + std::to_string(size) + " does not fit TYPE " + std::string(1, type) + where);
   }
   // A count beyond this is not a point field; the bound keeps record sizes far
   // from overflow on every platform.
@@ -169,12 +166,11 @@ PcdHeader validate(const RawHeader& raw, const fs::path& path) {
 }  // namespace
 
 void failNoPcdDataLine(const fs::path& path) {
-  failAt(path, "no DATA line in the first " + std::to_string(kMaxPcdHeaderBytes) +
-                   " bytes (not a PCD file?)");
+  failAt(path,
+         "no DATA line in the first " + std::to_string(kMaxPcdHeaderBytes) + " bytes (not a PCD file?)");
 }
 
-std::optional<PcdHeader> parsePcdHeader(std::string_view bytes, bool is_whole_file,
-                                        const fs::path& path) {
+std::optional<PcdHeader> parsePcdHeader(std::string_view bytes, bool is_whole_file, const fs::path& path) {
   if (bytes.empty() && is_whole_file) failAt(path, "empty file");
   // Only the first kMaxPcdHeaderBytes are searched, so a huge file without a
   // header costs one bounded scan.

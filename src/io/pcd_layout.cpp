@@ -14,10 +14,14 @@ ScalarType pcdScalarType(const PcdField& field) {
   if (field.type == 'F') return field.size == 8 ? ScalarType::Float64 : ScalarType::Float32;
   const bool is_signed = field.type == 'I';
   switch (field.size) {
-    case 1: return is_signed ? ScalarType::Int8 : ScalarType::UInt8;
-    case 2: return is_signed ? ScalarType::Int16 : ScalarType::UInt16;
-    case 4: return is_signed ? ScalarType::Int32 : ScalarType::UInt32;
-    default: return is_signed ? ScalarType::Int64 : ScalarType::UInt64;
+    case 1:
+      return is_signed ? ScalarType::Int8 : ScalarType::UInt8;
+    case 2:
+      return is_signed ? ScalarType::Int16 : ScalarType::UInt16;
+    case 4:
+      return is_signed ? ScalarType::Int32 : ScalarType::UInt32;
+    default:
+      return is_signed ? ScalarType::Int64 : ScalarType::UInt64;
   }
 }
 
@@ -51,8 +55,7 @@ PcdLayout pcdLayout(const PcdHeader& header, const fs::path& path) {
     layout.byte_offsets.push_back(static_cast<std::size_t>(bytes));
     layout.first_words.push_back(static_cast<std::size_t>(words));
     const auto count = static_cast<std::uint64_t>(field.count);
-    bytes = checkedAdd(bytes, checkedMul(static_cast<std::uint64_t>(field.size), count, path,
-                                         "field size"),
+    bytes = checkedAdd(bytes, checkedMul(static_cast<std::uint64_t>(field.size), count, path, "field size"),
                        path, "point size");
     words = checkedAdd(words, count, path, "values per point");
   }

@@ -12,8 +12,10 @@ PointCloud readPcd(const std::filesystem::path& path) {
   const detail::PcdLayout layout = detail::pcdLayout(*header, path);
   const std::string_view body = bytes.view().substr(header->data_offset);
   switch (header->encoding) {
-    case PcdEncoding::Ascii: return detail::decodePcdAscii(body, *header, layout, path);
-    case PcdEncoding::Binary: return detail::decodePcdBinary(body, *header, layout, path);
+    case PcdEncoding::Ascii:
+      return detail::decodePcdAscii(body, *header, layout, path);
+    case PcdEncoding::Binary:
+      return detail::decodePcdBinary(body, *header, layout, path);
     case PcdEncoding::BinaryCompressed:
       return detail::decodePcdCompressed(body, *header, layout, path);
   }

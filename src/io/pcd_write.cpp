@@ -5,10 +5,10 @@
 #include <cstring>
 #include <string>
 
+#include "cloud_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
-#include "cloud_checks.hpp"
 #include "lzf_block.hpp"
 
 namespace hba::io {
@@ -17,9 +17,12 @@ namespace fs = std::filesystem;
 
 const char* encodingName(PcdEncoding encoding) {
   switch (encoding) {
-    case PcdEncoding::Ascii: return "ascii";
-    case PcdEncoding::Binary: return "binary";
-    case PcdEncoding::BinaryCompressed: return "binary_compressed";
+    case PcdEncoding::Ascii:
+      return "ascii";
+    case PcdEncoding::Binary:
+      return "binary";
+    case PcdEncoding::BinaryCompressed:
+      return "binary_compressed";
   }
   return "binary";
 }
@@ -108,9 +111,15 @@ void writePcd(const fs::path& path, const PointCloud& cloud, PcdEncoding encodin
   detail::requireOneIntensityPerPoint(cloud, path);
   std::string content = pcdHeaderText(cloud, encoding);
   switch (encoding) {
-    case PcdEncoding::Ascii: appendAscii(cloud, content); break;
-    case PcdEncoding::Binary: appendBinary(cloud, content); break;
-    case PcdEncoding::BinaryCompressed: appendCompressed(cloud, content, path); break;
+    case PcdEncoding::Ascii:
+      appendAscii(cloud, content);
+      break;
+    case PcdEncoding::Binary:
+      appendBinary(cloud, content);
+      break;
+    case PcdEncoding::BinaryCompressed:
+      appendCompressed(cloud, content, path);
+      break;
   }
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(content.data(), static_cast<std::streamsize>(content.size()));

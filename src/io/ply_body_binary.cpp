@@ -58,8 +58,7 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
     pos_ += static_cast<std::size_t>(total);
     return cloud;
   }
-  cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(vertex.count, remaining())),
-                with_intensity);
+  cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(vertex.count, remaining())), with_intensity);
   std::vector<std::size_t> starts(vertex.properties.size());  // in the current record
   PointCollector collector(cloud, hasWideCoordinates(vertex, fields), with_intensity);
   for (std::uint64_t r = 0; r < vertex.count; ++r) {
@@ -68,8 +67,8 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
     double values[4] = {0, 0, 0, 0};
     for (std::size_t k = 0; k < fields.count; ++k) {
       const std::size_t p = fields.index[k];
-      values[k] = loadAsDouble(bytes_.data() + record_start + starts[p], vertex.properties[p].type,
-                               big_endian_);
+      values[k] =
+          loadAsDouble(bytes_.data() + record_start + starts[p], vertex.properties[p].type, big_endian_);
     }
     collector.add(values);
   }
@@ -94,12 +93,24 @@ std::uint64_t PlyBinaryBody::listCount(const PlyProperty& property, const PlyEle
   const char* p = bytes_.data() + pos_;
   std::int64_t count = 0;
   switch (property.list_count_type) {
-    case ScalarType::Int8: count = loadUnaligned<std::int8_t>(p, false); break;
-    case ScalarType::UInt8: count = loadUnaligned<std::uint8_t>(p, false); break;
-    case ScalarType::Int16: count = loadUnaligned<std::int16_t>(p, big_endian_); break;
-    case ScalarType::UInt16: count = loadUnaligned<std::uint16_t>(p, big_endian_); break;
-    case ScalarType::Int32: count = loadUnaligned<std::int32_t>(p, big_endian_); break;
-    default: count = loadUnaligned<std::uint32_t>(p, big_endian_); break;
+    case ScalarType::Int8:
+      count = loadUnaligned<std::int8_t>(p, false);
+      break;
+    case ScalarType::UInt8:
+      count = loadUnaligned<std::uint8_t>(p, false);
+      break;
+    case ScalarType::Int16:
+      count = loadUnaligned<std::int16_t>(p, big_endian_);
+      break;
+    case ScalarType::UInt16:
+      count = loadUnaligned<std::uint16_t>(p, big_endian_);
+      break;
+    case ScalarType::Int32:
+      count = loadUnaligned<std::int32_t>(p, big_endian_);
+      break;
+    default:
+      count = loadUnaligned<std::uint32_t>(p, big_endian_);
+      break;
   }
   if (count < 0) failAt(path_, "element " + quoteToken(element.name) + " has a negative list length");
   pos_ += size;

@@ -21,14 +21,12 @@ ScalarType plyScalarType(std::string_view word, const fs::path& path) {
   };
   // Both the original names and the sized aliases of later writers.
   static const Name kNames[] = {
-      {"char", ScalarType::Int8},     {"int8", ScalarType::Int8},
-      {"uchar", ScalarType::UInt8},   {"uint8", ScalarType::UInt8},
-      {"short", ScalarType::Int16},   {"int16", ScalarType::Int16},
-      {"ushort", ScalarType::UInt16}, {"uint16", ScalarType::UInt16},
-      {"int", ScalarType::Int32},     {"int32", ScalarType::Int32},
-      {"uint", ScalarType::UInt32},   {"uint32", ScalarType::UInt32},
-      {"float", ScalarType::Float32}, {"float32", ScalarType::Float32},
-      {"double", ScalarType::Float64}, {"float64", ScalarType::Float64}};
+      {"char", ScalarType::Int8},      {"int8", ScalarType::Int8},       {"uchar", ScalarType::UInt8},
+      {"uint8", ScalarType::UInt8},    {"short", ScalarType::Int16},     {"int16", ScalarType::Int16},
+      {"ushort", ScalarType::UInt16},  {"uint16", ScalarType::UInt16},   {"int", ScalarType::Int32},
+      {"int32", ScalarType::Int32},    {"uint", ScalarType::UInt32},     {"uint32", ScalarType::UInt32},
+      {"float", ScalarType::Float32},  {"float32", ScalarType::Float32}, {"double", ScalarType::Float64},
+      {"float64", ScalarType::Float64}};
   for (const Name& name : kNames) {
     if (word == name.name) return name.type;
   }
@@ -55,8 +53,7 @@ PlyElement parseElement(std::string_view rest, const fs::path& path) {
   }
   const std::optional<std::uint64_t> number = parseUnsigned(count);
   if (!number) {
-    failAt(path, "element " + quoteToken(element.name) + " has an invalid count " +
-                     quoteToken(count));
+    failAt(path, "element " + quoteToken(element.name) + " has an invalid count " + quoteToken(count));
   }
   element.count = *number;
   return element;
@@ -68,8 +65,7 @@ PlyProperty parseProperty(std::string_view rest, const fs::path& path) {
   if (type == "list") {
     property.is_list = true;
     property.list_count_type = plyScalarType(nextWord(rest), path);
-    if (property.list_count_type == ScalarType::Float32 ||
-        property.list_count_type == ScalarType::Float64) {
+    if (property.list_count_type == ScalarType::Float32 || property.list_count_type == ScalarType::Float64) {
       failAt(path, "a list count must have an integer type");
     }
     type = nextWord(rest);

@@ -16,8 +16,7 @@ using detail::PlyElement;
 
 // CloudCompare names its scalar fields "scalar_<name>".
 bool isIntensityName(std::string_view name) {
-  return detail::equalsIgnoreCase(name, "intensity") ||
-         detail::equalsIgnoreCase(name, "scalar_intensity");
+  return detail::equalsIgnoreCase(name, "intensity") || detail::equalsIgnoreCase(name, "scalar_intensity");
 }
 
 int slotOf(const std::string& name) {

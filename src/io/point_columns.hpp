@@ -17,9 +17,7 @@ struct Column {
   std::size_t stride = 0;       // bytes from one point's element to the next
   ScalarType type = ScalarType::Float32;
 
-  float at(std::size_t i, bool big_endian) const {
-    return loadAsFloat(first + i * stride, type, big_endian);
-  }
+  float at(std::size_t i, bool big_endian) const { return loadAsFloat(first + i * stride, type, big_endian); }
 };
 
 struct PointColumns {

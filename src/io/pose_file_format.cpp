@@ -13,9 +13,12 @@ namespace detail {
 
 std::size_t numbersPerLine(PoseFormat format) {
   switch (format) {
-    case PoseFormat::Hba: return 7;
-    case PoseFormat::Kitti: return 12;
-    case PoseFormat::Tum: return 8;
+    case PoseFormat::Hba:
+      return 7;
+    case PoseFormat::Kitti:
+      return 12;
+    case PoseFormat::Tum:
+      return 8;
   }
   return 0;
 }

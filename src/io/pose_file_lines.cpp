@@ -27,24 +27,24 @@ std::string_view trim(std::string_view s) {
   failAt(path, "line " + std::to_string(line) + ": " + problem);
 }
 
-double parseNumber(const fs::path& path, std::size_t line, std::string_view token,
-                   std::size_t column) {
+double parseNumber(const fs::path& path, std::size_t line, std::string_view token, std::size_t column) {
   std::string_view digits = token;
   // from_chars rejects a leading '+', which some writers emit.
   if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
   double value = 0.0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   if (ec == std::errc::result_out_of_range) {
-    failAtLine(path, line, "number " + std::to_string(column) + " ('" + std::string(token) +
-                               "') is out of the range of a double");
+    failAtLine(path, line,
+               "number " + std::to_string(column) + " ('" + std::string(token) +
+                   "') is out of the range of a double");
   }
   if (ec != std::errc() || end != digits.data() + digits.size()) {
     failAtLine(path, line, "'" + std::string(token) + "' is not a number");
   }
   if (!std::isfinite(value)) {
-    failAtLine(path, line, "number " + std::to_string(column) + " is " +
-                               (std::isnan(value) ? "NaN" : "infinite") + " ('" +
-                               std::string(token) + "')");
+    failAtLine(path, line,
+               "number " + std::to_string(column) + " is " + (std::isnan(value) ? "NaN" : "infinite") +
+                   " ('" + std::string(token) + "')");
   }
   return value;
 }
@@ -94,8 +94,7 @@ void forEachNumberRow(const fs::path& path, OnRow on_row) {
       continue;
     }
     if (pending_blank != 0 && any_data) {
-      failAtLine(path, pending_blank,
-                 "blank line between poses (only blank lines at the end are allowed)");
+      failAtLine(path, pending_blank, "blank line between poses (only blank lines at the end are allowed)");
     }
     pending_blank = 0;
     any_data = true;

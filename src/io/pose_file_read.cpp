@@ -24,8 +24,7 @@ constexpr double kMaxRotationScaleError = 0.05;
   failAt(path, "line " + std::to_string(line) + ": " + problem);
 }
 
-Quat unitQuaternion(const fs::path& path, std::size_t line, double w, double x, double y,
-                    double z) {
+Quat unitQuaternion(const fs::path& path, std::size_t line, double w, double x, double y, double z) {
   Quat q(w, x, y, z);
   const double norm = q.norm();
   if (norm < kMinQuaternionNorm) {
@@ -41,8 +40,8 @@ Mat3 nearestRotation(const fs::path& path, std::size_t line, const Mat3& m) {
   const Vec3 sigma = svd.singularValues();
   if ((sigma.array() - 1.0).abs().maxCoeff() > kMaxRotationScaleError) {
     failAtLine(path, line,
-               "the 3x3 block is not a rotation (singular values " + std::to_string(sigma(0)) +
-                   ", " + std::to_string(sigma(1)) + ", " + std::to_string(sigma(2)) + ")");
+               "the 3x3 block is not a rotation (singular values " + std::to_string(sigma(0)) + ", " +
+                   std::to_string(sigma(1)) + ", " + std::to_string(sigma(2)) + ")");
   }
   const Mat3 r = svd.matrixU() * svd.matrixV().transpose();
   if (r.determinant() < 0.0) failAtLine(path, line, "the 3x3 block is a reflection, not a rotation");
@@ -71,9 +70,12 @@ namespace {
 
 std::string describe(PoseFormat format) {
   switch (format) {
-    case PoseFormat::Hba: return "hba: tx ty tz qw qx qy qz";
-    case PoseFormat::Kitti: return "kitti: row-major 3x4 [R|t]";
-    case PoseFormat::Tum: return "tum: t tx ty tz qx qy qz qw";
+    case PoseFormat::Hba:
+      return "hba: tx ty tz qw qx qy qz";
+    case PoseFormat::Kitti:
+      return "kitti: row-major 3x4 [R|t]";
+    case PoseFormat::Tum:
+      return "tum: t tx ty tz qx qy qz qw";
   }
   return "";
 }
@@ -87,8 +89,8 @@ Trajectory trajectoryFromRows(const fs::path& path, const std::vector<detail::Nu
   for (const detail::NumberRow& row : rows) {
     if (row.values.size() != expected) {
       failAtLine(path, row.line,
-                 "expected " + std::to_string(expected) + " numbers (" + describe(format) +
-                     "), found " + std::to_string(row.values.size()));
+                 "expected " + std::to_string(expected) + " numbers (" + describe(format) + "), found " +
+                     std::to_string(row.values.size()));
     }
     trajectory.poses.push_back(detail::poseFromRow(path, row, format));
     if (format == PoseFormat::Tum) trajectory.stamps.push_back(row.values[0]);
@@ -118,7 +120,8 @@ std::string stampsToSeconds(std::vector<double>& stamps) {
     // step by hours between scans.
     std::vector<double> steps;
     for (std::size_t i = 1; i < stamps.size(); ++i) steps.push_back(std::abs(stamps[i] - stamps[i - 1]));
-    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+    std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2),
+                     steps.end());
     const double step = steps[steps.size() / 2];
     scale = step > 5e6 ? 1e-9 : step > 5e3 ? 1e-6 : 1.0;
   }

@@ -30,19 +30,18 @@ void writeRow(std::ostream& out, const std::array<double, N>& values) {
 }
 
 void writeHbaLine(std::ostream& out, const Pose& pose) {
-  writeRow<7>(out, {pose.t.x(), pose.t.y(), pose.t.z(), pose.q.w(), pose.q.x(), pose.q.y(),
-                    pose.q.z()});
+  writeRow<7>(out, {pose.t.x(), pose.t.y(), pose.t.z(), pose.q.w(), pose.q.x(), pose.q.y(), pose.q.z()});
 }
 
 void writeKittiLine(std::ostream& out, const Pose& pose) {
   const Mat3 r = pose.R();
-  writeRow<12>(out, {r(0, 0), r(0, 1), r(0, 2), pose.t.x(), r(1, 0), r(1, 1), r(1, 2), pose.t.y(),
-                     r(2, 0), r(2, 1), r(2, 2), pose.t.z()});
+  writeRow<12>(out, {r(0, 0), r(0, 1), r(0, 2), pose.t.x(), r(1, 0), r(1, 1), r(1, 2), pose.t.y(), r(2, 0),
+                     r(2, 1), r(2, 2), pose.t.z()});
 }
 
 void writeTumLine(std::ostream& out, double stamp, const Pose& pose) {
-  writeRow<8>(out, {stamp, pose.t.x(), pose.t.y(), pose.t.z(), pose.q.x(), pose.q.y(), pose.q.z(),
-                    pose.q.w()});
+  writeRow<8>(out,
+              {stamp, pose.t.x(), pose.t.y(), pose.t.z(), pose.q.x(), pose.q.y(), pose.q.z(), pose.q.w()});
 }
 
 }  // namespace
@@ -50,8 +49,8 @@ void writeTumLine(std::ostream& out, double stamp, const Pose& pose) {
 void writePoses(const fs::path& path, const Trajectory& trajectory, PoseFormat format) {
   if (trajectory.empty()) failAt(path, "refusing to write an empty trajectory (no poses)");
   if (trajectory.hasStamps() && trajectory.stamps.size() != trajectory.size()) {
-    failAt(path, "the trajectory has " + std::to_string(trajectory.stamps.size()) +
-                     " timestamps for " + std::to_string(trajectory.size()) + " poses");
+    failAt(path, "the trajectory has " + std::to_string(trajectory.stamps.size()) + " timestamps for " +
+                     std::to_string(trajectory.size()) + " poses");
   }
   writeFileAtomically(path, [&](std::ostream& out) {
     if (format == PoseFormat::Tum) {
@@ -62,11 +61,14 @@ void writePoses(const fs::path& path, const Trajectory& trajectory, PoseFormat f
     for (std::size_t i = 0; i < trajectory.size(); ++i) {
       const Pose& pose = trajectory.poses[i];
       switch (format) {
-        case PoseFormat::Hba: writeHbaLine(out, pose); break;
-        case PoseFormat::Kitti: writeKittiLine(out, pose); break;
+        case PoseFormat::Hba:
+          writeHbaLine(out, pose);
+          break;
+        case PoseFormat::Kitti:
+          writeKittiLine(out, pose);
+          break;
         case PoseFormat::Tum:
-          writeTumLine(out, trajectory.hasStamps() ? trajectory.stamps[i] : static_cast<double>(i),
-                       pose);
+          writeTumLine(out, trajectory.hasStamps() ? trajectory.stamps[i] : static_cast<double>(i), pose);
           break;
       }
     }

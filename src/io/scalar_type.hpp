@@ -11,21 +11,34 @@ namespace hba::io::detail {
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "hba's scan readers assume a little-endian host");
 
 enum class ScalarType : std::uint8_t {
-  Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float32,
+  Float64
 };
 
 constexpr std::size_t scalarSize(ScalarType type) {
   switch (type) {
     case ScalarType::Int8:
-    case ScalarType::UInt8: return 1;
+    case ScalarType::UInt8:
+      return 1;
     case ScalarType::Int16:
-    case ScalarType::UInt16: return 2;
+    case ScalarType::UInt16:
+      return 2;
     case ScalarType::Int32:
     case ScalarType::UInt32:
-    case ScalarType::Float32: return 4;
+    case ScalarType::Float32:
+      return 4;
     case ScalarType::Int64:
     case ScalarType::UInt64:
-    case ScalarType::Float64: return 8;
+    case ScalarType::Float64:
+      return 8;
   }
   return 0;
 }
@@ -52,16 +65,26 @@ inline double loadAsDouble(const char* p, ScalarType type, bool big_endian = fal
 // Loads the value of `type` stored at `p` (any alignment) as a float.
 inline float loadAsFloat(const char* p, ScalarType type, bool big_endian = false) {
   switch (type) {
-    case ScalarType::Int8: return static_cast<float>(loadUnaligned<std::int8_t>(p, false));
-    case ScalarType::UInt8: return static_cast<float>(loadUnaligned<std::uint8_t>(p, false));
-    case ScalarType::Int16: return static_cast<float>(loadUnaligned<std::int16_t>(p, big_endian));
-    case ScalarType::UInt16: return static_cast<float>(loadUnaligned<std::uint16_t>(p, big_endian));
-    case ScalarType::Int32: return static_cast<float>(loadUnaligned<std::int32_t>(p, big_endian));
-    case ScalarType::UInt32: return static_cast<float>(loadUnaligned<std::uint32_t>(p, big_endian));
-    case ScalarType::Int64: return static_cast<float>(loadUnaligned<std::int64_t>(p, big_endian));
-    case ScalarType::UInt64: return static_cast<float>(loadUnaligned<std::uint64_t>(p, big_endian));
-    case ScalarType::Float32: return loadUnaligned<float>(p, big_endian);
-    case ScalarType::Float64: return static_cast<float>(loadUnaligned<double>(p, big_endian));
+    case ScalarType::Int8:
+      return static_cast<float>(loadUnaligned<std::int8_t>(p, false));
+    case ScalarType::UInt8:
+      return static_cast<float>(loadUnaligned<std::uint8_t>(p, false));
+    case ScalarType::Int16:
+      return static_cast<float>(loadUnaligned<std::int16_t>(p, big_endian));
+    case ScalarType::UInt16:
+      return static_cast<float>(loadUnaligned<std::uint16_t>(p, big_endian));
+    case ScalarType::Int32:
+      return static_cast<float>(loadUnaligned<std::int32_t>(p, big_endian));
+    case ScalarType::UInt32:
+      return static_cast<float>(loadUnaligned<std::uint32_t>(p, big_endian));
+    case ScalarType::Int64:
+      return static_cast<float>(loadUnaligned<std::int64_t>(p, big_endian));
+    case ScalarType::UInt64:
+      return static_cast<float>(loadUnaligned<std::uint64_t>(p, big_endian));
+    case ScalarType::Float32:
+      return loadUnaligned<float>(p, big_endian);
+    case ScalarType::Float64:
+      return static_cast<float>(loadUnaligned<double>(p, big_endian));
   }
   return 0.0f;
 }

@@ -31,18 +31,27 @@ bool isScanFile(const std::filesystem::path& path) { return formatOf(path).has_v
 
 PointCloud readScan(const std::filesystem::path& path) {
   switch (scanFormatFromExtension(path)) {
-    case ScanFormat::Pcd: return readPcd(path);
-    case ScanFormat::KittiBin: return readKittiBin(path);
-    case ScanFormat::Ply: return readPly(path);
+    case ScanFormat::Pcd:
+      return readPcd(path);
+    case ScanFormat::KittiBin:
+      return readKittiBin(path);
+    case ScanFormat::Ply:
+      return readPly(path);
   }
   failAt(path, "unknown scan format");
 }
 
 void writeScan(const std::filesystem::path& path, const PointCloud& cloud) {
   switch (scanFormatFromExtension(path)) {
-    case ScanFormat::Pcd: writePcd(path, cloud); break;
-    case ScanFormat::KittiBin: writeKittiBin(path, cloud); break;
-    case ScanFormat::Ply: writePly(path, cloud); break;
+    case ScanFormat::Pcd:
+      writePcd(path, cloud);
+      break;
+    case ScanFormat::KittiBin:
+      writeKittiBin(path, cloud);
+      break;
+    case ScanFormat::Ply:
+      writePly(path, cloud);
+      break;
   }
 }
 

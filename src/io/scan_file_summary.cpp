@@ -11,9 +11,12 @@ namespace {
 
 std::string pcdEncodingName(PcdEncoding encoding) {
   switch (encoding) {
-    case PcdEncoding::Ascii: return "PCD ascii";
-    case PcdEncoding::Binary: return "PCD binary";
-    case PcdEncoding::BinaryCompressed: return "PCD binary_compressed";
+    case PcdEncoding::Ascii:
+      return "PCD ascii";
+    case PcdEncoding::Binary:
+      return "PCD binary";
+    case PcdEncoding::BinaryCompressed:
+      return "PCD binary_compressed";
   }
   return "PCD";
 }
@@ -22,9 +25,12 @@ std::string pcdEncodingName(PcdEncoding encoding) {
 
 std::uint64_t storedPointCount(const std::filesystem::path& path) {
   switch (scanFormatFromExtension(path)) {
-    case ScanFormat::Pcd: return readPcdHeader(path).points;
-    case ScanFormat::KittiBin: return kittiBinPointCount(path);
-    case ScanFormat::Ply: return readScan(path).size();
+    case ScanFormat::Pcd:
+      return readPcdHeader(path).points;
+    case ScanFormat::KittiBin:
+      return kittiBinPointCount(path);
+    case ScanFormat::Ply:
+      return readScan(path).size();
   }
   failAt(path, "unknown scan format");
 }
@@ -35,7 +41,8 @@ ScanFileFields describeScanFields(const std::filesystem::path& path) {
     case ScanFormat::Pcd: {
       const PcdHeader header = readPcdHeader(path);
       for (const PcdField& field : header.fields) {
-        out.fields.push_back(field.count == 1 ? field.name : field.name + "[" + std::to_string(field.count) + "]");
+        out.fields.push_back(field.count == 1 ? field.name
+                                              : field.name + "[" + std::to_string(field.count) + "]");
       }
       out.encoding = pcdEncodingName(header.encoding);
       break;

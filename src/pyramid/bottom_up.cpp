@@ -14,10 +14,10 @@
 
 namespace hba::pyramid {
 
-LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
-                           const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
-                           const HbaSettings& settings, const KeyframeStore* next,
-                           double keyframe_voxel, StageTimes& times, const std::string& progress_label) {
+LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
+                           const ba::BaSettings& ba_settings, const HbaSettings& settings,
+                           const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
+                           const std::string& progress_label) {
   checkWindowPlan(windows, layer.poses.size());
   std::vector<WindowSummary> summaries(windows.size());
   StreamedClouds streamed(clouds.source());
@@ -49,8 +49,8 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
       start = Clock::now();
       tbb::parallel_for(b0, batch.end_window, [&](std::size_t w) {
         const ba::BaResult& result = ba_results[w - b0];
-        next->store(w, buildKeyframe(streamed.cloudsOf(windows[w]), result.poses,
-                                     result.plane_point_indices, keyframe_voxel));
+        next->store(w, buildKeyframe(streamed.cloudsOf(windows[w]), result.poses, result.plane_point_indices,
+                                     keyframe_voxel));
       });
       times.keyframes += secondsSince(start);
     }

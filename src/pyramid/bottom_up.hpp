@@ -26,9 +26,9 @@ struct StageTimes {
 // batches (window_batches.hpp; their load times added to `times`), so memory stays bounded by a few windows'
 // worth of clouds. With `next` set, each window's plane points, downsampled
 // to `keyframe_voxel`, are stored there as keyframe j of the next layer.
-LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds,
-                           const std::vector<Window>& windows, const ba::BaSettings& ba_settings,
-                           const HbaSettings& settings, const KeyframeStore* next,
-                           double keyframe_voxel, StageTimes& times, const std::string& progress_label);
+LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
+                           const ba::BaSettings& ba_settings, const HbaSettings& settings,
+                           const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
+                           const std::string& progress_label);
 
 }  // namespace hba::pyramid

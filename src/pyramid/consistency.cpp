@@ -11,9 +11,8 @@
 
 namespace hba::pyramid {
 
-FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans,
-                             const std::vector<Pose>& poses, const voxel::PlaneSettings& planes,
-                             double reject_ratio, std::size_t regions) {
+FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                             const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions) {
   const ba::PlaneProblem problem = ba::associate(scans, poses, planes, reject_ratio).problem;
   std::size_t total = 0;
   for (const ba::PlaneObservation& plane : problem.planes()) total += plane.clusters.size();
@@ -27,9 +26,8 @@ FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans,
       c.mean = {static_cast<float>(fc.cluster.mean.x()), static_cast<float>(fc.cluster.mean.y()),
                 static_cast<float>(fc.cluster.mean.z())};
       const Mat3& S = fc.cluster.scatter;
-      c.scatter = {static_cast<float>(S(0, 0)), static_cast<float>(S(0, 1)),
-                   static_cast<float>(S(0, 2)), static_cast<float>(S(1, 1)),
-                   static_cast<float>(S(1, 2)), static_cast<float>(S(2, 2))};
+      c.scatter = {static_cast<float>(S(0, 0)), static_cast<float>(S(0, 1)), static_cast<float>(S(0, 2)),
+                   static_cast<float>(S(1, 1)), static_cast<float>(S(1, 2)), static_cast<float>(S(2, 2))};
       clusters_.push_back(c);
     }
     plane_begin_.push_back(clusters_.size());

@@ -46,7 +46,7 @@ class FixedPlaneMap {
   struct CompactCluster {
     std::uint32_t frame = 0;
     float count = 0.0f;
-    std::array<float, 3> mean{};  // plain floats: the map is written to disk as bytes
+    std::array<float, 3> mean{};     // plain floats: the map is written to disk as bytes
     std::array<float, 6> scatter{};  // xx xy xz yy yz zz
   };
   FixedPlaneMap() = default;

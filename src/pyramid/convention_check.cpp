@@ -16,9 +16,7 @@ namespace {
 
 using KeySet = std::unordered_set<voxel::VoxelKey, voxel::VoxelKeyHash>;
 
-double rotationDeg(const Pose& a, const Pose& b) {
-  return a.q.angularDistance(b.q) * 180.0 / M_PI;
-}
+double rotationDeg(const Pose& a, const Pose& b) { return a.q.angularDistance(b.q) * 180.0 / M_PI; }
 
 // Stretches of consecutive frames, spread over the sequence, each long
 // enough (in path or turn) that wrong poses would smear the map visibly.
@@ -35,7 +33,8 @@ std::vector<std::vector<std::size_t>> pickStretches(const std::vector<Pose>& pos
       path += (poses[last + 1].t - poses[last].t).norm();
       ++last;
     }
-    const bool moved = path >= s.stretch_length || rotationDeg(poses[first], poses[last]) >= s.stretch_rotation_deg;
+    const bool moved =
+        path >= s.stretch_length || rotationDeg(poses[first], poses[last]) >= s.stretch_rotation_deg;
     if (!moved || last == first) continue;
     std::vector<std::size_t> frames;
     const std::size_t count = std::min(s.stretch_scans, last - first + 1);
@@ -70,7 +69,8 @@ bool isCameraAxes(const Mat3& R) {
 std::string extrinsicText(const Mat3& R) {
   const Quat q(R);
   const auto clean = [](double v) { return std::abs(v) < 1e-12 ? 0.0 : v; };
-  return fmt::format("0 0 0 {:.6g} {:.6g} {:.6g} {:.6g}", clean(q.x()), clean(q.y()), clean(q.z()), clean(q.w()));
+  return fmt::format("0 0 0 {:.6g} {:.6g} {:.6g} {:.6g}", clean(q.x()), clean(q.y()), clean(q.z()),
+                     clean(q.w()));
 }
 
 void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& keys) {
@@ -139,29 +139,36 @@ ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<
   const std::string on_top = given.extrinsic ? " (on top of the --extrinsic or calibration given)" : "";
   if (given.scans_in_world && check.as_stored == best_other) {
     check.verdict = ConventionVerdict::ScansNotInWorld;
-    check.message = "the scans line up as stored, in the sensor frame, not moved into the world: " + scores +
-                    fmt::format(", {:.2f} with the scans as stored. Run again without --scans-in-world", check.as_stored);
+    check.message =
+        "the scans line up as stored, in the sensor frame, not moved into the world: " + scores +
+        fmt::format(", {:.2f} with the scans as stored. Run again without --scans-in-world", check.as_stored);
   } else if (check.turned == best_other) {
     check.verdict = ConventionVerdict::TurnedBody;
     const std::string turn = extrinsicText(check.turn);
-    check.message = isCameraAxes(check.turn)
-                        ? "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " +
-                              scores + ". hba needs poses of the scans' sensor: give the sensor-to-camera "
-                              "transform with --calib calib.txt (KITTI's Tr) or --extrinsic"
-                        : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
-                          "against the scans' sensor: " + scores + ". hba needs poses of the scans' sensor: give "
-                          "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
-                          "fits best is --extrinsic '" + turn + "' (add your lever arm)" + on_top;
+    check.message =
+        isCameraAxes(check.turn)
+            ? "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " + scores +
+                  ". hba needs poses of the scans' sensor: give the sensor-to-camera "
+                  "transform with --calib calib.txt (KITTI's Tr) or --extrinsic"
+            : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
+              "against the scans' sensor: " +
+                  scores +
+                  ". hba needs poses of the scans' sensor: give "
+                  "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
+                  "fits best is --extrinsic '" +
+                  turn + "' (add your lever arm)" + on_top;
   } else if (check.inverted == best_other) {
     check.verdict = ConventionVerdict::PosesInverted;
-    check.message = "the poses look inverted (world-to-sensor): " + scores +
-                    ". hba expects sensor-to-world poses (p_world = R p + t); " +
-                    (given.invert_poses ? "run again without --invert-poses" : "run again with --invert-poses");
+    check.message =
+        "the poses look inverted (world-to-sensor): " + scores +
+        ". hba expects sensor-to-world poses (p_world = R p + t); " +
+        (given.invert_poses ? "run again without --invert-poses" : "run again with --invert-poses");
   } else {
     check.verdict = ConventionVerdict::ScansInWorld;
     check.message = "the scans look already moved into the world frame: " + scores +
                     ". hba expects scans in the sensor frame; run again with --scans-in-world";
-    if (given.scans_in_world) check.message = "the scans still look moved into the world frame after --scans-in-world: " + scores;
+    if (given.scans_in_world)
+      check.message = "the scans still look moved into the world frame after --scans-in-world: " + scores;
   }
   check.message += " (or --no-convention-check to run as given)";
   return check;

@@ -64,8 +64,7 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
                                HbaReport& report) {
   const auto start = Clock::now();
   GroupRefinementReport& g = report.refinement.groups;
-  const std::size_t size = groupSize(current.size(), settings.group_max_count,
-                                     settings.group_min_frames);
+  const std::size_t size = groupSize(current.size(), settings.group_max_count, settings.group_min_frames);
   const std::vector<GroupSpan> groups = planGroups(current.size(), size);
   if (groups.size() < 3) return current;  // nothing a block would not see
 
@@ -97,8 +96,8 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   g.ran = true;
   g.groups = groups.size();
   g.frames_per_group = size;
-  spdlog::info("refinement: {} frames tied into {} groups of {} ({} points at {} m)",
-               current.size(), groups.size(), size, g.points, settings.group_voxel);
+  spdlog::info("refinement: {} frames tied into {} groups of {} ({} points at {} m)", current.size(),
+               groups.size(), size, g.points, settings.group_voxel);
 
   ba::RefinementSettings rs = settings.refinementBa();
   // Few unknowns, whose weak long-range modes are the point: exact steps.
@@ -139,9 +138,10 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
       g.largest_move_m = std::max(g.largest_move_m, (out[i].t - current[i].t).norm());
     }
   }
-  spdlog::info("refinement: groups placed, plane RMS {:.4f} -> {:.4f} m on their {} planes, "
-               "largest move {:.3f} m, {:.1f} s",
-               g.rms_before, g.rms_after, g.planes, g.largest_move_m, g.seconds);
+  spdlog::info(
+      "refinement: groups placed, plane RMS {:.4f} -> {:.4f} m on their {} planes, "
+      "largest move {:.3f} m, {:.1f} s",
+      g.rms_before, g.rms_after, g.planes, g.largest_move_m, g.seconds);
   return out;
 }
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/io/scan_source.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {

@@ -11,9 +11,9 @@
 #include <utility>
 
 #include "bottom_up.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
+#include "hba/core/stopwatch.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "refine_stage.hpp"
@@ -39,23 +39,25 @@ void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, con
 int threadCount(const HbaSettings& settings) {
   if (settings.threads > 0) return settings.threads;
   const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  return static_cast<int>(std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
+  return static_cast<int>(
+      std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
 }
 
 void logLayer(const LayerReport& r) {
   spdlog::info("  layer {}{}: {} frames, {} windows, {} planes, plane RMS {:.4f} -> {:.4f} m, {:.2f} s",
                r.layer, r.global ? " (global BA)" : "", r.frames, r.windows, r.planes, r.rms_before,
                r.rms_after, r.seconds);
-  spdlog::debug("  layer {}: {} points, {} association rounds, {} LM iterations", r.layer,
-                r.cloud_points, r.association_rounds, r.lm_iterations);
+  spdlog::debug("  layer {}: {} points, {} association rounds, {} LM iterations", r.layer, r.cloud_points,
+                r.association_rounds, r.lm_iterations);
   if (r.windows_untrusted > 0) {
-    spdlog::warn("  layer {}: {} of {} windows made the map blurrier or slid frames beyond the motion "
-                 "prior, and keep their input poses",
-                 r.layer, r.windows_untrusted, r.windows);
+    spdlog::warn(
+        "  layer {}: {} of {} windows made the map blurrier or slid frames beyond the motion "
+        "prior, and keep their input poses",
+        r.layer, r.windows_untrusted, r.windows);
   }
   if (r.windows_without_planes > 0) {
-    spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer,
-                 r.windows_without_planes, r.windows);
+    spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer, r.windows_without_planes,
+                 r.windows);
   }
 }
 
@@ -76,8 +78,7 @@ std::pair<double, double> splitWall(double wall, double first, double second) {
 }
 
 void addStageTimes(const StageTimes& times, HbaReport& report) {
-  const auto [read, downsample] =
-      splitWall(times.load, times.load_parts.read, times.load_parts.downsample);
+  const auto [read, downsample] = splitWall(times.load, times.load_parts.read, times.load_parts.downsample);
   const auto [voxelize, solve] = splitWall(times.ba, times.associate, times.solve);
   report.seconds_read += read;
   report.seconds_downsample += downsample;
@@ -95,15 +96,16 @@ Update largestUpdate(const std::vector<Pose>& before, const std::vector<Pose>& a
   Update u;
   for (std::size_t i = 0; i < before.size(); ++i) {
     u.translation = std::max(u.translation, (after[i].t - before[i].t).norm());
-    u.rotation_deg = std::max(u.rotation_deg,
-                              so3Log(Quat(before[i].q.conjugate() * after[i].q)).norm() * 180.0 / M_PI);
+    u.rotation_deg =
+        std::max(u.rotation_deg, so3Log(Quat(before[i].q.conjugate() * after[i].q)).norm() * 180.0 / M_PI);
   }
   return u;
 }
 
 // The clouds `layer` reads: layer 1 the scans, an upper layer its stored
 // keyframes, timed in `stored` (all of their load is reading).
-const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans, std::unique_ptr<TimedClouds>& stored) {
+const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans,
+                            std::unique_ptr<TimedClouds>& stored) {
   if (!layer.keyframes) return scans;
   stored = std::make_unique<TimedClouds>(*layer.keyframes);
   return *stored;
@@ -112,8 +114,7 @@ const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans, std::u
 // One bottom-up pass and one top-down pass from `poses`.
 
 std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& poses,
-                          const HbaSettings& settings, int layers, int iteration,
-                          HbaReport& report) {
+                          const HbaSettings& settings, int layers, int iteration, HbaReport& report) {
   StageTimes times;
   Layer layer = scanLayer(poses);
 
@@ -124,9 +125,9 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     std::unique_ptr<TimedClouds> stored;
     const TimedClouds& clouds = cloudsOf(layer, scans, stored);
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
-    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
-                                         keyframes.get(), keyframeVoxel(settings, level + 1), times,
-                                         "layer " + std::to_string(level));
+    LayerOutcome outcome =
+        optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings, keyframes.get(),
+                      keyframeVoxel(settings, level + 1), times, "layer " + std::to_string(level));
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.seconds = secondsSince(start);
@@ -142,9 +143,8 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
   const std::vector<Window> all{Window{0, layer.poses.size()}};
   std::unique_ptr<TimedClouds> stored;
   const TimedClouds& top_clouds = cloudsOf(layer, scans, stored);
-  LayerOutcome top =
-      optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
-                    "layer " + std::to_string(layers) + " (global BA)");
+  LayerOutcome top = optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
+                                   "layer " + std::to_string(layers) + " (global BA)");
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;
@@ -180,8 +180,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
   iteration_report.seconds_graph = secondsSince(graph_start);
   report.seconds_graph += iteration_report.seconds_graph;
   spdlog::info("  pose graph: {} poses, {} factors, cost {:.4g} -> {:.4g}, {:.2f} s", poses.size(),
-               factors.size(), solved.initial_cost, solved.final_cost,
-               iteration_report.seconds_graph);
+               factors.size(), solved.initial_cost, solved.final_cost, iteration_report.seconds_graph);
   report.iterations.push_back(iteration_report);
   return solved.poses;
 }
@@ -193,14 +192,13 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   HbaResult result;
   HbaReport& report = result.report;
   report.frames = initial.size();
-  report.layers = settings.layers > 0
-                      ? std::min(settings.layers, maxLayerCount(initial.size(), settings.window,
-                                                                settings.stride))
-                      : defaultLayerCount(initial.size(), settings);
+  report.layers =
+      settings.layers > 0
+          ? std::min(settings.layers, maxLayerCount(initial.size(), settings.window, settings.stride))
+          : defaultLayerCount(initial.size(), settings);
   if (settings.layers > report.layers) {
     report.warnings.push_back("requested " + std::to_string(settings.layers) +
-                              " layers; the sequence holds at most " +
-                              std::to_string(report.layers));
+                              " layers; the sequence holds at most " + std::to_string(report.layers));
     spdlog::warn("{}", report.warnings.back());
   }
 

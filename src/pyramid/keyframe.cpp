@@ -4,10 +4,8 @@
 
 namespace hba::pyramid {
 
-PointCloud buildKeyframe(const std::vector<const PointCloud*>& clouds,
-                         const std::vector<Pose>& optimized,
-                         const std::vector<std::vector<std::uint32_t>>& plane_point_indices,
-                         double voxel) {
+PointCloud buildKeyframe(const std::vector<const PointCloud*>& clouds, const std::vector<Pose>& optimized,
+                         const std::vector<std::vector<std::uint32_t>>& plane_point_indices, double voxel) {
   std::size_t total = 0;
   for (const auto& indices : plane_point_indices) total += indices.size();
   const bool with_intensity = !clouds.empty() && clouds.front()->hasIntensity();

@@ -57,9 +57,7 @@ KeyframeStore::~KeyframeStore() {
   fs::remove_all(folder_, ec);
 }
 
-fs::path KeyframeStore::pathOf(std::size_t i) const {
-  return folder_ / (std::to_string(i) + ".bin");
-}
+fs::path KeyframeStore::pathOf(std::size_t i) const { return folder_ / (std::to_string(i) + ".bin"); }
 
 // io's KITTI .bin files (float32 x y z intensity): exact for float points,
 // no header. Written as scratch files, not atomically: they belong to this

@@ -13,20 +13,18 @@
 #include <utility>
 
 #include "consistency.hpp"
-#include "keyframe_store.hpp"
 #include "group_refinement.hpp"
-#include "spilled_scan_source.hpp"
 #include "hba/ba/global_refinement.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
+#include "keyframe_store.hpp"
+#include "spilled_scan_source.hpp"
 
 namespace hba::pyramid {
 namespace {
 
 // Regions of the per-region self-check: about 100 frames each, 4 to 20.
-std::size_t regionCount(std::size_t frames) {
-  return std::clamp<std::size_t>(frames / 100, 4, 20);
-}
+std::size_t regionCount(std::size_t frames) { return std::clamp<std::size_t>(frames / 100, 4, 20); }
 
 void warn(HbaReport& report, std::string message) {
   spdlog::warn("{}", message);
@@ -103,8 +101,8 @@ struct RegionFigures {
   double final_rms = 0.0;
 };
 
-void addRegions(const FixedPlaneMap& fixed, const std::vector<Pose>& input,
-                const std::vector<Pose>& poses, std::size_t first, std::vector<RegionFigures>& out) {
+void addRegions(const FixedPlaneMap& fixed, const std::vector<Pose>& input, const std::vector<Pose>& poses,
+                std::size_t first, std::vector<RegionFigures>& out) {
   const std::vector<double> region_input = fixed.regionRms(input);
   const std::vector<double> region_final = fixed.regionRms(poses);
   for (std::size_t k = 0; k < fixed.regions(); ++k) {
@@ -181,8 +179,8 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
   // from the second block, should one follow after all).
   std::unique_ptr<SpilledScanSource> spilled;
   const io::ScanSource* source = &scans;
-  const bool several_blocks = !report.layer_reports.empty() &&
-                              report.layer_reports.front().cloud_points > settings.refine_max_points;
+  const bool several_blocks =
+      !report.layer_reports.empty() && report.layer_reports.front().cloud_points > settings.refine_max_points;
   if (several_blocks && settings.refine && report.layers > 1) {
     spilled = std::make_unique<SpilledScanSource>(scans);
     source = spilled.get();
@@ -220,8 +218,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     if (settings.refine && report.layers > 1) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                             steps.begin() + static_cast<long>(block.end - 1));
-      const ba::RefinementResult refined =
-          ba::refineGlobally(pointers, poses, rs, block_steps, input);
+      const ba::RefinementResult refined = ba::refineGlobally(pointers, poses, rs, block_steps, input);
       r.ran = true;
       r.planes += refined.planes;
       r.observations += refined.observations;
@@ -308,19 +305,22 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
   r.blocks = blocks;
   r.seconds = secondsSince(start);
   if (r.ran) {
-    spdlog::info("refinement: {} frames ({} points) in {} block(s), {} planes, {} observations, plane RMS "
-                 "{:.4f} -> {:.4f} m (first association), {} associations, {} LM iterations",
-                 initial.size(), r.scan_points, blocks, r.planes, r.observations, r.rms_before, r.rms_after,
-                 r.rounds, r.iterations);
+    spdlog::info(
+        "refinement: {} frames ({} points) in {} block(s), {} planes, {} observations, plane RMS "
+        "{:.4f} -> {:.4f} m (first association), {} associations, {} LM iterations",
+        initial.size(), r.scan_points, blocks, r.planes, r.observations, r.rms_before, r.rms_after, r.rounds,
+        r.iterations);
     if (r.held_pairs > 0) {
-      spdlog::info("refinement: {} pairs of neighbouring frames slid beyond the motion prior and "
-                   "were held near the input's relative poses",
-                   r.held_pairs);
+      spdlog::info(
+          "refinement: {} pairs of neighbouring frames slid beyond the motion prior and "
+          "were held near the input's relative poses",
+          r.held_pairs);
     }
   }
-  spdlog::info("map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
-               "{:.4f} m, final {:.4f} m",
-               c.planes, c.input_rms, c.hierarchy_rms, c.final_rms);
+  spdlog::info(
+      "map consistency (plane RMS on the input's {} planes): input {:.4f} m, hierarchy "
+      "{:.4f} m, final {:.4f} m",
+      c.planes, c.input_rms, c.hierarchy_rms, c.final_rms);
   return result;
 }
 

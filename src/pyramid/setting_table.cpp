@@ -48,8 +48,8 @@ Setting integer(std::string key, std::string flag, int default_value, SettingRan
 
 Setting count(std::string key, std::string flag, std::size_t default_value, SettingRange range,
               FieldOf<std::size_t> ref, std::string help) {
-  return field<std::size_t>(std::move(key), std::move(flag), SettingType::Count, default_value, std::move(range),
-                            std::move(ref), std::move(help));
+  return field<std::size_t>(std::move(key), std::move(flag), SettingType::Count, default_value,
+                            std::move(range), std::move(ref), std::move(help));
 }
 
 Setting real(std::string key, std::string flag, double default_value, SettingRange range, FieldOf<double> ref,
@@ -94,7 +94,9 @@ Setting shorthand(std::string key, std::string flag, std::vector<std::string> se
 
 SettingRange atLeast(double min) { return {min, kInf, false, false, ""}; }
 SettingRange between(double min, double max) { return {min, max, false, false, ""}; }
-SettingRange zeroOr(const std::string& zero, double min, double max) { return {min, max, false, false, zero}; }
+SettingRange zeroOr(const std::string& zero, double min, double max) {
+  return {min, max, false, false, zero};
+}
 
 // The settings of one plane BA (the windows' or the top layer's), in the
 // YAML map `section`; `which` names its flags (--voxel-local).
@@ -102,32 +104,39 @@ void addBaSettings(std::vector<Setting>& table, const std::string& section, cons
                    double eigen_ratio, ba::BaSettings HbaSettings::*member) {
   const auto ba = [member](HbaSettings& h) -> ba::BaSettings& { return h.*member; };
   const std::string k = section + ".";
-  table.push_back(withAliases(
-      real(k + "voxel_size", "--voxel-" + which, 4.0, between(0.01, 1000),
-           [ba](HbaSettings& h) -> double& { return ba(h).planes.voxel_size; }, "root voxel of the adaptive plane map, m"),
-      {"voxel_" + which}));
-  table.push_back(real(k + "final_voxel_size", "", 1.0, zeroOr("off", 0.01, 1000),
-                       [ba](HbaSettings& h) -> double& { return ba(h).final_voxel_size; },
-                       "coarse to fine down to this voxel, m"));
-  table.push_back(withAliases(
-      real(k + "eigen_ratio", "--theta-" + which, eigen_ratio, {0.0, 1.0, true, true, ""},
-           [ba](HbaSettings& h) -> double& { return ba(h).planes.eigen_ratio; }, "plane test lambda_min / lambda_max"),
-      {"theta_" + which}));
-  table.push_back(integer(k + "max_depth", "", 3, between(0, 8),
-                          [ba](HbaSettings& h) -> int& { return ba(h).planes.max_depth; },
-                          "octree levels below the root voxel"));
-  table.push_back(integer(k + "min_points", "", 20, atLeast(3),
-                          [ba](HbaSettings& h) -> int& { return ba(h).planes.min_points; }, "fewest points of a plane"));
-  table.push_back(integer(k + "max_iterations", "", 10, atLeast(0),
-                          [ba](HbaSettings& h) -> int& { return ba(h).max_iterations; }, "LM iterations per association"));
-  table.push_back(integer(k + "association_rounds", "", 1, atLeast(1),
-                          [ba](HbaSettings& h) -> int& { return ba(h).association_rounds; },
-                          "associations at the final voxel"));
-  table.push_back(real(k + "reject_ratio", "", 0.05, {0.0, 1.0, false, true, ""},
-                       [ba](HbaSettings& h) -> double& { return ba(h).reject_ratio; },
-                       "share of the worst planes dropped"));
-  table.push_back(onOff(k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
-                        "windows that blur the map keep their input poses"));
+  table.push_back(withAliases(real(
+                                  k + "voxel_size", "--voxel-" + which, 4.0, between(0.01, 1000),
+                                  [ba](HbaSettings& h) -> double& { return ba(h).planes.voxel_size; },
+                                  "root voxel of the adaptive plane map, m"),
+                              {"voxel_" + which}));
+  table.push_back(real(
+      k + "final_voxel_size", "", 1.0, zeroOr("off", 0.01, 1000),
+      [ba](HbaSettings& h) -> double& { return ba(h).final_voxel_size; },
+      "coarse to fine down to this voxel, m"));
+  table.push_back(
+      withAliases(real(
+                      k + "eigen_ratio", "--theta-" + which, eigen_ratio, {0.0, 1.0, true, true, ""},
+                      [ba](HbaSettings& h) -> double& { return ba(h).planes.eigen_ratio; },
+                      "plane test lambda_min / lambda_max"),
+                  {"theta_" + which}));
+  table.push_back(integer(
+      k + "max_depth", "", 3, between(0, 8), [ba](HbaSettings& h) -> int& { return ba(h).planes.max_depth; },
+      "octree levels below the root voxel"));
+  table.push_back(integer(
+      k + "min_points", "", 20, atLeast(3), [ba](HbaSettings& h) -> int& { return ba(h).planes.min_points; },
+      "fewest points of a plane"));
+  table.push_back(integer(
+      k + "max_iterations", "", 10, atLeast(0), [ba](HbaSettings& h) -> int& { return ba(h).max_iterations; },
+      "LM iterations per association"));
+  table.push_back(integer(
+      k + "association_rounds", "", 1, atLeast(1),
+      [ba](HbaSettings& h) -> int& { return ba(h).association_rounds; }, "associations at the final voxel"));
+  table.push_back(real(
+      k + "reject_ratio", "", 0.05, {0.0, 1.0, false, true, ""},
+      [ba](HbaSettings& h) -> double& { return ba(h).reject_ratio; }, "share of the worst planes dropped"));
+  table.push_back(onOff(
+      k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
+      "windows that blur the map keep their input poses"));
 }
 
 std::vector<Setting> makeTable() {
@@ -142,80 +151,102 @@ std::vector<Setting> makeTable() {
   t.push_back(shorthand("ba_iterations", "--ba-iterations", {"local.max_iterations", "global.max_iterations"},
                         "LM iterations per association of every BA"));
 
-  Setting window = integer("window", "--window", 10, atLeast(2), [](HbaSettings& h) -> int& { return h.window; },
-                           "frames per local window, w");
+  Setting window = integer(
+      "window", "--window", 10, atLeast(2), [](HbaSettings& h) -> int& { return h.window; },
+      "frames per local window, w");
   t.push_back(window);
-  Setting stride = integer("stride", "--stride", 5, atLeast(1), [](HbaSettings& h) -> int& { return h.stride; },
-                           "frames between window starts, s < w");
+  Setting stride = integer(
+      "stride", "--stride", 5, atLeast(1), [](HbaSettings& h) -> int& { return h.stride; },
+      "frames between window starts, s < w");
   stride.below = "window";
   t.push_back(stride);
-  t.push_back(integer("layers", "--layers", 0, zeroOr("automatic", 1, kInf),
-                      [](HbaSettings& h) -> int& { return h.layers; }, "pyramid layers incl. layer 1"));
-  t.push_back(withAliases(integer("iterations", "--iterations", 1, atLeast(1),
-                                  [](HbaSettings& h) -> int& { return h.outer_iterations; },
-                                  "bottom-up + top-down rounds at most"),
-                          {"outer_iterations"}));
-  t.push_back(real("scan_voxel", "--scan-voxel", 0.1, zeroOr("off", 1e-3, 100),
-                   [](HbaSettings& h) -> double& { return h.scan_voxel; }, "downsampling of the input scans, m"));
-  t.push_back(real("keyframe_voxel", "--keyframe-voxel", 0.2, zeroOr("off", 1e-3, 100),
-                   [](HbaSettings& h) -> double& { return h.keyframe_voxel; }, "downsampling of keyframes, m"));
-  t.push_back(real("keyframe_voxel_growth", "", 1.0, between(1, 10),
-                   [](HbaSettings& h) -> double& { return h.keyframe_voxel_growth; },
-                   "keyframe voxel factor per layer up"));
-  t.push_back(withAliases(real("voxel_scans", "--voxel-scans", 2.0, zeroOr("as local.voxel_size", 0.01, 100),
-                               [](HbaSettings& h) -> double& { return h.scan_window_voxel; },
-                               "root voxel of the layer-1 (scan) windows, m"),
+  t.push_back(integer(
+      "layers", "--layers", 0, zeroOr("automatic", 1, kInf), [](HbaSettings& h) -> int& { return h.layers; },
+      "pyramid layers incl. layer 1"));
+  t.push_back(withAliases(
+      integer(
+          "iterations", "--iterations", 1, atLeast(1),
+          [](HbaSettings& h) -> int& { return h.outer_iterations; }, "bottom-up + top-down rounds at most"),
+      {"outer_iterations"}));
+  t.push_back(real(
+      "scan_voxel", "--scan-voxel", 0.1, zeroOr("off", 1e-3, 100),
+      [](HbaSettings& h) -> double& { return h.scan_voxel; }, "downsampling of the input scans, m"));
+  t.push_back(real(
+      "keyframe_voxel", "--keyframe-voxel", 0.2, zeroOr("off", 1e-3, 100),
+      [](HbaSettings& h) -> double& { return h.keyframe_voxel; }, "downsampling of keyframes, m"));
+  t.push_back(real(
+      "keyframe_voxel_growth", "", 1.0, between(1, 10),
+      [](HbaSettings& h) -> double& { return h.keyframe_voxel_growth; },
+      "keyframe voxel factor per layer up"));
+  t.push_back(withAliases(real(
+                              "voxel_scans", "--voxel-scans", 2.0, zeroOr("as local.voxel_size", 0.01, 100),
+                              [](HbaSettings& h) -> double& { return h.scan_window_voxel; },
+                              "root voxel of the layer-1 (scan) windows, m"),
                           {"scan_window_voxel"}));
-  t.push_back(choice<TopDownMode>("top_down", "--top-down", TopDownMode::PoseGraph,
-                                  [](HbaSettings& h) -> TopDownMode& { return h.top_down; },
-                                  "how the corrections come down: pose_graph (the paper) or direct_assign"));
-  t.push_back(withAliases(choice<FactorPairs>("pairs", "--pairs", FactorPairs::Adjacent,
-                                              [](HbaSettings& h) -> FactorPairs& { return h.factor_pairs; },
-                                              "window frame pairs that become pose-graph factors"),
+  t.push_back(choice<TopDownMode>(
+      "top_down", "--top-down", TopDownMode::PoseGraph,
+      [](HbaSettings& h) -> TopDownMode& { return h.top_down; },
+      "how the corrections come down: pose_graph (the paper) or direct_assign"));
+  t.push_back(withAliases(choice<FactorPairs>(
+                              "pairs", "--pairs", FactorPairs::Adjacent,
+                              [](HbaSettings& h) -> FactorPairs& { return h.factor_pairs; },
+                              "window frame pairs that become pose-graph factors"),
                           {"factor_pairs"}));
-  t.push_back(real("point_sigma", "--point-sigma", 0.02, {0.0, kInf, true, false, ""},
-                   [](HbaSettings& h) -> double& { return h.information.point_sigma; },
-                   "point-to-plane noise for the pose-graph weights, m"));
-  Setting prior = onOff("motion_prior", "--no-motion-prior", true, [](HbaSettings& h) -> bool& {
-    return h.local.motion_prior.enabled;
-  }, "hold neighbours weakly at their input relative pose");
+  t.push_back(real(
+      "point_sigma", "--point-sigma", 0.02, {0.0, kInf, true, false, ""},
+      [](HbaSettings& h) -> double& { return h.information.point_sigma; },
+      "point-to-plane noise for the pose-graph weights, m"));
+  Setting prior = onOff(
+      "motion_prior", "--no-motion-prior", true,
+      [](HbaSettings& h) -> bool& { return h.local.motion_prior.enabled; },
+      "hold neighbours weakly at their input relative pose");
   // One switch for the prior of every BA.
   prior.set = [](HbaSettings& h, const SettingValue& v) { h.setMotionPrior(std::get<bool>(v)); };
   t.push_back(prior);
-  t.push_back(integer("graph_max_iterations", "", 100, atLeast(1),
-                      [](HbaSettings& h) -> int& { return h.graph_max_iterations; },
-                      "Levenberg-Marquardt iterations of the pose graph at most"));
-  t.push_back(onOff("refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
-                    "the final sparse BA over every scan"));
-  t.push_back(real("refine_voxel", "--refine-voxel", 1.0, between(0.05, 100),
-                   [](HbaSettings& h) -> double& { return h.refinement.planes.voxel_size; },
-                   "the final sparse BA's root voxel, m"));
-  t.push_back(real("refine_scan_voxel", "", 0.2, zeroOr("as scan_voxel", 1e-3, 100),
-                   [](HbaSettings& h) -> double& { return h.refine_scan_voxel; },
-                   "scans held at this density for it, m"));
-  t.push_back(count("refine_max_points", "", 20'000'000, atLeast(1000),
-                    [](HbaSettings& h) -> std::size_t& { return h.refine_max_points; },
-                    "beyond this many points it runs in blocks"));
-  t.push_back(integer("refine_iterations", "", 10, atLeast(0),
-                      [](HbaSettings& h) -> int& { return h.refinement.lm.max_iterations; },
-                      "its LM iterations per association"));
-  t.push_back(integer("refine_rounds", "", 6, atLeast(1),
-                      [](HbaSettings& h) -> int& { return h.refinement.association_rounds; },
-                      "its associations at most"));
-  t.push_back(real("refine_round_gain", "", 0.02, between(0, 1),
-                   [](HbaSettings& h) -> double& { return h.refinement.round_gain; },
-                   "associate again while a round cuts the cost by this share"));
-  t.push_back(onOff("refine_groups", "", true, [](HbaSettings& h) -> bool& { return h.refine_groups; },
-                    "beyond one block, then place rigid groups of frames as a whole"));
-  t.push_back(count("group_min_frames", "", 10, atLeast(2),
-                    [](HbaSettings& h) -> std::size_t& { return h.group_min_frames; }, "frames per group at least"));
+  t.push_back(integer(
+      "graph_max_iterations", "", 100, atLeast(1),
+      [](HbaSettings& h) -> int& { return h.graph_max_iterations; },
+      "Levenberg-Marquardt iterations of the pose graph at most"));
+  t.push_back(onOff(
+      "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
+      "the final sparse BA over every scan"));
+  t.push_back(real(
+      "refine_voxel", "--refine-voxel", 1.0, between(0.05, 100),
+      [](HbaSettings& h) -> double& { return h.refinement.planes.voxel_size; },
+      "the final sparse BA's root voxel, m"));
+  t.push_back(real(
+      "refine_scan_voxel", "", 0.2, zeroOr("as scan_voxel", 1e-3, 100),
+      [](HbaSettings& h) -> double& { return h.refine_scan_voxel; }, "scans held at this density for it, m"));
+  t.push_back(count(
+      "refine_max_points", "", 20'000'000, atLeast(1000),
+      [](HbaSettings& h) -> std::size_t& { return h.refine_max_points; },
+      "beyond this many points it runs in blocks"));
+  t.push_back(integer(
+      "refine_iterations", "", 10, atLeast(0),
+      [](HbaSettings& h) -> int& { return h.refinement.lm.max_iterations; },
+      "its LM iterations per association"));
+  t.push_back(integer(
+      "refine_rounds", "", 6, atLeast(1),
+      [](HbaSettings& h) -> int& { return h.refinement.association_rounds; }, "its associations at most"));
+  t.push_back(real(
+      "refine_round_gain", "", 0.02, between(0, 1),
+      [](HbaSettings& h) -> double& { return h.refinement.round_gain; },
+      "associate again while a round cuts the cost by this share"));
+  t.push_back(onOff(
+      "refine_groups", "", true, [](HbaSettings& h) -> bool& { return h.refine_groups; },
+      "beyond one block, then place rigid groups of frames as a whole"));
+  t.push_back(count(
+      "group_min_frames", "", 10, atLeast(2),
+      [](HbaSettings& h) -> std::size_t& { return h.group_min_frames; }, "frames per group at least"));
   // The groups' BA is solved densely: (6 x groups)^2 doubles.
-  t.push_back(count("group_max_count", "", 500, between(3, 2000),
-                    [](HbaSettings& h) -> std::size_t& { return h.group_max_count; },
-                    "groups at most (larger groups on longer sequences)"));
-  t.push_back(real("group_voxel", "", 0.4, zeroOr("no downsampling", 1e-3, 100),
-                   [](HbaSettings& h) -> double& { return h.group_voxel; },
-                   "groups' merged clouds downsampled to this, m"));
+  t.push_back(count(
+      "group_max_count", "", 500, between(3, 2000),
+      [](HbaSettings& h) -> std::size_t& { return h.group_max_count; },
+      "groups at most (larger groups on longer sequences)"));
+  t.push_back(real(
+      "group_voxel", "", 0.4, zeroOr("no downsampling", 1e-3, 100),
+      [](HbaSettings& h) -> double& { return h.group_voxel; },
+      "groups' merged clouds downsampled to this, m"));
   addBaSettings(t, "local", "local", 0.05, &HbaSettings::local);
   addBaSettings(t, "global", "global", 0.1, &HbaSettings::global);
   return t;

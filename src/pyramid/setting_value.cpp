@@ -46,9 +46,12 @@ const Setting& valueSetting(const Setting& setting) {
 std::string rangeText(const Setting& setting) {
   const Setting& s = valueSetting(setting);
   switch (s.type) {
-    case SettingType::Switch: return "true or false";
-    case SettingType::Choice: return "one of " + joined(s.choices);
-    default: break;
+    case SettingType::Switch:
+      return "true or false";
+    case SettingType::Choice:
+      return "one of " + joined(s.choices);
+    default:
+      break;
   }
   std::string text = intervalText(s.range);
   if (!s.range.zero.empty()) text = "0 (" + s.range.zero + ") or " + text;
@@ -81,12 +84,15 @@ void checkSettingValue(const Setting& setting, const SettingValue& value) {
     }
     case SettingType::Integer:
     case SettingType::Count:
-    case SettingType::Real: break;
+    case SettingType::Real:
+      break;
   }
   double number = 0.0;
   if (const long long* i = std::get_if<long long>(&value)) {
     number = static_cast<double>(*i);
-    if (s.type == SettingType::Integer && (*i < std::numeric_limits<int>::min() || *i > std::numeric_limits<int>::max())) fail();
+    if (s.type == SettingType::Integer &&
+        (*i < std::numeric_limits<int>::min() || *i > std::numeric_limits<int>::max()))
+      fail();
     if (s.type == SettingType::Count && *i < 0) fail();
   } else if (const double* d = std::get_if<double>(&value); d != nullptr && s.type == SettingType::Real) {
     number = *d;

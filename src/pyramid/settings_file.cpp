@@ -40,15 +40,16 @@ std::optional<YAML::Node> nodeOf(const YAML::Node& root, const std::string& name
   return node;
 }
 
-void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& known,
-                       const std::string& where, const std::string& source) {
+void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& known, const std::string& where,
+                       const std::string& source) {
   for (const auto& entry : node) {
     const std::string key = entry.first.as<std::string>();
     if (known.count(key)) continue;
     const std::vector<std::string> names(known.begin(), known.end());
     std::string valid;
     for (const std::string& name : names) valid += (valid.empty() ? "" : ", ") + where + name;
-    bad(source, "unknown setting '" + where + key + "'" + didYouMean(key, names) + "; the settings here are " + valid);
+    bad(source, "unknown setting '" + where + key + "'" + didYouMean(key, names) +
+                    "; the settings here are " + valid);
   }
 }
 
@@ -74,7 +75,8 @@ void rejectUnknownNames(const YAML::Node& root, const std::string& source) {
 }
 
 // The one name `setting` is given under in the file, if any.
-std::optional<std::string> givenName(const YAML::Node& root, const Setting& setting, const std::string& source) {
+std::optional<std::string> givenName(const YAML::Node& root, const Setting& setting,
+                                     const std::string& source) {
   std::vector<std::string> given;
   if (nodeOf(root, setting.key)) given.push_back(setting.key);
   for (const std::string& alias : setting.aliases) {
@@ -92,11 +94,15 @@ SettingValue readValue(const YAML::Node& node, const Setting& setting, const std
   const Setting& typed = valueSetting(setting);
   try {
     switch (typed.type) {
-      case SettingType::Switch: return node.as<bool>();
+      case SettingType::Switch:
+        return node.as<bool>();
       case SettingType::Integer:
-      case SettingType::Count: return node.as<long long>();
-      case SettingType::Real: return node.as<double>();
-      case SettingType::Choice: return node.as<std::string>();
+      case SettingType::Count:
+        return node.as<long long>();
+      case SettingType::Real:
+        return node.as<double>();
+      case SettingType::Choice:
+        return node.as<std::string>();
     }
   } catch (const YAML::Exception&) {
   }
@@ -230,7 +236,9 @@ std::string settingsMarkdown() {
   std::string out =
       "| YAML key | flag | default | takes | what it sets |\n"
       "|---|---|---|---|---|\n";
-  const auto cell = [](const std::string& text) { return text.empty() ? std::string("—") : "`" + text + "`"; };
+  const auto cell = [](const std::string& text) {
+    return text.empty() ? std::string("—") : "`" + text + "`";
+  };
   for (const Setting& s : settingTable()) {
     std::string key = "`" + s.key + "`";
     for (const std::string& alias : s.aliases) key += " or `" + alias + "`";

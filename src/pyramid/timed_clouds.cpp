@@ -15,7 +15,8 @@ PointCloud TimedScanSource::load(std::size_t i) const {
 
 TimedClouds::TimedClouds(const io::ScanSource& clouds, double voxel)
     : read_(clouds, read_seconds_),
-      downsampled_(voxel > 0.0 ? std::make_optional<voxel::DownsampledScanSource>(read_, voxel) : std::nullopt),
+      downsampled_(voxel > 0.0 ? std::make_optional<voxel::DownsampledScanSource>(read_, voxel)
+                               : std::nullopt),
       loaded_(downsampled_ ? static_cast<const io::ScanSource&>(*downsampled_) : read_, load_seconds_) {}
 
 LoadSeconds TimedClouds::seconds() const {

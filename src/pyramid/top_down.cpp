@@ -2,8 +2,7 @@
 
 namespace hba::pyramid {
 
-std::vector<Pose> directAssign(const std::vector<LayerOutcome>& outcomes,
-                               std::vector<Pose> top_poses) {
+std::vector<Pose> directAssign(const std::vector<LayerOutcome>& outcomes, std::vector<Pose> top_poses) {
   std::vector<Pose> upper = std::move(top_poses);
   for (auto layer = outcomes.rbegin(); layer != outcomes.rend(); ++layer) {
     const std::vector<Window> plan = windowsOf(*layer);

@@ -12,7 +12,6 @@ namespace hba::pyramid {
 // the window's optimized relative poses, from the top layer down to layer 1.
 // `outcomes[i]` holds the windows of layer i+1 (1-based), which must form a
 // plan (checkWindowPlan); `top_poses` are the optimized poses of the top layer.
-std::vector<Pose> directAssign(const std::vector<LayerOutcome>& outcomes,
-                               std::vector<Pose> top_poses);
+std::vector<Pose> directAssign(const std::vector<LayerOutcome>& outcomes, std::vector<Pose> top_poses);
 
 }  // namespace hba::pyramid

@@ -22,8 +22,7 @@ Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
       // Window j starts where window j-1's own frames end.
       const std::vector<Pose>& previous = outcome.windows[j - 1].optimized;
       const std::size_t start_in_previous = ownFrames(plan, j - 1).count;
-      upper.poses.push_back(upper.poses.back() *
-                            relative(previous.front(), previous.at(start_in_previous)));
+      upper.poses.push_back(upper.poses.back() * relative(previous.front(), previous.at(start_in_previous)));
     }
   }
   upper.keyframes = std::move(keyframes);

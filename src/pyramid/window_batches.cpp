@@ -9,8 +9,7 @@ std::size_t windowsPerBatch(bool scans, std::size_t threads) {
   return per_thread * std::max<std::size_t>(threads, 1);
 }
 
-std::vector<WindowBatch> batchWindows(const std::vector<Window>& windows,
-                                      std::size_t windows_per_batch) {
+std::vector<WindowBatch> batchWindows(const std::vector<Window>& windows, std::size_t windows_per_batch) {
   const std::size_t size = std::max<std::size_t>(windows_per_batch, 1);
   std::vector<WindowBatch> batches;
   for (std::size_t b0 = 0; b0 < windows.size(); b0 += size) {

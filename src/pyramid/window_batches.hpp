@@ -10,7 +10,7 @@ namespace hba::pyramid {
 // frames are held at once, and nothing else, which bounds the memory.
 struct WindowBatch {
   std::size_t first_window = 0;
-  std::size_t end_window = 0;  // one past the last window
+  std::size_t end_window = 0;   // one past the last window
   std::size_t first_frame = 0;  // the frames the batch's windows cover
   std::size_t end_frame = 0;    // one past the last
 };
@@ -22,7 +22,6 @@ std::size_t windowsPerBatch(bool scans, std::size_t threads);
 
 // The plan's windows, in order, in batches of `windows_per_batch` (the last
 // may hold fewer).
-std::vector<WindowBatch> batchWindows(const std::vector<Window>& windows,
-                                      std::size_t windows_per_batch);
+std::vector<WindowBatch> batchWindows(const std::vector<Window>& windows, std::size_t windows_per_batch);
 
 }  // namespace hba::pyramid

@@ -33,23 +33,24 @@ void streamScans(const std::vector<std::size_t>& indices, const std::function<Pa
   };
   std::size_t next = 0;
   tbb::parallel_pipeline(
-      kInFlight,
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                          [&](tbb::flow_control& control) -> std::size_t {
-                                            if (next == indices.size()) {
-                                              control.stop();
-                                              return 0;
-                                            }
-                                            return indices[next++];
-                                          }) &
-          tbb::make_filter<std::size_t, std::shared_ptr<Item>>(
-              tbb::filter_mode::parallel,
-              [&](std::size_t i) { return std::make_shared<Item>(Item{i, read(i)}); }) &
-          tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order,
-                                                        [&](const std::shared_ptr<Item>& item) {
-                                                          merge(item->index, item->part);
-                                                          progress.advance();
-                                                        }));
+      kInFlight, tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                                     [&](tbb::flow_control& control) -> std::size_t {
+                                                       if (next == indices.size()) {
+                                                         control.stop();
+                                                         return 0;
+                                                       }
+                                                       return indices[next++];
+                                                     }) &
+                     tbb::make_filter<std::size_t, std::shared_ptr<Item>>(
+                         tbb::filter_mode::parallel,
+                         [&](std::size_t i) {
+                           return std::make_shared<Item>(Item{i, read(i)});
+                         }) &
+                     tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order,
+                                                                   [&](const std::shared_ptr<Item>& item) {
+                                                                     merge(item->index, item->part);
+                                                                     progress.advance();
+                                                                   }));
 }
 
 // Points of `scan` moved by `pose`, relative to `corner` (float precision
@@ -82,8 +83,8 @@ eval::VoxelMerger mergerFor(const std::vector<Pose>& poses, double voxel) {
 void checkSizes(const io::ScanSource& scans, const std::array<const std::vector<Pose>*, 2>& poses) {
   for (const std::vector<Pose>* set : poses) {
     if (set->size() != scans.size()) {
-      throw Error("there are " + std::to_string(scans.size()) + " scans but " +
-                  std::to_string(set->size()) + " poses were given");
+      throw Error("there are " + std::to_string(scans.size()) + " scans but " + std::to_string(set->size()) +
+                  " poses were given");
     }
   }
 }
@@ -123,8 +124,8 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 }
 
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
-                                  const std::array<const std::vector<Pose>*, 2>& poses,
-                                  double voxel, int pixels, double moments_cell) {
+                                  const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
+                                  int pixels, double moments_cell) {
   checkSizes(scans, poses);
   BeforeAfterMaps maps;
   maps.overview_voxel = overviewVoxel(poses, sensorReach(scans), voxel, pixels);
@@ -175,8 +176,8 @@ BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
 }
 
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
-                                     const std::array<const std::vector<Pose>*, 2>& poses,
-                                     double voxel, const Box2& square, double reach) {
+                                     const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
+                                     const Box2& square, double reach) {
   checkSizes(scans, poses);
   auto near = [&](const Pose& pose) {
     const double dx = std::max({square.xmin - pose.t.x(), 0.0, pose.t.x() - square.xmax});

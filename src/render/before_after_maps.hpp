@@ -37,13 +37,13 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 // Every scan read once (in parallel batches, merged in scan order: the same
 // maps for any thread count), downsampled to `voxel` in its own frame.
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
-                                  const std::array<const std::vector<Pose>*, 2>& poses,
-                                  double voxel, int pixels, double moments_cell);
+                                  const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
+                                  int pixels, double moments_cell);
 
 // The points inside `square` of the scans whose pose lies within `reach`
 // (m) of it, merged at `voxel`, for each pose set.
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
-                                     const std::array<const std::vector<Pose>*, 2>& poses,
-                                     double voxel, const Box2& square, double reach);
+                                     const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
+                                     const Box2& square, double reach);
 
 }  // namespace hba::render

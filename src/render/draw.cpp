@@ -20,8 +20,8 @@ double distanceToSegment(const Pixel& p, const Pixel& a, const Pixel& b) {
   return (p - (a + t * ab)).norm();
 }
 
-void strokePolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width,
-                    double alpha, const Clip& clip) {
+void strokePolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width, double alpha,
+                    const Clip& clip) {
   const int clip_x1 = std::min(image.width(), clip.x1), clip_y1 = std::min(image.height(), clip.y1);
   const double half = 0.5 * width;
   // Per pixel, the best coverage over all segments, so joints are not drawn twice.
@@ -60,8 +60,7 @@ void strokeRect(Image& image, int x0, int y0, int x1, int y1, Rgb color, double 
   fillRect(image, x1 - 1, y0 + 1, x1, y1 - 1, color, alpha);
 }
 
-void drawPolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width,
-                  const Clip& clip) {
+void drawPolyline(Image& image, const std::vector<Pixel>& points, Rgb color, double width, const Clip& clip) {
   strokePolyline(image, points, Rgb{0, 0, 0}, width + 2.5, 0.6, clip);
   strokePolyline(image, points, color, width, 1.0, clip);
 }
@@ -79,11 +78,12 @@ void drawText(Image& image, int x, int y, const std::string& text, Rgb color, in
   // stb_easy_font emits axis-aligned quads (4 vertices of 16 bytes) in font pixels.
   std::vector<char> buffer(text.size() * 300 + 64);
   std::string copy = text;
-  const int quads = stb_easy_font_print(0, 0, copy.data(), nullptr, buffer.data(), static_cast<int>(buffer.size()));
+  const int quads =
+      stb_easy_font_print(0, 0, copy.data(), nullptr, buffer.data(), static_cast<int>(buffer.size()));
   for (int q = 0; q < quads; ++q) {
     const auto* v = reinterpret_cast<const float*>(buffer.data() + q * 64);
-    const float qx0 = v[0], qy0 = v[1];      // first vertex: top-left
-    const float qx1 = v[8], qy1 = v[9];      // third vertex: bottom-right
+    const float qx0 = v[0], qy0 = v[1];  // first vertex: top-left
+    const float qx1 = v[8], qy1 = v[9];  // third vertex: bottom-right
     fillRect(image, x + static_cast<int>(qx0 * scale), y + static_cast<int>(qy0 * scale),
              x + static_cast<int>(qx1 * scale), y + static_cast<int>(qy1 * scale), color);
   }

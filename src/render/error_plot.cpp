@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "draw.hpp"
-#include "palette.hpp"
 #include "hba/core/error.hpp"
+#include "palette.hpp"
 
 namespace hba::render {
 namespace {
@@ -88,7 +88,8 @@ Image renderErrorPlot(const ErrorSeries& s, int width, int height) {
             "translation error (m)", kTranslation);
   drawPanel(image, {left, top + panel_height + gap, width - left - right, panel_height}, s.x, s.rotation_deg,
             x_min, x_max, "rotation error (deg)", kRotation);
-  drawText(image, left + (width - left - right) / 2 - textWidth(s.x_label) / 2, height - 24, s.x_label, kText);
+  drawText(image, left + (width - left - right) / 2 - textWidth(s.x_label) / 2, height - 24, s.x_label,
+           kText);
   return image;
 }
 

@@ -24,7 +24,8 @@ Image::Image(int width, int height, Rgb fill) : width_(width), height_(height) {
 }
 
 Rgb Image::at(int x, int y) const {
-  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
+  const std::size_t i =
+      (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
   return {pixels_.at(i), pixels_.at(i + 1), pixels_.at(i + 2)};
 }
 
@@ -33,7 +34,8 @@ void Image::set(int x, int y, Rgb color) { blend(x, y, color, 1.0); }
 void Image::blend(int x, int y, Rgb color, double alpha) {
   if (!contains(x, y) || !(alpha > 0.0)) return;
   alpha = std::min(alpha, 1.0);
-  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
+  const std::size_t i =
+      (static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)) * 3;
   const std::uint8_t channels[3] = {color.r, color.g, color.b};
   for (int c = 0; c < 3; ++c) {
     const double mixed = pixels_[i + c] + (channels[c] - pixels_[i + c]) * alpha;
@@ -56,7 +58,8 @@ void writePng(const std::filesystem::path& path, const Image& image) {
                               image.width() * 3)) {
     failAt(path, "PNG encoding failed");
   }
-  writeFileAtomically(path, [&](std::ostream& out) { out.write(png.data(), static_cast<std::streamsize>(png.size())); });
+  writeFileAtomically(
+      path, [&](std::ostream& out) { out.write(png.data(), static_cast<std::streamsize>(png.size())); });
 }
 
 }  // namespace hba::render

@@ -13,14 +13,15 @@ namespace {
 constexpr double kMinPoints = 10.0;
 constexpr std::size_t kMinVoxelsPerSquare = 5;
 constexpr double kMinMeanThinning = 0.002;  // m: below it, nothing worth a zoom changed
-constexpr double kPlanarRatio = 0.15;  // lambda_min / lambda_mid below this: a plane
+constexpr double kPlanarRatio = 0.15;       // lambda_min / lambda_mid below this: a plane
 
 }  // namespace
 
 void CellMoments::add(const Vec3& world) {
   const voxel::VoxelKey key = voxel::VoxelKey::of(world, cell_);
-  const Vec3 local = world - Vec3(static_cast<double>(key.x), static_cast<double>(key.y),
-                                  static_cast<double>(key.z)) * cell_;
+  const Vec3 local =
+      world -
+      Vec3(static_cast<double>(key.x), static_cast<double>(key.y), static_cast<double>(key.z)) * cell_;
   Moments& m = at(key);
   m.count += 1.0;
   m.sum += local;
@@ -60,9 +61,9 @@ PlaneThickness::PlaneThickness(const CellMoments& moments) : cell_(moments.cell(
     float value = -1.0f;
     if (m.count >= kMinPoints) {
       const Vec3 mean = m.sum / m.count;
-      const Vec3 eigen =
-          Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / m.count - mean * mean.transpose(), Eigen::EigenvaluesOnly)
-              .eigenvalues();
+      const Vec3 eigen = Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / m.count - mean * mean.transpose(),
+                                                             Eigen::EigenvaluesOnly)
+                             .eigenvalues();
       if (eigen(0) < kPlanarRatio * eigen(1)) value = static_cast<float>(std::sqrt(std::max(0.0, eigen(0))));
     }
     voxels_.emplace(moments.key(i), value);
@@ -78,7 +79,8 @@ std::vector<float> PlaneThickness::perPoint(const PointCloud& map) const {
   return out;
 }
 
-std::optional<Box2> mostThinnedRegion(const PlaneThickness& before, const PlaneThickness& after, double side) {
+std::optional<Box2> mostThinnedRegion(const PlaneThickness& before, const PlaneThickness& after,
+                                      double side) {
   const double cell = after.cell();
   const auto& was = before.voxels();
   const auto& is = after.voxels();

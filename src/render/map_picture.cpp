@@ -57,8 +57,8 @@ Box2 viewBox(const std::vector<MapPanel>& panels, const RenderSettings& settings
       for (const Pose& pose : layer.poses) {
         if (empty) box = {pose.t.x(), pose.t.y(), pose.t.x(), pose.t.y()};
         empty = false;
-        box = {std::min(box.xmin, pose.t.x()), std::min(box.ymin, pose.t.y()),
-               std::max(box.xmax, pose.t.x()), std::max(box.ymax, pose.t.y())};
+        box = {std::min(box.xmin, pose.t.x()), std::min(box.ymin, pose.t.y()), std::max(box.xmax, pose.t.x()),
+               std::max(box.ymax, pose.t.y())};
       }
     }
   }
@@ -101,7 +101,7 @@ double niceLength(double target) {
 
 std::string metres(double value) {
   return std::abs(value) >= 10 || value == std::round(value) ? fmt::format("{:.0f} m", value)
-                                                               : fmt::format("{:.1f} m", value);
+                                                             : fmt::format("{:.1f} m", value);
 }
 
 struct Rect {
@@ -144,9 +144,9 @@ void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const Top
     std::vector<Pixel> line;
     for (const Pose& pose : layer.poses) line.push_back(view.toPixel(pose.t.x(), pose.t.y()));
     drawPolyline(image, line, layer.color, 2.2, area.clip());
-    const bool start_visible = !line.empty() && line.front().x() >= area.left + 5 &&
-                               line.front().y() >= area.top + 5 && line.front().x() < area.left + area.width - 5 &&
-                               line.front().y() < area.top + area.height - 5;
+    const bool start_visible =
+        !line.empty() && line.front().x() >= area.left + 5 && line.front().y() >= area.top + 5 &&
+        line.front().x() < area.left + area.width - 5 && line.front().y() < area.top + area.height - 5;
     if (start_visible) drawDisc(image, line.front(), 5.0, layer.color);  // the start
   }
   drawScaleBar(image, area, view.pixels_per_meter);
@@ -160,7 +160,8 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
   auto toPixel = [&](double x, double z) {
     return Pixel(view.toPixel(x, 0).x(), area.top + 4 + (z_range.second - z) * z_scale);
   };
-  PointRaster raster(area.width, area.height, footprint(voxel, view.pixels_per_meter), footprint(voxel, z_scale));
+  PointRaster raster(area.width, area.height, footprint(voxel, view.pixels_per_meter),
+                     footprint(voxel, z_scale));
   for (std::size_t i = 0; i < panel.map.size(); ++i) {
     const Vec3 p = panel.map.world(i);
     if (!inside(box, p.x(), p.y())) continue;
@@ -201,7 +202,9 @@ void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<dou
   const std::string high = scale ? scale->high_label : metres(heights.second);
   drawText(image, x, y + 2, low, kDimText, 2);
   x += textWidth(low, 2) + 8;
-  for (int i = 0; i < 200; ++i) fillRect(image, x + i, y + 1, x + i + 1, y + 15, turbo(kColormapLow + (kColormapHigh - kColormapLow) * i / 199.0));
+  for (int i = 0; i < 200; ++i)
+    fillRect(image, x + i, y + 1, x + i + 1, y + 15,
+             turbo(kColormapLow + (kColormapHigh - kColormapLow) * i / 199.0));
   x += 208;
   drawText(image, x, y + 2, high, kDimText, 2);
 }
@@ -217,7 +220,8 @@ Box2 parseBox(const std::string& text) {
                   static_cast<bool>(in >> v[2] >> comma) && comma == ',' && static_cast<bool>(in >> v[3]) &&
                   (in >> std::ws).eof();
   if (!ok) throw Error("crop '" + text + "': expected xmin,ymin,xmax,ymax in metres");
-  if (!(v[2] > v[0] && v[3] > v[1])) throw Error("crop '" + text + "' is empty (need xmin < xmax, ymin < ymax)");
+  if (!(v[2] > v[0] && v[3] > v[1]))
+    throw Error("crop '" + text + "' is empty (need xmin < xmax, ymin < ymax)");
   return {v[0], v[1], v[2], v[3]};
 }
 

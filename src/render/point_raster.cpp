@@ -9,8 +9,10 @@
 namespace hba::render {
 
 PointRaster::PointRaster(int width, int height, int footprint_x, int footprint_y)
-    : width_(std::max(width, 1)), height_(std::max(height, 1)),
-      footprint_x_(std::clamp(footprint_x, 1, 64)), footprint_y_(std::clamp(footprint_y, 1, 64)),
+    : width_(std::max(width, 1)),
+      height_(std::max(height, 1)),
+      footprint_x_(std::clamp(footprint_x, 1, 64)),
+      footprint_y_(std::clamp(footprint_y, 1, 64)),
       count_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), 0),
       top_value_(count_.size(), -std::numeric_limits<float>::infinity()) {}
 
@@ -25,7 +27,8 @@ void PointRaster::add(double x, double y, float value) {
 
 void PointRaster::addPixel(int x, int y, float value) {
   if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
-  const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  const std::size_t i =
+      static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   ++count_[i];
   top_value_[i] = std::max(top_value_[i], value);
 }
@@ -45,10 +48,12 @@ void PointRaster::paint(Image& image, int left, int top, double value_low, doubl
 
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+      const std::size_t i =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
       if (count_[i] == 0) continue;
       const double density = std::min(1.0, std::log1p(count_[i]) / full);
-      const Rgb color = turbo(kColormapLow + (kColormapHigh - kColormapLow) * (top_value_[i] - value_low) / span);
+      const Rgb color =
+          turbo(kColormapLow + (kColormapHigh - kColormapLow) * (top_value_[i] - value_low) / span);
       image.blend(left + x, top + y, color, 0.45 + 0.55 * density);
     }
   }

@@ -1,9 +1,9 @@
 // The entry points on a sequence of scans: merge the maps, then draw them.
+#include "before_after_maps.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"
-#include "before_after_maps.hpp"
 #include "map_change.hpp"
 
 #include <algorithm>
@@ -14,14 +14,16 @@
 namespace hba::render {
 namespace {
 
-PointCloud mergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses, const RenderSettings& settings) {
+PointCloud mergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
+                     const RenderSettings& settings) {
   eval::MapSettings map;
   map.voxel = settings.voxel;
   return eval::buildMergedMap(scans, poses, map);
 }
 
 // Ground truth moved onto `reference` when both pair up by index; as given otherwise.
-std::vector<Pose> alignedGroundTruth(const std::vector<Pose>& ground_truth, const std::vector<Pose>& reference) {
+std::vector<Pose> alignedGroundTruth(const std::vector<Pose>& ground_truth,
+                                     const std::vector<Pose>& reference) {
   if (ground_truth.size() != reference.size() || ground_truth.size() < 3) return ground_truth;
   const eval::Similarity s = eval::alignTrajectory(reference, ground_truth, eval::Alignment::SE3);
   std::vector<Pose> out;
@@ -39,7 +41,8 @@ Image stacked(const Image& upper, const Image& lower) {
     for (int x = 0; x < upper.width(); ++x) out.set(x, y, upper.at(x, y));
   }
   for (int y = 0; y < lower.height(); ++y) {
-    for (int x = 0; x < std::min(upper.width(), lower.width()); ++x) out.set(x, upper.height() + y, lower.at(x, y));
+    for (int x = 0; x < std::min(upper.width(), lower.width()); ++x)
+      out.set(x, upper.height() + y, lower.at(x, y));
   }
   return out;
 }
@@ -48,7 +51,8 @@ Image stacked(const Image& upper, const Image& lower) {
 // row zooms on the square where the planes got thinnest, coloured by their
 // thickness (a doubled wall is thick, a crisp one thin). Nothing when no
 // plane got thinner. Its points come from the scans taken near the square.
-std::optional<Image> thicknessZoom(const io::ScanSource& scans, const std::array<const std::vector<Pose>*, 2>& poses,
+std::optional<Image> thicknessZoom(const io::ScanSource& scans,
+                                   const std::array<const std::vector<Pose>*, 2>& poses,
                                    const BeforeAfterMaps& maps, const std::vector<MapPanel>& panels,
                                    const RenderSettings& settings) {
   Eigen::AlignedBox3d box;
@@ -88,11 +92,12 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
   panels[1].trajectories.push_back({"optimized", after, kOptimizedColor});
   if (ground_truth) {
     const std::vector<Pose> gt = alignedGroundTruth(*ground_truth, after);
-    for (MapPanel& panel : panels) panel.trajectories.insert(panel.trajectories.begin(), {"ground truth", gt, kGroundTruthColor});
+    for (MapPanel& panel : panels)
+      panel.trajectories.insert(panel.trajectories.begin(), {"ground truth", gt, kGroundTruthColor});
   }
   if (settings.crop) {  // one region at full resolution, no zoom row
-    std::array<PointCloud, 2> fine = squareMaps(scans, poses, settings.voxel, *settings.crop,
-                                                std::numeric_limits<double>::infinity());
+    std::array<PointCloud, 2> fine =
+        squareMaps(scans, poses, settings.voxel, *settings.crop, std::numeric_limits<double>::infinity());
     for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
     writePng(out_png, renderPanels(panels, settings).image);
     return;
@@ -116,8 +121,9 @@ void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses
   panels[0].map = mergedMap(scans, poses, settings);
   panels[0].trajectories.push_back({"poses", poses, kOptimizedColor});
   if (ground_truth) {
-    panels[0].trajectories.insert(panels[0].trajectories.begin(),
-                                  {"ground truth", alignedGroundTruth(*ground_truth, poses), kGroundTruthColor});
+    panels[0].trajectories.insert(
+        panels[0].trajectories.begin(),
+        {"ground truth", alignedGroundTruth(*ground_truth, poses), kGroundTruthColor});
   }
   writePng(out_png, renderPanels(panels, settings).image);
 }

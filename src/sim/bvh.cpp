@@ -24,9 +24,8 @@ struct SplitChoice {
 };
 
 // Best binned-SAH split of order[first, first+count) by primitive centers.
-SplitChoice bestSplit(const std::vector<std::uint32_t>& order, std::uint32_t first,
-                      std::uint32_t count, const std::vector<Aabb>& bounds,
-                      const std::vector<Vec3>& centers) {
+SplitChoice bestSplit(const std::vector<std::uint32_t>& order, std::uint32_t first, std::uint32_t count,
+                      const std::vector<Aabb>& bounds, const std::vector<Vec3>& centers) {
   Aabb centroid_box;
   for (std::uint32_t i = first; i < first + count; ++i) centroid_box.grow(centers[order[i]]);
   SplitChoice best;
@@ -84,8 +83,7 @@ Bvh::Bvh(const std::vector<Aabb>& primitive_bounds) {
   split(0, primitive_bounds, centers);
 }
 
-void Bvh::split(std::uint32_t node_index, const std::vector<Aabb>& bounds,
-                const std::vector<Vec3>& centers) {
+void Bvh::split(std::uint32_t node_index, const std::vector<Aabb>& bounds, const std::vector<Vec3>& centers) {
   // Iterative, so deep unbalanced trees cannot overflow the call stack.
   std::vector<std::uint32_t> pending{node_index};
   while (!pending.empty()) {
@@ -103,9 +101,9 @@ void Bvh::split(std::uint32_t node_index, const std::vector<Aabb>& bounds,
     if (choice.axis < 0 || kTraversalCost * box.surfaceArea() + choice.cost >= leaf_cost) {
       continue;  // splitting would not pay off (or all centers coincide)
     }
-    const auto middle = std::partition(
-        order_.begin() + first, order_.begin() + first + count,
-        [&](std::uint32_t p) { return centers[p][choice.axis] < choice.position; });
+    const auto middle =
+        std::partition(order_.begin() + first, order_.begin() + first + count,
+                       [&](std::uint32_t p) { return centers[p][choice.axis] < choice.position; });
     const auto left_count = static_cast<std::uint32_t>(middle - (order_.begin() + first));
     if (left_count == 0 || left_count == count) continue;
 

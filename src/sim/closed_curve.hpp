@@ -19,7 +19,7 @@ class ClosedCurve {
 
  private:
   std::vector<Eigen::Vector2d> points_;  // closed: last == first
-  std::vector<double> cumulative_;        // arc length at each point
+  std::vector<double> cumulative_;       // arc length at each point
 };
 
 }  // namespace hba::sim

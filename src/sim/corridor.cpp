@@ -11,9 +11,9 @@ namespace {
 
 using Vec2 = Eigen::Vector2d;
 
-constexpr double kSample = 1.0;          // m between wall pieces
-constexpr double kBelowFloor = 0.3;      // walls reach below the floor: no gap on slopes
-constexpr double kRasterSlack = 1.0;     // the clearance raster is exact at cell centres only
+constexpr double kSample = 1.0;       // m between wall pieces
+constexpr double kBelowFloor = 0.3;   // walls reach below the floor: no gap on slopes
+constexpr double kRasterSlack = 1.0;  // the clearance raster is exact at cell centres only
 
 // One stretch of corridor: its walls' distances from the path, its ceiling
 // height above the floor and the walls' reflectivity.
@@ -135,8 +135,8 @@ class CorridorBuilder {
     if (chance(0.06)) {  // a door niche: the wall steps back, and its sides show
       const double back = offset + side * uniform(0.3, 1.0);
       if (!free(a, back) || !free(b, back)) return;
-      mesh_.addQuad(at(a, back, -kBelowFloor), at(b, back, -kBelowFloor), at(b, back, top),
-                    at(a, back, top), stretch.reflectivity);
+      mesh_.addQuad(at(a, back, -kBelowFloor), at(b, back, -kBelowFloor), at(b, back, top), at(a, back, top),
+                    stretch.reflectivity);
       for (const Sample* s : {&a, &b}) {
         mesh_.addQuad(at(*s, offset, -kBelowFloor), at(*s, back, -kBelowFloor), at(*s, back, top),
                       at(*s, offset, top), stretch.reflectivity);
@@ -171,8 +171,8 @@ class CorridorBuilder {
       const double o0 = side * (side > 0 ? from.left : from.right);
       const double o1 = side * (side > 0 ? to.left : to.right);
       if (!free(s, o0) || !free(s, o1)) continue;
-      mesh_.addQuad(at(s, o0, -kBelowFloor), at(s, o1, -kBelowFloor), at(s, o1, top),
-                    at(s, o0, top), to.reflectivity);
+      mesh_.addQuad(at(s, o0, -kBelowFloor), at(s, o1, -kBelowFloor), at(s, o1, top), at(s, o0, top),
+                    to.reflectivity);
     }
     const double wide_left = std::max(from.left, to.left);
     const double wide_right = std::max(from.right, to.right);
@@ -188,8 +188,8 @@ class CorridorBuilder {
 
 }  // namespace
 
-void addCorridor(const std::vector<Pose>& path, const Terrain& terrain,
-                 const PathClearance& clearance, std::mt19937_64& rng, MeshBuilder& mesh) {
+void addCorridor(const std::vector<Pose>& path, const Terrain& terrain, const PathClearance& clearance,
+                 std::mt19937_64& rng, MeshBuilder& mesh) {
   CorridorBuilder(terrain, clearance, rng, mesh).build(path);
 }
 

@@ -17,7 +17,7 @@ namespace hba::sim {
 // Appends the corridor around `path` to `mesh`. Walls that would stand
 // closer to another stretch of the path than to their own (crossings,
 // revisits) are left out.
-void addCorridor(const std::vector<Pose>& path, const Terrain& terrain,
-                 const PathClearance& clearance, std::mt19937_64& rng, MeshBuilder& mesh);
+void addCorridor(const std::vector<Pose>& path, const Terrain& terrain, const PathClearance& clearance,
+                 std::mt19937_64& rng, MeshBuilder& mesh);
 
 }  // namespace hba::sim

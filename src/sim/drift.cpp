@@ -24,9 +24,9 @@ std::vector<Pose> accumulateDrift(const std::vector<Pose>& truth, const DriftCon
   std::normal_distribution<double> gaussian(0.0, 1.0);
   std::uniform_real_distribution<double> angle(-M_PI, M_PI);
   // Directions of the biases, each a random walk in angle over distance.
-  double translation_angle = angle(rng);        // in the body x-y plane
+  double translation_angle = angle(rng);           // in the body x-y plane
   double yaw_phase = rng() % 2 == 0 ? 0.0 : M_PI;  // yaw bias = rate * cos(phase)
-  double tilt_angle = angle(rng);               // roll/pitch bias direction
+  double tilt_angle = angle(rng);                  // roll/pitch bias direction
   const double vertical_sign = rng() % 2 == 0 ? 1.0 : -1.0;
   const double rotation_rate = c.rotation_deg_per_m * kDegToRad;
 
@@ -43,8 +43,7 @@ std::vector<Pose> accumulateDrift(const std::vector<Pose>& truth, const DriftCon
     const Vec3 translation_error =
         d * c.translation * Vec3(std::cos(translation_angle), std::sin(translation_angle), 0.0);
     const Vec3 rotation_error =
-        d * rotation_rate *
-        Vec3(0.1 * std::cos(tilt_angle), 0.1 * std::sin(tilt_angle), std::cos(yaw_phase));
+        d * rotation_rate * Vec3(0.1 * std::cos(tilt_angle), 0.1 * std::sin(tilt_angle), std::cos(yaw_phase));
     const Pose noisy_motion(motion.q * Quat(so3Exp(rotation_error)), motion.t + translation_error);
     Pose next = drifted.back() * noisy_motion;
     next.q.normalize();
@@ -69,26 +68,25 @@ std::vector<Pose> perturbIndependently(const std::vector<Pose>& truth, const Dri
 
 void validate(const DriftConfig& c) {
   const bool ok = c.translation >= 0.0 && c.rotation_deg_per_m >= 0.0 && c.vertical >= 0.0 &&
-                  c.jitter_translation >= 0.0 && c.jitter_rotation_deg >= 0.0 &&
-                  c.wander_length > 0.0 && c.closed_translation_sigma >= 0.0 &&
-                  c.closed_rotation_sigma_deg >= 0.0;
+                  c.jitter_translation >= 0.0 && c.jitter_rotation_deg >= 0.0 && c.wander_length > 0.0 &&
+                  c.closed_translation_sigma >= 0.0 && c.closed_rotation_sigma_deg >= 0.0;
   if (!ok) throw Error("simulate: drift rates and noise levels must be non-negative");
   if (c.translation > 1.0 || c.rotation_deg_per_m > 10.0 || c.vertical > 1.0) {
-    throw Error("simulate: drift rates are implausibly large (translation and vertical are "
-                "fractions of the distance, e.g. 0.01 for 1 %)");
+    throw Error(
+        "simulate: drift rates are implausibly large (translation and vertical are "
+        "fractions of the distance, e.g. 0.01 for 1 %)");
   }
   if (c.jitter_translation > 1.0 || c.jitter_rotation_deg > 10.0) {
     throw Error("simulate: jitter is implausibly large (at most 1 m and 10 deg per frame)");
   }
 }
 
-std::vector<Pose> applyDrift(const std::vector<Pose>& truth, const DriftConfig& config,
-                             std::uint64_t seed) {
+std::vector<Pose> applyDrift(const std::vector<Pose>& truth, const DriftConfig& config, std::uint64_t seed) {
   validate(config);
   if (truth.empty()) return {};
   auto rng = makeRng(seed, Stream::Drift);
-  std::vector<Pose> poses = config.loop_closed ? perturbIndependently(truth, config, rng)
-                                               : accumulateDrift(truth, config, rng);
+  std::vector<Pose> poses =
+      config.loop_closed ? perturbIndependently(truth, config, rng) : accumulateDrift(truth, config, rng);
   if (config.jitter_translation > 0.0 || config.jitter_rotation_deg > 0.0) {
     // Its own stream: runs without jitter keep their exact bytes.
     auto jitter = makeRng(seed, Stream::Jitter);

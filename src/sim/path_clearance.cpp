@@ -38,8 +38,7 @@ std::vector<PathSample> densify(const std::vector<Pose>& path) {
 
 }  // namespace
 
-PathClearance::PathClearance(const std::vector<Pose>& path, double reach, double margin,
-                             double cell)
+PathClearance::PathClearance(const std::vector<Pose>& path, double reach, double margin, double cell)
     : cell_(cell), reach_(reach) {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e300), hi = -lo;
   for (const Pose& pose : path) {
@@ -73,8 +72,7 @@ PathClearance::PathClearance(const std::vector<Pose>& path, double reach, double
 bool PathClearance::index(double x, double y, std::size_t& out) const {
   const double fx = (x - origin_.x()) / cell_;
   const double fy = (y - origin_.y()) / cell_;
-  if (fx < 0 || fy < 0 || fx >= static_cast<double>(columns_) ||
-      fy >= static_cast<double>(rows_)) {
+  if (fx < 0 || fy < 0 || fx >= static_cast<double>(columns_) || fy >= static_cast<double>(rows_)) {
     return false;
   }
   out = static_cast<std::size_t>(fy) * columns_ + static_cast<std::size_t>(fx);
@@ -92,8 +90,7 @@ double PathClearance::heading(double x, double y) const {
 }
 
 Eigen::Vector2d PathClearance::maxCorner() const {
-  return origin_ + cell_ * Eigen::Vector2d(static_cast<double>(columns_),
-                                           static_cast<double>(rows_));
+  return origin_ + cell_ * Eigen::Vector2d(static_cast<double>(columns_), static_cast<double>(rows_));
 }
 
 std::vector<Eigen::Vector2d> PathClearance::cellsBetween(double near, double far) const {

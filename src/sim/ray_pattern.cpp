@@ -55,8 +55,7 @@ std::vector<Vec3> rosetteDirections(const SensorConfig& c, std::size_t frame) {
 }  // namespace
 
 std::vector<Vec3> rayDirections(const SensorConfig& config, std::size_t frame) {
-  return config.model == SensorModel::Livox ? rosetteDirections(config, frame)
-                                            : spinningDirections(config);
+  return config.model == SensorModel::Livox ? rosetteDirections(config, frame) : spinningDirections(config);
 }
 
 }  // namespace hba::sim

@@ -6,8 +6,8 @@
 namespace hba::sim {
 namespace {
 
-SensorConfig spinning(SensorModel model, int channels, double lowest, double highest,
-                      int columns, double max_range) {
+SensorConfig spinning(SensorModel model, int channels, double lowest, double highest, int columns,
+                      double max_range) {
   SensorConfig c;
   c.model = model;
   c.channels = channels;
@@ -23,10 +23,14 @@ SensorConfig spinning(SensorModel model, int channels, double lowest, double hig
 // Fields of view and resolutions from the makers' data sheets at 10 Hz.
 SensorConfig sensorPreset(SensorModel model) {
   switch (model) {
-    case SensorModel::Vlp16: return spinning(model, 16, -15.0, 15.0, 1800, 100.0);
-    case SensorModel::Hdl32: return spinning(model, 32, -30.67, 10.67, 2250, 100.0);
-    case SensorModel::Hdl64: return spinning(model, 64, -24.9, 2.0, 2083, 120.0);
-    case SensorModel::Os128: return spinning(model, 128, -22.5, 22.5, 1024, 120.0);
+    case SensorModel::Vlp16:
+      return spinning(model, 16, -15.0, 15.0, 1800, 100.0);
+    case SensorModel::Hdl32:
+      return spinning(model, 32, -30.67, 10.67, 2250, 100.0);
+    case SensorModel::Hdl64:
+      return spinning(model, 64, -24.9, 2.0, 2083, 120.0);
+    case SensorModel::Os128:
+      return spinning(model, 128, -22.5, 22.5, 1024, 120.0);
     case SensorModel::Livox: {
       SensorConfig c;  // Livox Avia-like: 240 000 points/s, 70.4 deg cone
       c.model = model;

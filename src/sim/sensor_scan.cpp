@@ -19,9 +19,8 @@ float intensityOf(const SurfaceHit& hit, const Vec3& direction, double max_range
 
 }  // namespace
 
-std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose,
-                                const SensorConfig& config, std::uint64_t seed,
-                                std::size_t frame) {
+std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose, const SensorConfig& config,
+                                std::uint64_t seed, std::size_t frame) {
   auto rng = makeRng(seed, Stream::Sensor, frame);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -52,8 +51,8 @@ std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose,
   return returns;
 }
 
-PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig& config,
-                std::uint64_t seed, std::size_t frame) {
+PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig& config, std::uint64_t seed,
+                std::size_t frame) {
   const std::vector<Return> returns = scanReturns(world, sensor_pose, config, seed, frame);
   PointCloud cloud;
   cloud.reserve(returns.size(), true);

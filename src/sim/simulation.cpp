@@ -21,14 +21,13 @@ Simulation prepareSimulation(const SimulationConfig& config) {
   simulation.terrain = Terrain(config.seed, config.world.max_slope);
   simulation.truth = makeTrajectory(config.trajectory, simulation.terrain);
   simulation.initial = applyDrift(simulation.truth.poses, config.drift, config.seed);
-  simulation.world = buildWorld(simulation.truth.poses, simulation.terrain, config.world,
-                                config.seed);
+  simulation.world = buildWorld(simulation.truth.poses, simulation.terrain, config.world, config.seed);
   return simulation;
 }
 
 PointCloud simulateFrame(const Simulation& simulation, std::size_t frame) {
-  const PointCloud cloud = scan(simulation.world, simulation.truth.poses.at(frame),
-                                simulation.config.sensor, simulation.config.seed, frame);
+  const PointCloud cloud = scan(simulation.world, simulation.truth.poses.at(frame), simulation.config.sensor,
+                                simulation.config.seed, frame);
   return voxel::downsample(cloud, simulation.config.downsample_voxel);
 }
 

@@ -104,7 +104,8 @@ void writeSimulationYaml(const Simulation& s, const std::filesystem::path& path)
   emitWorld(out, s);
   emitDrift(out, s.config.drift);
   out << YAML::EndMap;
-  writeFileAtomically(path, [&](std::ostream& stream) { stream << out.c_str() << '\n'; }, false);
+  writeFileAtomically(
+      path, [&](std::ostream& stream) { stream << out.c_str() << '\n'; }, false);
 }
 
 }  // namespace hba::sim

@@ -21,7 +21,7 @@ constexpr double kStreetHalfWidth = 7.0;
 // A rounded rectangle of outer size width x height and corner radius r,
 // traced counter-clockwise from the middle of its bottom edge.
 Vec2 roundedRectangle(double u, double width, double height, double r) {
-  const double sx = width - 2.0 * r;   // straight lengths
+  const double sx = width - 2.0 * r;  // straight lengths
   const double sy = height - 2.0 * r;
   const double arc = 0.5 * M_PI * r;
   const std::array<double, 8> lengths{sx, arc, sy, arc, sx, arc, sy, arc};
@@ -53,9 +53,7 @@ ClosedCurve curveFor(PathShape shape, double perimeter) {
     case PathShape::Block: {
       const ClosedCurve unit([](double u) -> Vec2 { return roundedRectangle(u, 1.5, 1.0, 0.2); });
       const double scale = perimeter / unit.perimeter();
-      return ClosedCurve([scale](double u) -> Vec2 {
-        return roundedRectangle(u, 1.5, 1.0, 0.2) * scale;
-      });
+      return ClosedCurve([scale](double u) -> Vec2 { return roundedRectangle(u, 1.5, 1.0, 0.2) * scale; });
     }
     case PathShape::Figure8: {
       // Lemniscate of Gerono: crosses itself at the origin.
@@ -70,9 +68,7 @@ ClosedCurve curveFor(PathShape shape, double perimeter) {
       // The lanes keep their real spacing; only the street's length scales.
       const double r = kStreetHalfWidth;
       const double length = std::max(20.0, 0.5 * (perimeter - 2.0 * M_PI * r));
-      return ClosedCurve([=](double u) -> Vec2 {
-        return roundedRectangle(u, length + 2 * r, 2 * r, r);
-      });
+      return ClosedCurve([=](double u) -> Vec2 { return roundedRectangle(u, length + 2 * r, 2 * r, r); });
     }
   }
   throw Error("unknown path shape");
@@ -81,9 +77,12 @@ ClosedCurve curveFor(PathShape shape, double perimeter) {
 double lapLength(PathShape shape, double distance) {
   const double wanted = kLapFraction * distance;
   switch (shape) {
-    case PathShape::Block: return std::clamp(wanted, 100.0, 1200.0);
-    case PathShape::Figure8: return std::clamp(wanted, 120.0, 1200.0);
-    case PathShape::Street: return std::clamp(wanted, 140.0, 2400.0);
+    case PathShape::Block:
+      return std::clamp(wanted, 100.0, 1200.0);
+    case PathShape::Figure8:
+      return std::clamp(wanted, 120.0, 1200.0);
+    case PathShape::Street:
+      return std::clamp(wanted, 140.0, 2400.0);
   }
   return wanted;
 }
@@ -142,8 +141,7 @@ Trajectory drapeOnTerrain(const PlanarPath& path, const Terrain& terrain, double
     // Nose up on a rising road is a negative rotation about y (x turns to +z).
     const double pitch = -std::atan(slope.dot(forward));
     const double roll = std::atan(slope.dot(left));
-    const Mat3 rotation = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) *
-                           Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
+    const Mat3 rotation = (Eigen::AngleAxisd(yaw, Vec3::UnitZ()) * Eigen::AngleAxisd(pitch, Vec3::UnitY()) *
                            Eigen::AngleAxisd(roll, Vec3::UnitX()))
                               .toRotationMatrix();
     const Vec3 position(p.x(), p.y(), terrain.height(p.x(), p.y()) + sensor_height);
@@ -158,14 +156,13 @@ Trajectory makeTrajectory(const TrajectoryConfig& config, const Terrain& terrain
   if (!(config.frame_rate_hz > 0.0)) throw Error("simulate: the frame rate must be positive");
   if (!(config.sensor_height > 0.0)) throw Error("simulate: the sensor height must be positive");
   if (!config.file.empty()) {
-    return drapeOnTerrain(planarPathFromFile(config.file, config.frames), terrain,
-                          config.sensor_height, config.frame_rate_hz);
+    return drapeOnTerrain(planarPathFromFile(config.file, config.frames), terrain, config.sensor_height,
+                          config.frame_rate_hz);
   }
   if (!(config.speed > 0.0) || config.speed > 100.0) {
     throw Error("simulate: the speed must be in (0, 100] m/s");
   }
-  return drapeOnTerrain(proceduralPath(config), terrain, config.sensor_height,
-                        config.frame_rate_hz);
+  return drapeOnTerrain(proceduralPath(config), terrain, config.sensor_height, config.frame_rate_hz);
 }
 
 }  // namespace hba::sim

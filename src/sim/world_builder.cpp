@@ -4,10 +4,10 @@
 #include <functional>
 #include <unordered_map>
 
+#include "corridor.hpp"
 #include "hba/core/error.hpp"
 #include "hba/sim/random.hpp"
 #include "hba/sim/world.hpp"
-#include "corridor.hpp"
 #include "mesh_builder.hpp"
 #include "path_clearance.hpp"
 #include "path_samples.hpp"
@@ -141,14 +141,13 @@ class WorldBuilder {
   }
 
   // True if every point of the turned rectangle is at least `needed` from the path.
-  bool footprintClear(const Vec2& center, double length, double width, double yaw,
-                      double needed) const {
+  bool footprintClear(const Vec2& center, double length, double width, double yaw, double needed) const {
     const Vec2 along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
     const int nl = static_cast<int>(std::ceil(length)) + 1, nw = static_cast<int>(std::ceil(width)) + 1;
     for (int i = 0; i <= nl; ++i) {
       for (int j = 0; j <= nw; ++j) {
-        const Vec2 p = center + (i / double(nl) - 0.5) * length * along +
-                       (j / double(nw) - 0.5) * width * across;
+        const Vec2 p =
+            center + (i / double(nl) - 0.5) * length * along + (j / double(nw) - 0.5) * width * across;
         if (clearance_.clearance(p.x(), p.y()) < needed + kRasterSlack) return false;
       }
     }

@@ -5,11 +5,11 @@
 #include <atomic>
 #include <mutex>
 
+#include "hba/core/progress.hpp"
+#include "hba/core/staging_folder.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/sim/simulation.hpp"
-#include "hba/core/progress.hpp"
-#include "hba/core/staging_folder.hpp"
 
 namespace hba::sim {
 namespace fs = std::filesystem;
@@ -24,21 +24,21 @@ void writeScans(const Simulation& simulation, const fs::path& scans, const Write
   std::mutex progress_mutex;
   // One frame per task: frames cost milliseconds each, so scheduling is free,
   // and each frame's output depends only on (seed, frame).
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, frames, 1),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        io::writePcd(scans / scanFileName(k, frames), simulateFrame(simulation, k),
-                                     io::PcdEncoding::Binary);
-                        const std::size_t finished = ++done;
-                        progress.advance();
-                        const bool report = options.progress && options.progress_every > 0 &&
-                                            finished % options.progress_every == 0;
-                        if (report) {
-                          const std::lock_guard<std::mutex> lock(progress_mutex);
-                          options.progress(finished, frames);
-                        }
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, frames, 1), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          io::writePcd(scans / scanFileName(k, frames), simulateFrame(simulation, k),
+                       io::PcdEncoding::Binary);
+          const std::size_t finished = ++done;
+          progress.advance();
+          const bool report =
+              options.progress && options.progress_every > 0 && finished % options.progress_every == 0;
+          if (report) {
+            const std::lock_guard<std::mutex> lock(progress_mutex);
+            options.progress(finished, frames);
+          }
+        }
+      });
   if (options.progress && (options.progress_every == 0 || frames % options.progress_every != 0)) {
     options.progress(frames, frames);
   }
@@ -58,8 +58,7 @@ void writePoseFiles(const Simulation& simulation, const fs::path& dir) {
 
 }  // namespace
 
-void writeSimulation(const Simulation& simulation, const fs::path& output,
-                     const WriteOptions& options) {
+void writeSimulation(const Simulation& simulation, const fs::path& output, const WriteOptions& options) {
   StagingFolder staging(output, options.force);
   if (!options.poses_only) writeScans(simulation, staging.path() / "pcd", options);
   writePoseFiles(simulation, staging.path());

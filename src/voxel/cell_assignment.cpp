@@ -30,8 +30,8 @@ std::uint64_t mix(std::uint64_t h) {
 
 std::uint64_t hashOf(std::uint64_t packed) { return mix(packed); }
 std::uint64_t hashOf(const VoxelKey& key) {
-  return mix(static_cast<std::uint64_t>(key.x) ^ mix(static_cast<std::uint64_t>(key.y) ^
-                                                     mix(static_cast<std::uint64_t>(key.z))));
+  return mix(static_cast<std::uint64_t>(key.x) ^
+             mix(static_cast<std::uint64_t>(key.y) ^ mix(static_cast<std::uint64_t>(key.z))));
 }
 
 // Open-addressing table from cell key to cell number. It starts small and
@@ -141,8 +141,7 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
 
 }  // namespace
 
-CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
-                           std::size_t points_per_cell) {
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
   // Dividing by a power of two is multiplying by its exact inverse: the same
   // keys as VoxelKey::of, without three divisions a point (plane voxels are
   // 4 m halved; scan voxels like 0.1 m keep the division).

@@ -10,7 +10,7 @@
 namespace hba::voxel {
 
 struct CellAssignment {
-  std::vector<std::uint32_t> cell_of_point;       // one per point
+  std::vector<std::uint32_t> cell_of_point;        // one per point
   std::vector<std::uint32_t> first_point_of_cell;  // one per cell, ascending
   std::size_t cells() const { return first_point_of_cell.size(); }
 };
@@ -20,8 +20,7 @@ struct CellAssignment {
 // `points_per_cell`: the expected share, which sizes the hash table before
 // its first doubling (a guess only: the table grows as needed, and the
 // result does not depend on it).
-CellAssignment assignCells(const std::vector<Vec3f>& points, double size,
-                           std::size_t points_per_cell = 4);
+CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell = 4);
 
 // Point ids grouped by cell (counting sort: ids ascend within each cell).
 struct CellMembers {

@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <Eigen/Eigenvalues>
 
 #include "cell_assignment.hpp"
 #include "hba/core/error.hpp"
@@ -26,8 +26,7 @@ struct WorldPoints {
   std::vector<std::size_t> first;    // first global id of each scan
 };
 
-WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans,
-                         const std::vector<Pose>& poses) {
+WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses) {
   WorldPoints world;
   std::size_t total = 0;
   for (const PointCloud* scan : scans) {
@@ -107,8 +106,8 @@ class OctreeSplitter {
   // `moments`, when known); appends its planes. Splitting reorders `ids` in
   // place (stable, so each octant stays ascending); `scratch` must hold at
   // least ids.size() entries.
-  void visit(IdSpan ids, const ShiftedMoments* moments, const Vec3& corner, double edge,
-             int depth, SplitScratch& scratch, std::vector<PlaneFeature>& out) const {
+  void visit(IdSpan ids, const ShiftedMoments* moments, const Vec3& corner, double edge, int depth,
+             SplitScratch& scratch, std::vector<PlaneFeature>& out) const {
     if (static_cast<int>(ids.size()) < settings_.min_points) return;
     const Vec3 eigenvalues = moments ? covarianceEigenvalues(*moments, ids.size())
                                      : covarianceEigenvalues(momentsOf(world_, ids), ids.size());
@@ -126,8 +125,8 @@ class OctreeSplitter {
     std::array<std::size_t, 9> start{};
     for (std::size_t k = 0; k < ids.size(); ++k) {
       const Vec3f& p = world_.position[ids.begin[k]];
-      const int o = (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) |
-                    (p.z() >= center.z() ? 4 : 0);
+      const int o =
+          (p.x() >= center.x() ? 1 : 0) | (p.y() >= center.y() ? 2 : 0) | (p.z() >= center.z() ? 4 : 0);
       scratch.octant[k] = static_cast<std::uint8_t>(o);
       ++start[o + 1];
       const Vec3 q = p.cast<double>();
@@ -140,11 +139,10 @@ class OctreeSplitter {
     for (std::size_t k = 0; k < ids.size(); ++k) scratch.ids[fill[scratch.octant[k]]++] = ids.begin[k];
     std::copy(scratch.ids.begin(), scratch.ids.begin() + static_cast<long>(ids.size()), ids.begin);
     for (int o = 0; o < 8; ++o) {
-      const Vec3 child_corner = corner + half * Vec3((o & 1) ? 1 : 0, (o & 2) ? 1 : 0,
-                                                     (o & 4) ? 1 : 0);
+      const Vec3 child_corner = corner + half * Vec3((o & 1) ? 1 : 0, (o & 2) ? 1 : 0, (o & 4) ? 1 : 0);
       const ShiftedMoments* known = octants[o] ? &*octants[o] : nullptr;
-      visit({ids.begin + start[o], ids.begin + start[o + 1]}, known, child_corner, half,
-            depth + 1, scratch, out);
+      visit({ids.begin + start[o], ids.begin + start[o + 1]}, known, child_corner, half, depth + 1, scratch,
+            out);
     }
   }
 
@@ -175,8 +173,9 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
   }
   if (!(settings.voxel_size > 0.0) || !(settings.eigen_ratio > 0.0) || settings.max_depth < 0 ||
       settings.min_points < 3) {
-    throw Error("plane extraction: invalid settings (need voxel_size > 0, eigen_ratio > 0, "
-                "max_depth >= 0, min_points >= 3)");
+    throw Error(
+        "plane extraction: invalid settings (need voxel_size > 0, eigen_ratio > 0, "
+        "max_depth >= 0, min_points >= 3)");
   }
 }
 
@@ -191,8 +190,7 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings) {
 }
 
 std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
-                                        const std::vector<Pose>& poses,
-                                        const PlaneSettings& settings) {
+                                        const std::vector<Pose>& poses, const PlaneSettings& settings) {
   validate(scans, poses, settings);
   const WorldPoints world = placeInWorld(scans, poses);
 
@@ -201,38 +199,35 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
   // table sized for one cell in four points would be mostly empty (268 MB
   // for a 20 M-point refinement block).
   constexpr std::size_t kPointsPerPlaneVoxel = 64;
-  const CellAssignment cells =
-      assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
+  const CellAssignment cells = assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
   CellMembers members = membersOf(cells);
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
-    keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(),
-                           settings.voxel_size);
+    keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(), settings.voxel_size);
   }
 
   // Visit voxels in key order so the output never depends on the hash.
   std::vector<std::size_t> order(keys.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
 
   const OctreeSplitter splitter(world, settings);
   std::vector<std::vector<PlaneFeature>> per_voxel(order.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size()),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-    SplitScratch scratch;
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
-      const std::size_t cell = order[i];
-      const VoxelKey& key = keys[cell];
-      const Vec3 corner = settings.voxel_size * Vec3(static_cast<double>(key.x),
-                                                     static_cast<double>(key.y),
-                                                     static_cast<double>(key.z));
-      const IdSpan ids{members.ids.data() + members.begin[cell],
-                       members.ids.data() + members.begin[cell + 1]};
-      scratch.reserve(ids.size());
-      splitter.visit(ids, nullptr, corner, settings.voxel_size, 0, scratch, per_voxel[i]);
-    }
-  });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, order.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+        SplitScratch scratch;
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const std::size_t cell = order[i];
+          const VoxelKey& key = keys[cell];
+          const Vec3 corner =
+              settings.voxel_size *
+              Vec3(static_cast<double>(key.x), static_cast<double>(key.y), static_cast<double>(key.z));
+          const IdSpan ids{members.ids.data() + members.begin[cell],
+                           members.ids.data() + members.begin[cell + 1]};
+          scratch.reserve(ids.size());
+          splitter.visit(ids, nullptr, corner, settings.voxel_size, 0, scratch, per_voxel[i]);
+        }
+      });
 
   std::vector<PlaneFeature> planes;
   for (auto& found : per_voxel) {

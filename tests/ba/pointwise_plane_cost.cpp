@@ -60,8 +60,7 @@ PointwiseResult pointwisePlaneDerivatives(const std::vector<std::vector<Vec3>>& 
       Mat6 block = -(2.0 / n) * jsum[a] * jsum[b].transpose();
       for (int k = 1; k < 3; ++k) {
         const Vec3 uk = eig.eigenvectors().col(k);
-        block += 2.0 / (lambda(0) - lambda(k)) * (W[a].transpose() * uk) *
-                 (uk.transpose() * W[b]);
+        block += 2.0 / (lambda(0) - lambda(k)) * (W[a].transpose() * uk) * (uk.transpose() * W[b]);
       }
       out.hessian.block<6, 6>(6 * a, 6 * b) += block;
     }

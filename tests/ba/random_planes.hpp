@@ -22,16 +22,14 @@ inline std::vector<Pose> randomPoses(std::mt19937& rng, int count, double spread
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Pose> poses;
   for (int i = 0; i < count; ++i) {
-    poses.emplace_back(so3Exp(u(rng) * 2.0 * randomUnit(rng)),
-                       Vec3(spread * Vec3(u(rng), u(rng), u(rng))));
+    poses.emplace_back(so3Exp(u(rng) * 2.0 * randomUnit(rng)), Vec3(spread * Vec3(u(rng), u(rng), u(rng))));
   }
   return poses;
 }
 
 // A noisy planar patch (thickness `sigma`) seen by `frames`.
 inline RandomPlane randomPlane(std::mt19937& rng, const std::vector<Pose>& poses,
-                               const std::vector<std::uint32_t>& frames, int points_per_frame,
-                               double sigma) {
+                               const std::vector<std::uint32_t>& frames, int points_per_frame, double sigma) {
   std::uniform_real_distribution<double> u(-3.0, 3.0);
   std::normal_distribution<double> g(0.0, sigma);
   const Vec3 normal = randomUnit(rng);

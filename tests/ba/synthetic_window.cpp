@@ -17,9 +17,9 @@ struct Patch {
 // are at grid cell centres so each patch fills one root voxel of that size.
 std::vector<Patch> makePatches(double grid) {
   const std::vector<std::pair<Vec3, Vec3>> cells_and_normals = {
-      {{0, 0, -1}, {0, 0, 1}},     {{1, 1, -1}, {0, 0.2, 1}},  {{2, 0, 0}, {1, 0, 0}},
-      {{-2, 1, 0}, {1, 0.3, 0}},   {{0, 2, 0}, {0, 1, 0}},     {{1, -2, 0}, {0.2, 1, 0}},
-      {{-1, -1, 1}, {1, 1, 1}},    {{1, 1, 1}, {-1, 1, 0.5}},  {{-1, 1, -1}, {0.3, -0.4, 1}},
+      {{0, 0, -1}, {0, 0, 1}},   {{1, 1, -1}, {0, 0.2, 1}}, {{2, 0, 0}, {1, 0, 0}},
+      {{-2, 1, 0}, {1, 0.3, 0}}, {{0, 2, 0}, {0, 1, 0}},    {{1, -2, 0}, {0.2, 1, 0}},
+      {{-1, -1, 1}, {1, 1, 1}},  {{1, 1, 1}, {-1, 1, 0.5}}, {{-1, 1, -1}, {0.3, -0.4, 1}},
   };
   std::vector<Patch> patches;
   for (const auto& [cell, normal] : cells_and_normals) {
@@ -70,8 +70,7 @@ SyntheticWindow makeSyntheticWindow(const SyntheticWindowSpec& spec) {
       }
     }
     window.scans.push_back(std::move(scan));
-    window.initial.push_back(
-        perturb(window.truth[f], spec.perturb_angle_deg, spec.perturb_translation, rng));
+    window.initial.push_back(perturb(window.truth[f], spec.perturb_angle_deg, spec.perturb_translation, rng));
   }
   return window;
 }

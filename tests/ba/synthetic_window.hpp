@@ -12,11 +12,11 @@ namespace hba::test {
 
 struct SyntheticWindowSpec {
   int frames = 5;
-  int points_per_patch = 80;      // per frame and patch
-  double noise_sigma = 0.0;       // along the patch normal (m)
-  double patch_size = 6.0;        // edge of each square patch (m)
-  double grid = 8.0;              // patches sit at centres of this grid's cells
-  double perturb_angle_deg = 1.0; // per-frame error of the initial poses
+  int points_per_patch = 80;       // per frame and patch
+  double noise_sigma = 0.0;        // along the patch normal (m)
+  double patch_size = 6.0;         // edge of each square patch (m)
+  double grid = 8.0;               // patches sit at centres of this grid's cells
+  double perturb_angle_deg = 1.0;  // per-frame error of the initial poses
   double perturb_translation = 0.2;
   std::uint32_t seed = 1;
 };
@@ -24,7 +24,7 @@ struct SyntheticWindowSpec {
 struct SyntheticWindow {
   std::vector<PointCloud> scans;  // sensor frame
   std::vector<Pose> truth;
-  std::vector<Pose> initial;      // truth with each frame perturbed
+  std::vector<Pose> initial;  // truth with each frame perturbed
   std::vector<const PointCloud*> scanPointers() const;
 };
 

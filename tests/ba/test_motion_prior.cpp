@@ -30,8 +30,7 @@ std::vector<Pose> randomPoses(std::size_t n, std::mt19937& rng) {
   std::normal_distribution<double> g(0.0, 1.0);
   std::vector<Pose> poses;
   for (std::size_t i = 0; i < n; ++i) {
-    poses.emplace_back(Quat(so3Exp(Vec3(g(rng), g(rng), g(rng)) * 0.5)),
-                       Vec3(g(rng), g(rng), g(rng)) * 3.0);
+    poses.emplace_back(Quat(so3Exp(Vec3(g(rng), g(rng), g(rng)) * 0.5)), Vec3(g(rng), g(rng), g(rng)) * 3.0);
   }
   return poses;
 }
@@ -69,7 +68,8 @@ TEST(MotionPrior, GradientAndHessianMatchFiniteDifferences) {
   const double h = 1e-6;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     for (int k = 0; k < 6; ++k) {
-      const double numeric = (prior.cost(nudge(poses, i, k, h)) - prior.cost(nudge(poses, i, k, -h))) / (2 * h);
+      const double numeric =
+          (prior.cost(nudge(poses, i, k, h)) - prior.cost(nudge(poses, i, k, -h))) / (2 * h);
       EXPECT_NEAR(lin.gradient(static_cast<Eigen::Index>(6 * i) + k), numeric,
                   1e-5 * std::max(1.0, std::abs(numeric)));
     }
@@ -245,7 +245,8 @@ TEST(SparseLm, SameStepsForAnyThreadCount) {
   const PlaneProblem problem(std::move(planes), frames);
   std::vector<Pose> start = truth;
   for (std::size_t i = 1; i < start.size(); ++i) {
-    start[i] = Pose(so3Exp(0.002 * test::randomUnit(rng)) * start[i].R(), start[i].t + 0.02 * test::randomUnit(rng));
+    start[i] =
+        Pose(so3Exp(0.002 * test::randomUnit(rng)) * start[i].R(), start[i].t + 0.02 * test::randomUnit(rng));
   }
   auto solve = [&](int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

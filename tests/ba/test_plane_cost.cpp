@@ -40,8 +40,8 @@ Eigen::VectorXd numericGradient(const Cost& cost, const std::vector<Pose>& poses
   const Eigen::Index n = 6 * static_cast<Eigen::Index>(poses.size());
   Eigen::VectorXd g(n);
   for (Eigen::Index a = 0; a < n; ++a) {
-    g(a) = (cost(perturbed(poses, unitStep(n, a, h))) - cost(perturbed(poses, unitStep(n, a, -h)))) /
-           (2.0 * h);
+    g(a) =
+        (cost(perturbed(poses, unitStep(n, a, h))) - cost(perturbed(poses, unitStep(n, a, -h)))) / (2.0 * h);
   }
   return g;
 }
@@ -147,8 +147,8 @@ TEST(PlaneProblem, ChunkedAssemblyIsThePlanesSumForAnyThreadCount) {
       g.segment<6>(i) += lin.gradient.segment<6>(6 * static_cast<Eigen::Index>(a));
       for (std::size_t b = 0; b < plane.clusters.size(); ++b) {
         const auto j = static_cast<Eigen::Index>(6 * plane.clusters[b].frame);
-        H.block<6, 6>(i, j) += local.block<6, 6>(6 * static_cast<Eigen::Index>(a),
-                                                 6 * static_cast<Eigen::Index>(b));
+        H.block<6, 6>(i, j) +=
+            local.block<6, 6>(6 * static_cast<Eigen::Index>(a), 6 * static_cast<Eigen::Index>(b));
       }
     }
   }

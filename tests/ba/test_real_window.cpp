@@ -44,12 +44,13 @@ TEST(RealWindow, Hku1TenScansImproveConsistency) {
 
   const double rms_before = median(result.plane_rms_initial);
   const double rms_after = median(result.plane_rms_final);
-  std::printf("hku1 %d..%d: planes %zu, points %zu, rounds %d, iterations %d\n"
-              "  cost (last association) %.6g -> %.6g, first association %.6g\n"
-              "  median plane RMS %.4f m -> %.4f m\n",
-              kFirst, kFirst + kCount - 1, result.num_planes, result.num_plane_points,
-              result.rounds, result.iterations, result.last_association_initial_cost,
-              result.final_cost, result.initial_cost, rms_before, rms_after);
+  std::printf(
+      "hku1 %d..%d: planes %zu, points %zu, rounds %d, iterations %d\n"
+      "  cost (last association) %.6g -> %.6g, first association %.6g\n"
+      "  median plane RMS %.4f m -> %.4f m\n",
+      kFirst, kFirst + kCount - 1, result.num_planes, result.num_plane_points, result.rounds,
+      result.iterations, result.last_association_initial_cost, result.final_cost, result.initial_cost,
+      rms_before, rms_after);
 
   ASSERT_GT(result.num_planes, 50u);
   EXPECT_LT(result.final_cost, 0.97 * result.last_association_initial_cost);

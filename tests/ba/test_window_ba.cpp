@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <random>
 
-#include <Eigen/Eigenvalues>
 #include <tbb/global_control.h>
+#include <Eigen/Eigenvalues>
 
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/motion_prior.hpp"
@@ -42,9 +42,8 @@ TEST(WindowBa, NoiseFreeWindowConvergesToTruth) {
   settings.motion_prior.enabled = false;
   const BaResult result = optimizeWindow(window.scanPointers(), window.initial, settings);
   const auto after = relativePoseError(result.poses, window.truth);
-  std::printf("noise-free: %.3g deg %.3g m -> %.3g deg %.3g m, %d iterations\n",
-              before.max_angle_deg, before.max_translation, after.max_angle_deg,
-              after.max_translation, result.iterations);
+  std::printf("noise-free: %.3g deg %.3g m -> %.3g deg %.3g m, %d iterations\n", before.max_angle_deg,
+              before.max_translation, after.max_angle_deg, after.max_translation, result.iterations);
   EXPECT_LT(after.max_angle_deg, 0.01);
   EXPECT_LT(after.max_translation, 1e-3);
   EXPECT_GE(result.num_planes, 8u);
@@ -66,10 +65,11 @@ TEST(WindowBa, NoisyWindowConvergesToNoiseLevel) {
   const BaResult oracle = optimizeWindow(window.scanPointers(), window.truth, syntheticSettings());
   const auto floor = relativePoseError(oracle.poses, window.truth);
   const auto gap = relativePoseError(result.poses, oracle.poses);
-  std::printf("noise %.3g m: -> %.3g deg %.3g m (minimum from truth: %.3g deg %.3g m), "
-              "%d iterations\n",
-              spec.noise_sigma, after.max_angle_deg, after.max_translation, floor.max_angle_deg,
-              floor.max_translation, result.iterations);
+  std::printf(
+      "noise %.3g m: -> %.3g deg %.3g m (minimum from truth: %.3g deg %.3g m), "
+      "%d iterations\n",
+      spec.noise_sigma, after.max_angle_deg, after.max_translation, floor.max_angle_deg,
+      floor.max_translation, result.iterations);
   EXPECT_LT(gap.max_angle_deg, 5e-3);  // far below the error itself
   EXPECT_LT(gap.max_translation, 5e-4);
   // The noise level: ~sigma / sqrt(points per patch and frame) on 6 m patches.
@@ -188,8 +188,8 @@ TEST(WindowBa, SingleFrameAndIdenticalFramesStayFinite) {
 
   // The same scan three times at the same pose: already consistent.
   const PointCloud* scan = window.scanPointers()[0];
-  const BaResult same = optimizeWindow({scan, scan, scan},
-                                       std::vector<Pose>(3, window.truth[0]), syntheticSettings());
+  const BaResult same =
+      optimizeWindow({scan, scan, scan}, std::vector<Pose>(3, window.truth[0]), syntheticSettings());
   EXPECT_GT(same.num_planes, 0u);
   EXPECT_TRUE(same.hessian.allFinite());
   EXPECT_LE(same.final_cost, same.last_association_initial_cost);
@@ -215,7 +215,8 @@ TEST(LevenbergMarquardt, NeverIncreasesTheCost) {
   std::mt19937 rng(17);
   const std::vector<Pose> truth = test::randomPoses(rng, 4, 2.0);
   std::vector<PlaneObservation> planes;
-  for (int p = 0; p < 6; ++p) planes.push_back(test::randomPlane(rng, truth, {0, 1, 2, 3}, 30, 0.02).observation);
+  for (int p = 0; p < 6; ++p)
+    planes.push_back(test::randomPlane(rng, truth, {0, 1, 2, 3}, 30, 0.02).observation);
   const PlaneProblem problem(planes, 4);
   for (int trial = 0; trial < 5; ++trial) {
     std::vector<Pose> poses = truth;

@@ -22,11 +22,13 @@ bool pythonAvailable() { return runCommand("command -v python3").exit_code == 0;
 // holds NAME=value words for the harness and its children.
 hba::test::CommandResult runHarness(const hba::test::TempDir& dir, const std::string& hba,
                                     const std::string& environment = "") {
-  return runCommand("env " + environment + " python3 " HBA_SOURCE_DIR "/scripts/bench/run_benchmarks.py --quick"
-                    " --only sim-livox-100-drift --jobs 1 --hba " + hba +
-                    " --io-floor " HBA_IO_FLOOR_PATH " --data-dir " + (dir / "data").string() +
-                    " --output " + (dir / "BENCHMARKS.md").string() +
-                    " --results-dir " + (dir / "results").string());
+  return runCommand("env " + environment +
+                    " python3 " HBA_SOURCE_DIR
+                    "/scripts/bench/run_benchmarks.py --quick"
+                    " --only sim-livox-100-drift --jobs 1 --hba " +
+                    hba + " --io-floor " HBA_IO_FLOOR_PATH " --data-dir " + (dir / "data").string() +
+                    " --output " + (dir / "BENCHMARKS.md").string() + " --results-dir " +
+                    (dir / "results").string());
 }
 
 TEST(BenchmarkHarness, AnHonestRunPassesAndKeepsTheHandWrittenText) {
@@ -53,8 +55,7 @@ TEST(BenchmarkHarness, FailsLoudlyWhenOptimizedPosesAreWorseThanTheInitialOnes) 
   const auto run = runHarness(dir, HBA_SOURCE_DIR "/tests/bench/corrupting_hba.sh",
                               "HBA_REAL_TOOL=" + hba::test::cliPath().string());
   EXPECT_NE(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("ACCURACY REGRESSION: sim-livox-100-drift ATE"), std::string::npos)
-      << run.output;
+  EXPECT_NE(run.output.find("ACCURACY REGRESSION: sim-livox-100-drift ATE"), std::string::npos) << run.output;
   // The results are written all the same, with the row marked.
   const std::string report = hba::test::readText(dir / "BENCHMARKS.md");
   EXPECT_NE(report.find("ACCURACY REGRESSION**"), std::string::npos) << report;
@@ -67,13 +68,15 @@ TEST(BenchmarkHarness, FailsLoudlyWhenOptimizedPosesAreWorseThanTheInitialOnes) 
 TEST(BenchmarkHarness, ComparesTwoBuildsInOneSitting) {
   if (!pythonAvailable()) GTEST_SKIP() << "python3 is not installed";
   hba::test::TempDir dir;
-  const auto run = runCommand(
-      "env HBA_REAL_TOOL=" + hba::test::cliPath().string() +
-      " python3 " HBA_SOURCE_DIR "/scripts/bench/compare_builds.py --only sim-livox-100-drift"
-      " --runs 2 --render --jobs 1 --hba-a " + hba::test::cliPath().string() +
-      " --hba-b " HBA_SOURCE_DIR "/tests/bench/corrupting_hba.sh --label-a good --label-b broken"
-      " --io-floor " HBA_IO_FLOOR_PATH " --data-dir " + (dir / "data").string() +
-      " --output " + (dir / "compare.md").string());
+  const auto run = runCommand("env HBA_REAL_TOOL=" + hba::test::cliPath().string() +
+                              " python3 " HBA_SOURCE_DIR
+                              "/scripts/bench/compare_builds.py --only sim-livox-100-drift"
+                              " --runs 2 --render --jobs 1 --hba-a " +
+                              hba::test::cliPath().string() +
+                              " --hba-b " HBA_SOURCE_DIR
+                              "/tests/bench/corrupting_hba.sh --label-a good --label-b broken"
+                              " --io-floor " HBA_IO_FLOOR_PATH " --data-dir " +
+                              (dir / "data").string() + " --output " + (dir / "compare.md").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string table = hba::test::readText(dir / "compare.md");
   EXPECT_NE(table.find("| `sim-livox-100-drift` | 100 |"), std::string::npos) << table;

@@ -57,10 +57,12 @@ TEST_F(CliConventions, ExitCodesAreZeroOneTwo) {
   EXPECT_EQ(runSplit("--version", dir).exit_code, 0);
   EXPECT_EQ(runSplit("optimize --help", dir).exit_code, 0);
   EXPECT_EQ(runSplit("info " + quoted(dir / "nowhere"), dir).exit_code, 1);  // bad input
-  EXPECT_EQ(runSplit("map " + quoted(dir / "sim") + " -o " + quoted(dir / "m.pcd") + " --voxel -1", dir).exit_code, 2);
-  EXPECT_EQ(runSplit("eval --gt", dir).exit_code, 2);     // missing value
-  EXPECT_EQ(runSplit("info", dir).exit_code, 2);          // missing DIR
-  EXPECT_EQ(runSplit("-j x info .", dir).exit_code, 2);   // not a number
+  EXPECT_EQ(
+      runSplit("map " + quoted(dir / "sim") + " -o " + quoted(dir / "m.pcd") + " --voxel -1", dir).exit_code,
+      2);
+  EXPECT_EQ(runSplit("eval --gt", dir).exit_code, 2);    // missing value
+  EXPECT_EQ(runSplit("info", dir).exit_code, 2);         // missing DIR
+  EXPECT_EQ(runSplit("-j x info .", dir).exit_code, 2);  // not a number
 }
 
 TEST_F(CliConventions, AloneItPrintsTheHelp) {
@@ -75,7 +77,8 @@ TEST_F(CliConventions, MistypedCommandsAndFlagsGetASuggestion) {
   const SplitResult command = runSplit("optimze " + quoted(dir / "sim"), dir);
   EXPECT_EQ(command.exit_code, 2);
   expectContains(command.err, "'optimze' is not an hba command (did you mean 'optimize'?)");
-  const SplitResult flag = runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "o") + " --windw 20", dir);
+  const SplitResult flag =
+      runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "o") + " --windw 20", dir);
   EXPECT_EQ(flag.exit_code, 2);
   expectContains(flag.err, "'--windw' is not a flag here (did you mean '--window'?)");
   EXPECT_FALSE(fs::exists(dir / "o"));
@@ -87,7 +90,8 @@ TEST_F(CliConventions, MistypedCommandsAndFlagsGetASuggestion) {
 TEST_F(CliConventions, MistypedSettingGetsASuggestionAndTheValidNames) {
   test::writeText(dir / "bad.yaml", "windw: 12\n");
   const SplitResult run = runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "o") +
-                                       " --config " + quoted(dir / "bad.yaml"), dir);
+                                       " --config " + quoted(dir / "bad.yaml"),
+                                   dir);
   EXPECT_EQ(run.exit_code, 1);
   expectContains(run.err, "unknown setting 'windw' (did you mean 'window'?)");
   expectContains(run.err, "stride");
@@ -101,21 +105,24 @@ TEST_F(CliConventions, PrintedConfigRoundTrips) {
   expectContains(printed.out, "refine: false");
   expectContains(printed.out, "# frames per local window, w (--window)");
   test::writeText(dir / "settings.yaml", printed.out);
-  const SplitResult again = runSplit("optimize --print-config --config " + quoted(dir / "settings.yaml"), dir);
+  const SplitResult again =
+      runSplit("optimize --print-config --config " + quoted(dir / "settings.yaml"), dir);
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_EQ(again.out, printed.out);
   EXPECT_EQ(runSplit("optimize " + quoted(dir / "sim"), dir).exit_code, 2);  // -o is still required
 }
 
 TEST_F(CliConventions, LogFileGetsEveryMessageWithTimes) {
-  const SplitResult run = runSplit("-q --log-file " + quoted(dir / "hba.log") + " mme " + quoted(dir / "sim"), dir);
+  const SplitResult run =
+      runSplit("-q --log-file " + quoted(dir / "hba.log") + " mme " + quoted(dir / "sim"), dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_TRUE(run.err.empty()) << run.err;  // -q: no info on the console
   const std::string log = test::readText(dir / "hba.log");
   expectContains(log, "[info] merging 8 scans");
   EXPECT_EQ(log.front(), '[');  // "[2026-11-22 21:30:00.123] [info] ..."
   test::writeText(dir / "a_file", "");
-  const SplitResult unwritable = runSplit("--log-file " + quoted(dir / "a_file" / "hba.log") + " mme " + quoted(dir / "sim"), dir);
+  const SplitResult unwritable =
+      runSplit("--log-file " + quoted(dir / "a_file" / "hba.log") + " mme " + quoted(dir / "sim"), dir);
   EXPECT_EQ(unwritable.exit_code, 1);
   expectContains(unwritable.err, "cannot write the log file");
 }
@@ -130,15 +137,15 @@ namespace {
 TEST(CliProgress, PlainLinesWhenNotATerminal) {
   test::TempDir dir;
   ASSERT_EQ(runSplit("-q simulate --frames 80 --seed 2 -o " + quoted(dir / "sim"), dir).exit_code, 0);
-  const SplitResult run = runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "out") +
-                                       " --no-render", dir);
+  const SplitResult run =
+      runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "out") + " --no-render", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_EQ(run.err.find('\r'), std::string::npos) << "no bar outside a terminal";
   // HBA_PROGRESS_SECONDS=0 (below): a line at every report.
   const std::string frequent = "HBA_PROGRESS_SECONDS=0 ";
-  const test::CommandResult lines = test::runCommand(frequent + quoted(test::cliPath()) + " optimize " +
-                                                     quoted(dir / "sim") + " -o " + quoted(dir / "out2") +
-                                                     " --no-render");
+  const test::CommandResult lines =
+      test::runCommand(frequent + quoted(test::cliPath()) + " optimize " + quoted(dir / "sim") + " -o " +
+                       quoted(dir / "out2") + " --no-render");
   ASSERT_EQ(lines.exit_code, 0) << lines.output;
   expectContains(lines.output, "[info] layer 1: ");
   expectContains(lines.output, "/15 windows (");

@@ -30,7 +30,8 @@ std::vector<std::string> namesIn(const fs::path& dir) {
 class OutputRule : public testing::Test {
  protected:
   void SetUp() override {
-    const test::CommandResult sim = test::runCommand(hba() + " -q simulate --frames 150 --seed 3 -o " + quoted(dir / "sim"));
+    const test::CommandResult sim =
+        test::runCommand(hba() + " -q simulate --frames 150 --seed 3 -o " + quoted(dir / "sim"));
     ASSERT_EQ(sim.exit_code, 0) << sim.output;
   }
   std::string optimize(const std::string& extra) const {
@@ -72,7 +73,10 @@ TEST_F(OutputRule, CtrlCLeavesNothingBehind) {
   // A script that records hba's pid, then becomes hba; its exit code is kept.
   test::writeText(dir / "run.sh", "echo $$ > " + quoted(dir / "hba.pid") + "\nexec " +
                                       optimize("--no-render > " + quoted(dir / "run.log") + " 2>&1") + "\n");
-  ASSERT_EQ(std::system(("(sh " + quoted(dir / "run.sh") + "; echo $? > " + quoted(dir / "exit.txt") + ") &").c_str()), 0);
+  ASSERT_EQ(
+      std::system(
+          ("(sh " + quoted(dir / "run.sh") + "; echo $? > " + quoted(dir / "exit.txt") + ") &").c_str()),
+      0);
   std::this_thread::sleep_for(std::chrono::milliseconds(1500));
   ASSERT_TRUE(fs::exists(dir / "hba.pid"));
   ASSERT_EQ(::kill(static_cast<pid_t>(std::stol(test::readText(dir / "hba.pid"))), SIGINT), 0);  // as Ctrl-C
@@ -81,8 +85,10 @@ TEST_F(OutputRule, CtrlCLeavesNothingBehind) {
   }
   ASSERT_TRUE(fs::exists(dir / "exit.txt"));
   EXPECT_EQ(std::stoi(test::readText(dir / "exit.txt")), 130);
-  EXPECT_NE(test::readText(dir / "run.log").find("interrupted"), std::string::npos) << test::readText(dir / "run.log");
-  EXPECT_EQ(namesIn(dir.path()), (std::vector<std::string>{"exit.txt", "hba.pid", "run.log", "run.sh", "sim"}));
+  EXPECT_NE(test::readText(dir / "run.log").find("interrupted"), std::string::npos)
+      << test::readText(dir / "run.log");
+  EXPECT_EQ(namesIn(dir.path()),
+            (std::vector<std::string>{"exit.txt", "hba.pid", "run.log", "run.sh", "sim"}));
 }
 
 }  // namespace

@@ -41,10 +41,9 @@ TEST(EvalCli, Hku1AgreesWithIndependentNumpyReference) {
   TempDir tmp;
   for (const Reference& ref : kHku1) {
     const auto json_path = tmp / (std::string(ref.align) + ".json");
-    const CommandResult run = runCommand(cliPath().string() + " eval --gt " +
-                                         (hku1 / "optimized_poses.txt").string() + " --est " +
-                                         (hku1 / "odom_poses.txt").string() + " --align " + ref.align +
-                                         " --json " + json_path.string());
+    const CommandResult run = runCommand(
+        cliPath().string() + " eval --gt " + (hku1 / "optimized_poses.txt").string() + " --est " +
+        (hku1 / "odom_poses.txt").string() + " --align " + ref.align + " --json " + json_path.string());
     ASSERT_EQ(run.exit_code, 0) << run.output;
     const auto json = nlohmann::json::parse(readText(json_path));
     EXPECT_EQ(json["matched"], 314);
@@ -77,7 +76,9 @@ TEST(EvalCli, StampedTumAgainstUnstampedHbaPairsByIndexAndPrintsTheLabel) {
   const CommandResult none = runCommand(base + " --align none --label before");
   ASSERT_EQ(none.exit_code, 0) << none.output;
   EXPECT_EQ(none.output.rfind("before  6 of 6 estimated poses matched by index", 0), 0u) << none.output;
-  EXPECT_TRUE(std::regex_search(none.output, std::regex("\nbefore  ATE trans m +3.000000 +3.000000 +3.000000 +0.000000 +3.000000 +3.000000\n")))
+  EXPECT_TRUE(std::regex_search(
+      none.output,
+      std::regex("\nbefore  ATE trans m +3.000000 +3.000000 +3.000000 +0.000000 +3.000000 +3.000000\n")))
       << none.output;
   const CommandResult se3 = runCommand(base + " --label after");
   ASSERT_EQ(se3.exit_code, 0) << se3.output;
@@ -115,7 +116,8 @@ TEST(EvalCli, PlotsTheErrorOverTime) {
   std::string gt, est;
   for (int i = 0; i < 50; ++i) {
     gt += std::to_string(100.0 + 0.1 * i) + " " + std::to_string(i) + " 0 0 0 0 0 1\n";
-    est += std::to_string(100.0 + 0.1 * i) + " " + std::to_string(i) + " " + std::to_string(0.001 * i * i) + " 0 0 0 0 1\n";
+    est += std::to_string(100.0 + 0.1 * i) + " " + std::to_string(i) + " " + std::to_string(0.001 * i * i) +
+           " 0 0 0 0 1\n";
   }
   writeText(tmp / "gt.txt", gt);
   writeText(tmp / "est.txt", est);
@@ -126,8 +128,8 @@ TEST(EvalCli, PlotsTheErrorOverTime) {
   const std::string png = readText(tmp / "ate.png");
   ASSERT_GT(png.size(), 1000u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
-  EXPECT_EQ(bigEndian(png, 16), 1200u);  // IHDR width
-  EXPECT_EQ(bigEndian(png, 20), 720u);   // IHDR height
+  EXPECT_EQ(bigEndian(png, 16), 1200u);                                   // IHDR width
+  EXPECT_EQ(bigEndian(png, 20), 720u);                                    // IHDR height
   EXPECT_NE(runCommand(base + (tmp / "ate.png").string()).exit_code, 0);  // exists: needs --force
   EXPECT_EQ(runCommand(base + (tmp / "ate.png").string() + " --force").exit_code, 0);
   EXPECT_NE(runCommand(base + (tmp / "ate.jpg").string()).exit_code, 0);

@@ -53,8 +53,8 @@ TEST(MmeCli, WrongPosesBlurTheMap) {
                        (tmp / "map.pcd").string() + " --voxel 0.1")
                 .exit_code,
             0);
-  const CommandResult from_file = runCommand(cliPath().string() + " mme --map " +
-                                             (tmp / "map.pcd").string() + " --voxel 0 --radius 0.2");
+  const CommandResult from_file =
+      runCommand(cliPath().string() + " mme --map " + (tmp / "map.pcd").string() + " --voxel 0 --radius 0.2");
   EXPECT_NEAR(mmeFromOutput(from_file), mmeFromOutput(good), 1e-4) << from_file.output;
 }
 
@@ -70,12 +70,11 @@ TEST(MapCli, PclReadsTheMapWithTheSamePointCount) {
   for (std::size_t i = 0; i < map.size(); i += 97) EXPECT_FLOAT_EQ(map.intensity[i], map.points[i].z());
 
   if (std::system("command -v pcl_pcd2ply > /dev/null 2>&1") != 0) GTEST_SKIP() << "pcl-tools absent";
-  const CommandResult pcl = runCommand("pcl_pcd2ply -format 0 " + (tmp / "map.pcd").string() + " " +
-                                       (tmp / "pcl.ply").string());
+  const CommandResult pcl =
+      runCommand("pcl_pcd2ply -format 0 " + (tmp / "map.pcd").string() + " " + (tmp / "pcl.ply").string());
   ASSERT_EQ(pcl.exit_code, 0) << pcl.output;
   const std::string header = readText(tmp / "pcl.ply").substr(0, 400);
-  EXPECT_NE(header.find("element vertex " + std::to_string(map.size()) + "\n"), std::string::npos)
-      << header;
+  EXPECT_NE(header.find("element vertex " + std::to_string(map.size()) + "\n"), std::string::npos) << header;
   EXPECT_EQ(io::readPly(tmp / "pcl.ply").size(), map.size());
 }
 
@@ -87,7 +86,8 @@ TEST(MapCli, SameMapAsTheScansMergedFromMemory) {
   const CommandResult run = runCommand(cliPath().string() + " map " + (tmp / "seq").string() + " -o " +
                                        (tmp / "map.pcd").string() + " --voxel 0.1 --color scan");
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  const std::vector<Pose> poses = io::readPoses(tmp / "seq" / "odom_poses.txt").poses;  // as the tool reads them
+  const std::vector<Pose> poses =
+      io::readPoses(tmp / "seq" / "odom_poses.txt").poses;  // as the tool reads them
   eval::MapSettings settings;
   settings.voxel = 0.1;
   settings.color = eval::MapColor::Scan;

@@ -70,7 +70,8 @@ double bruteForceMme(const PointCloud& c, const MmeSettings& s) {
     std::vector<Vec3> near;
     for (std::size_t j = 0; j < c.size(); ++j) {
       if (j == i && !s.count_query) continue;
-      if ((c.points[j] - c.points[i]).squaredNorm() < s.radius * s.radius) near.push_back(c.points[j].cast<double>());
+      if ((c.points[j] - c.points[i]).squaredNorm() < s.radius * s.radius)
+        near.push_back(c.points[j].cast<double>());
     }
     const auto n = static_cast<int>(near.size());
     if (s.strictly_more ? n <= s.min_neighbors : n < s.min_neighbors) continue;

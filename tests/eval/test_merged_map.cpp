@@ -79,7 +79,8 @@ TEST(MergedMap, ScansInMemoryAreMergedWithTheirPoses) {
   s.color = MapColor::Scan;
   const PointCloud map = buildMergedMap(source, poses, s);
   VoxelMerger merger(s);
-  for (std::size_t i = 0; i < scans.size(); ++i) merger.add(scans[i], poses[i], static_cast<std::uint32_t>(i));
+  for (std::size_t i = 0; i < scans.size(); ++i)
+    merger.add(scans[i], poses[i], static_cast<std::uint32_t>(i));
   const PointCloud expected = merger.result();
   ASSERT_GT(map.size(), 1000u);
   EXPECT_EQ(map.points, expected.points);

@@ -39,7 +39,8 @@ EvalOptions withAlignment(Alignment alignment) {
 TEST(Ate, RigidOffsetVanishesWithSe3Alignment) {
   const Trajectory gt = helix(40);
   const Pose offset(Mat3(so3Exp(Vec3(0.2, -0.4, 1.1))), Vec3(3.0, -7.0, 2.0));
-  const TrajectoryEvaluation r = evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::SE3));
+  const TrajectoryEvaluation r =
+      evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::SE3));
   EXPECT_EQ(r.matched, 40u);
   EXPECT_LT(r.ate.translation_m.max, 1e-9);
   EXPECT_LT(r.ate.rotation_deg.max, 1e-6);
@@ -52,7 +53,8 @@ TEST(Ate, RigidOffsetVanishesWithSe3Alignment) {
 TEST(Ate, PureTranslationOffsetWithoutAlignmentIsTheOffset) {
   const Trajectory gt = helix(25);
   const Pose offset(Quat::Identity(), Vec3(1.0, 2.0, 2.0));  // |offset| = 3
-  const TrajectoryEvaluation r = evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::None));
+  const TrajectoryEvaluation r =
+      evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::None));
   EXPECT_NEAR(r.ate.translation_m.rmse, 3.0, 1e-12);
   EXPECT_NEAR(r.ate.translation_m.mean, 3.0, 1e-12);
   EXPECT_NEAR(r.ate.translation_m.median, 3.0, 1e-12);
@@ -67,7 +69,8 @@ TEST(Ate, RotationOffsetWithoutAlignmentGivesItsAngle) {
   Trajectory gt;
   for (int i = 0; i < 5; ++i) gt.poses.emplace_back(Quat::Identity(), Vec3(2.0, 0.0, i));
   const Pose offset(Mat3(so3Exp(Vec3(0, 0, 90 * kDeg))), Vec3::Zero());
-  const TrajectoryEvaluation r = evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::None));
+  const TrajectoryEvaluation r =
+      evaluateTrajectory(gt, transformed(gt, offset), withAlignment(Alignment::None));
   EXPECT_NEAR(r.ate.rotation_deg.rmse, 90.0, 1e-9);
   EXPECT_NEAR(r.ate.translation_m.max, 2.0 * std::sqrt(2.0), 1e-12);
 }

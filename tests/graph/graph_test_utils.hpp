@@ -46,8 +46,8 @@ inline Eigen::MatrixXd gaugeBasis(const std::vector<Pose>& poses) {
 
 // d relativePoseError(measured(a, b), a, b) / d (all window perturbations)
 // by central differences, 6 x 6K.
-inline Eigen::MatrixXd numericRelativeErrorJacobian(const std::vector<Pose>& poses,
-                                                    std::size_t a, std::size_t b) {
+inline Eigen::MatrixXd numericRelativeErrorJacobian(const std::vector<Pose>& poses, std::size_t a,
+                                                    std::size_t b) {
   const Pose measurement = relative(poses[a], poses[b]);
   const double h = 1e-6;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, 6 * poses.size());
@@ -59,10 +59,9 @@ inline Eigen::MatrixXd numericRelativeErrorJacobian(const std::vector<Pose>& pos
       std::vector<Pose> minus = poses;
       plus[frame] = perturbWorld(poses[frame], delta);
       minus[frame] = perturbWorld(poses[frame], -delta);
-      J.col(static_cast<Eigen::Index>(6 * frame) + k) =
-          (relativePoseError(measurement, plus[a], plus[b]) -
-           relativePoseError(measurement, minus[a], minus[b])) /
-          (2.0 * h);
+      J.col(static_cast<Eigen::Index>(6 * frame) + k) = (relativePoseError(measurement, plus[a], plus[b]) -
+                                                         relativePoseError(measurement, minus[a], minus[b])) /
+                                                        (2.0 * h);
     }
   }
   return J;

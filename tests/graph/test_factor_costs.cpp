@@ -77,8 +77,8 @@ TEST(FactorCosts, EveryKindIsCounted) {
   std::mt19937 rng(31);
   const FactorGraph graph = oneFactorOfEachKind(rng);
   EXPECT_EQ(graph.size(), 4u);
-  for (const FactorKind kind : {FactorKind::Relative, FactorKind::LoopClosure,
-                                FactorKind::PosePrior, FactorKind::PositionPrior}) {
+  for (const FactorKind kind :
+       {FactorKind::Relative, FactorKind::LoopClosure, FactorKind::PosePrior, FactorKind::PositionPrior}) {
     EXPECT_EQ(graph.count(kind), 1u);
   }
 }
@@ -94,10 +94,8 @@ TEST(FactorCosts, SquaredResidualIsTheFactorsCost) {
       for (const std::size_t node : model->nodes()) blocks.push_back(toPoseBlock(poses[node]));
       const double expected = model->cost(poses);
       EXPECT_GT(expected, 1e-3) << model->name();  // far from the measurement
-      EXPECT_NEAR(residualAt(*cost, blocks).squaredNorm(), expected, 1e-9 * expected)
-          << model->name();
-      EXPECT_NEAR(evaluate(*cost, blocks).residual.squaredNorm(), expected, 1e-9 * expected)
-          << model->name();
+      EXPECT_NEAR(residualAt(*cost, blocks).squaredNorm(), expected, 1e-9 * expected) << model->name();
+      EXPECT_NEAR(evaluate(*cost, blocks).residual.squaredNorm(), expected, 1e-9 * expected) << model->name();
     }
   }
 }
@@ -126,8 +124,7 @@ TEST(FactorCosts, TangentJacobiansMatchCentralDifferences) {
           std::vector<PoseBlock> minus = blocks;
           manifold.Plus(blocks[b].data(), d.data(), plus[b].data());
           manifold.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
-          const Eigen::VectorXd numeric =
-              (residualAt(*cost, plus) - residualAt(*cost, minus)) / (2 * h);
+          const Eigen::VectorXd numeric = (residualAt(*cost, plus) - residualAt(*cost, minus)) / (2 * h);
           EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()))
               << model->name() << " block " << b << " k " << k;
         }
@@ -182,8 +179,7 @@ TEST(OrientationHeldManifold, MovesThePositionOnlyAndInvertsItself) {
 TEST(OrientationHeldManifold, GivesTheSolverTheTranslationColumnsOfTheTangentJacobian) {
   std::mt19937 rng(36);
   const RelativePoseCost cost(randomPose(rng, 3.0, 1.0), Mat6::Identity());
-  const std::vector<PoseBlock> blocks = {toPoseBlock(randomPose(rng)),
-                                         toPoseBlock(randomPose(rng))};
+  const std::vector<PoseBlock> blocks = {toPoseBlock(randomPose(rng)), toPoseBlock(randomPose(rng))};
   const Evaluation at = evaluate(cost, blocks);
   const OrientationHeldManifold held;
   const double h = 1e-6;

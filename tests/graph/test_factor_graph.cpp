@@ -59,8 +59,7 @@ std::vector<RelativePoseFactor> driftingOdometry(const std::vector<Pose>& truth)
   bias << 0.03, 0.0, 0.0, 0.0, 0.0, 0.004;
   std::vector<RelativePoseFactor> factors;
   for (std::size_t i = 0; i + 1 < truth.size(); ++i) {
-    factors.push_back({i, i + 1, relative(truth[i], truth[i + 1]) * se3Exp(bias),
-                       odometryInformation()});
+    factors.push_back({i, i + 1, relative(truth[i], truth[i + 1]) * se3Exp(bias), odometryInformation()});
   }
   return factors;
 }
@@ -77,13 +76,9 @@ double meanPositionError(const std::vector<Pose>& a, const std::vector<Pose>& b)
   return sum / static_cast<double>(a.size());
 }
 
-bool samePose(const Pose& a, const Pose& b) {
-  return a.t == b.t && a.q.coeffs() == b.q.coeffs();
-}
+bool samePose(const Pose& a, const Pose& b) { return a.t == b.t && a.q.coeffs() == b.q.coeffs(); }
 
-FactorGraph relativeGraph(const std::vector<RelativePoseFactor>& factors) {
-  return FactorGraph(factors);
-}
+FactorGraph relativeGraph(const std::vector<RelativePoseFactor>& factors) { return FactorGraph(factors); }
 
 TEST(FactorGraph, PositionPriorsPullADriftingChainBackWithNoNodeHeld) {
   const std::vector<Pose> truth = windingPath(60);
@@ -199,8 +194,7 @@ TEST(FactorGraph, ALoopClosureClosesADriftingLoop) {
 // test_pose_graph.cpp).
 Mat6 stiffRotation(double translation_weight) {
   Mat6 information = Mat6::Zero();
-  information.diagonal() << translation_weight, translation_weight, translation_weight, 1e8, 1e8,
-      1e8;
+  information.diagonal() << translation_weight, translation_weight, translation_weight, 1e8, 1e8, 1e8;
   return information;
 }
 
@@ -209,8 +203,7 @@ TEST(FactorGraph, LoopsHaveTheirOwnRobustLoss) {
   for (int i = 0; i < 6; ++i) initial.emplace_back(Quat::Identity(), Vec3(i, 0, 0));
   FactorGraph graph;
   for (std::size_t i = 0; i + 1 < 6; ++i) {
-    graph.add(RelativePoseFactor{i, i + 1, Pose(Quat::Identity(), Vec3(1, 0, 0)),
-                                 stiffRotation(100.0)});
+    graph.add(RelativePoseFactor{i, i + 1, Pose(Quat::Identity(), Vec3(1, 0, 0)), stiffRotation(100.0)});
   }
   graph.add(LoopClosureFactor{0, 5, Pose(Quat::Identity(), Vec3(8, 0, 0)),  // 3 m wrong
                               stiffRotation(100.0)});
@@ -240,9 +233,8 @@ std::vector<Pose> todaysSolve(const std::vector<Pose>& initial,
   WorldPoseManifold manifold;
   std::vector<bool> touched(initial.size(), false);
   for (const RelativePoseFactor& f : factors) {
-    problem.AddResidualBlock(
-        new RelativePoseCost(f.measurement, squareRootInformation(f.information)), nullptr,
-        blocks[f.from].data(), blocks[f.to].data());
+    problem.AddResidualBlock(new RelativePoseCost(f.measurement, squareRootInformation(f.information)),
+                             nullptr, blocks[f.from].data(), blocks[f.to].data());
     touched[f.from] = touched[f.to] = true;
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {

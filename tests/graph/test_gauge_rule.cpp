@@ -45,11 +45,11 @@ TEST(ComponentAnchors, PriorsDecideWhichComponentsHoldANode) {
       // {0, 1, 2}: a pose prior fixes everything.
       between(0, 1), between(1, 2), posePin(2),
       // {3, 4, 5}: position priors on three non-collinear nodes.
-      between(3, 4), between(4, 5), positionPin(3, Vec3(0, 0, 0)),
-      positionPin(4, Vec3(10, 0, 0)), positionPin(5, Vec3(10, 10, 0)),
+      between(3, 4), between(4, 5), positionPin(3, Vec3(0, 0, 0)), positionPin(4, Vec3(10, 0, 0)),
+      positionPin(5, Vec3(10, 10, 0)),
       // {6, 7, 8}: three collinear position priors leave a rotation free.
-      between(6, 7), between(7, 8), positionPin(6, Vec3(0, 0, 0)),
-      positionPin(7, Vec3(10, 0, 0)), positionPin(8, Vec3(20, 0, 0)),
+      between(6, 7), between(7, 8), positionPin(6, Vec3(0, 0, 0)), positionPin(7, Vec3(10, 0, 0)),
+      positionPin(8, Vec3(20, 0, 0)),
       // {10, 9}: one position prior.
       between(10, 9), positionPin(10, Vec3(1, 2, 3)),
       // {11, 12}: no priors at all, and {13}: a prior too weak to pin.
@@ -57,17 +57,16 @@ TEST(ComponentAnchors, PriorsDecideWhichComponentsHoldANode) {
       // 14 is touched by nothing.
   };
   const std::vector<GaugeAnchor> expected = {
-      {6, GaugeHold::Orientation}, {9, GaugeHold::Orientation},
-      {11, GaugeHold::Pose},       {13, GaugeHold::Pose}};
+      {6, GaugeHold::Orientation}, {9, GaugeHold::Orientation}, {11, GaugeHold::Pose}, {13, GaugeHold::Pose}};
   EXPECT_EQ(componentAnchors(15, factors, 1.0), expected);
 }
 
 TEST(ComponentAnchors, ThePriorsMustSpreadAtLeastTheSettingOffTheirLine) {
   // Three priors on a triangle whose apex is `height` off its base line.
   for (const double height : {0.5, 2.0}) {
-    const std::vector<GaugeInput> factors = {
-        between(0, 1), between(1, 2), positionPin(0, Vec3(0, 0, 0)),
-        positionPin(1, Vec3(20, 0, 0)), positionPin(2, Vec3(10, height, 0))};
+    const std::vector<GaugeInput> factors = {between(0, 1), between(1, 2), positionPin(0, Vec3(0, 0, 0)),
+                                             positionPin(1, Vec3(20, 0, 0)),
+                                             positionPin(2, Vec3(10, height, 0))};
     const double spread = spreadOffLine({Vec3(0, 0, 0), Vec3(20, 0, 0), Vec3(10, height, 0)});
     EXPECT_TRUE(componentAnchors(3, factors, 0.9 * spread).empty()) << height;
     EXPECT_EQ(componentAnchors(3, factors, 1.1 * spread),
@@ -83,8 +82,7 @@ TEST(ComponentAnchors, PriorsCountForTheComponentTheirNodeJoinsLater) {
 }
 
 // Today's rule by flood fill: the smallest node of each touched component.
-std::vector<std::size_t> smallestOfEachComponent(std::size_t n,
-                                                 const std::vector<GaugeInput>& factors) {
+std::vector<std::size_t> smallestOfEachComponent(std::size_t n, const std::vector<GaugeInput>& factors) {
   std::vector<std::vector<std::size_t>> neighbours(n);
   std::vector<bool> touched(n, false);
   for (const GaugeInput& f : factors) {

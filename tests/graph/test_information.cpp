@@ -54,8 +54,7 @@ TEST(RelativePoseInformation, MatchesTheGaugeFreeCovarianceOfALinearModel) {
   // is J F^+ J^T with J by finite differences over all frames and F^+ the
   // pseudo-inverse of the Fisher information (valid since J is gauge-blind).
   std::mt19937 rng(22);
-  const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng),
-                                   randomPose(rng)};
+  const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng), randomPose(rng)};
   const Eigen::MatrixXd N = test::gaugeBasis(poses);
   const Eigen::MatrixXd gauge_projector =
       Eigen::MatrixXd::Identity(24, 24) - N * (N.transpose() * N).inverse() * N.transpose();
@@ -95,8 +94,7 @@ TEST(RelativePoseInformation, ScalesWithTheInversePointVariance) {
 Eigen::MatrixXd corridorHessian(const std::vector<Pose>& poses, double along) {
   Vec6 weights;
   weights << along, 1.0, 1.0, 100.0, 100.0, 100.0;
-  return pairwiseHessian(poses, {{0, 1}, {1, 2}, {2, 3}, {0, 2}, {1, 3}},
-                         Mat6(weights.asDiagonal()));
+  return pairwiseHessian(poses, {{0, 1}, {1, 2}, {2, 3}, {0, 2}, {1, 3}}, Mat6(weights.asDiagonal()));
 }
 
 TEST(RelativePoseInformation, CorridorGetsAWeakFiniteWeightAlongTheFreeDirection) {
@@ -113,8 +111,7 @@ TEST(RelativePoseInformation, CorridorGetsAWeakFiniteWeightAlongTheFreeDirection
     EXPECT_LT(degenerate(0, 0), 1e-3 * weakest_constrained);
     EXPECT_LT(degenerate(0, 0), 1e-3 * well_posed(0, 0));
     // The constrained directions keep exactly the weight they would have had.
-    EXPECT_LT(relativeDifference(degenerate.bottomRightCorner<5, 5>(),
-                                 well_posed.bottomRightCorner<5, 5>()),
+    EXPECT_LT(relativeDifference(degenerate.bottomRightCorner<5, 5>(), well_posed.bottomRightCorner<5, 5>()),
               1e-6);
   }
 }

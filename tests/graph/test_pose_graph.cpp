@@ -18,8 +18,7 @@ std::vector<Pose> loopTrajectory(int n, double radius) {
   std::vector<Pose> poses;
   for (int i = 0; i < n; ++i) {
     const double angle = 2.0 * M_PI * i / n;
-    const Vec3 position(radius * std::cos(angle), radius * std::sin(angle),
-                        0.5 * std::sin(3.0 * angle));
+    const Vec3 position(radius * std::cos(angle), radius * std::sin(angle), 0.5 * std::sin(3.0 * angle));
     const Mat3 heading = so3Exp(Vec3(0.05 * std::cos(angle), 0.0, angle + M_PI / 2));
     poses.emplace_back(heading, position);
   }
@@ -61,9 +60,7 @@ double meanPositionError(const std::vector<Pose>& a, const std::vector<Pose>& b)
   return sum / static_cast<double>(a.size());
 }
 
-bool samePose(const Pose& a, const Pose& b) {
-  return a.t == b.t && a.q.coeffs() == b.q.coeffs();
-}
+bool samePose(const Pose& a, const Pose& b) { return a.t == b.t && a.q.coeffs() == b.q.coeffs(); }
 
 TEST(PoseGraph, RecoversTruthFromPerturbedPosesWithConsistentMeasurements) {
   const std::vector<Pose> truth = loopTrajectory(40, 20.0);
@@ -142,8 +139,7 @@ TEST(PoseGraph, HoldsTheGaugeAndLeavesUntouchedNodesAlone) {
 // Identity rotations held stiff, so the rotations cannot trade against the
 // translations (through lever arms), the translation residual is linear and
 // the optimum has a closed form.
-RelativePoseFactor translationFactor(std::size_t from, std::size_t to, const Vec3& offset,
-                                     double weight) {
+RelativePoseFactor translationFactor(std::size_t from, std::size_t to, const Vec3& offset, double weight) {
   RelativePoseFactor f;
   f.from = from;
   f.to = to;
@@ -155,9 +151,8 @@ RelativePoseFactor translationFactor(std::size_t from, std::size_t to, const Vec
 
 TEST(PoseGraph, ConflictingFactorsMeetAtTheInformationWeightedMean) {
   const std::vector<Pose> initial(2);
-  const std::vector<RelativePoseFactor> factors = {
-      translationFactor(0, 1, Vec3(1, 0, 0), 100.0),  // strong
-      translationFactor(0, 1, Vec3(2, 0, 0), 1.0)};   // weak
+  const std::vector<RelativePoseFactor> factors = {translationFactor(0, 1, Vec3(1, 0, 0), 100.0),  // strong
+                                                   translationFactor(0, 1, Vec3(2, 0, 0), 1.0)};   // weak
   const PoseGraphResult result = optimizePoseGraph(initial, factors);
   EXPECT_NEAR(result.poses[1].t.x(), 102.0 / 101.0, 1e-7);
   EXPECT_NEAR(result.poses[1].t.y(), 0.0, 1e-12);
@@ -174,11 +169,9 @@ TEST(PoseGraph, LoopInconsistencyIsSharedInProportionToCompliance) {
     for (const Vec3& c : corners) initial.emplace_back(Quat::Identity(), c);
     std::vector<RelativePoseFactor> factors;
     for (std::size_t i = 0; i < 3; ++i) {
-      factors.push_back(
-          translationFactor(i, i + 1, corners[i + 1] - corners[i], chain_weight));
+      factors.push_back(translationFactor(i, i + 1, corners[i + 1] - corners[i], chain_weight));
     }
-    factors.push_back(
-        translationFactor(3, 0, corners[0] - corners[3] + Vec3(gap, 0, 0), closure_weight));
+    factors.push_back(translationFactor(3, 0, corners[0] - corners[3] + Vec3(gap, 0, 0), closure_weight));
     const PoseGraphResult result = optimizePoseGraph(initial, factors);
 
     const double compliance = 3.0 / chain_weight + 1.0 / closure_weight;

@@ -71,7 +71,8 @@ TEST_F(Conventions, InvertedPosesAreCaughtWithTheFix) {
 }
 
 TEST_F(Conventions, ScansInTheWorldFrameAreCaughtWithTheFix) {
-  makeCopy(dir / "sim", dir / "world", [](const Pose& p) { return p; }, true);
+  makeCopy(
+      dir / "sim", dir / "world", [](const Pose& p) { return p; }, true);
   // The scans went through float world coordinates: millimetre agreement.
   expectCaughtAndFixed(dir / "world", "--scans-in-world", "--scans-in-world", 1e-3);
 }
@@ -80,12 +81,13 @@ TEST_F(Conventions, BodyPosesWithAnExtrinsicGiveTheSensorPosesAndTheBodyPoses) {
   const Pose extrinsic(Quat(Eigen::AngleAxisd(0.2, Vec3(0.3, 1.0, 0.1).normalized())), Vec3(0.4, -0.1, 0.3));
   makeCopy(dir / "sim", dir / "body", [&](const Pose& p) { return p * extrinsic.inverse(); });
   const test::CommandResult run = test::runOptimize(
-      dir / "body", dir / "out", "--no-render --extrinsic '0.4 -0.1 0.3 " +
-                                     [&] {
-                                       const Quat& q = extrinsic.q;
-                                       return std::to_string(q.x()) + " " + std::to_string(q.y()) + " " +
-                                              std::to_string(q.z()) + " " + std::to_string(q.w()) + "'";
-                                     }(),
+      dir / "body", dir / "out",
+      "--no-render --extrinsic '0.4 -0.1 0.3 " +
+          [&] {
+            const Quat& q = extrinsic.q;
+            return std::to_string(q.x()) + " " + std::to_string(q.y()) + " " + std::to_string(q.z()) + " " +
+                   std::to_string(q.w()) + "'";
+          }(),
       2);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   // to_string keeps 6 decimals of the quaternion: agreement to a few 0.1 mm.
@@ -100,7 +102,8 @@ TEST_F(Conventions, BodyPosesWithAnExtrinsicGiveTheSensorPosesAndTheBodyPoses) {
 // is to drop it.
 TEST_F(Conventions, AStrayConventionFlagIsCaught) {
   for (const char* flag : {"--invert-poses", "--scans-in-world"}) {
-    const test::CommandResult run = test::runOptimize(dir / "sim", dir / "stray", std::string("--no-render ") + flag, 2);
+    const test::CommandResult run =
+        test::runOptimize(dir / "sim", dir / "stray", std::string("--no-render ") + flag, 2);
     EXPECT_NE(run.exit_code, 0) << flag;
     EXPECT_NE(run.output.find(std::string("without ") + flag), std::string::npos) << run.output;
   }
@@ -111,7 +114,8 @@ TEST_F(Conventions, AStrayConventionFlagIsCaught) {
 TEST_F(Conventions, PosesOfATurnedBodyAreCaughtWithTheTurn) {
   const Pose extrinsic(Quat(Eigen::AngleAxisd(M_PI, Vec3::UnitZ())), Vec3(0.0, 0.0, 0.036));
   makeCopy(dir / "sim", dir / "turned", [&](const Pose& p) { return p * extrinsic.inverse(); });
-  expectCaughtAndFixed(dir / "turned", "--extrinsic '0 0 0 0 0 1 0'", "--extrinsic '0 0 0.036 0 0 1 0'", 1e-4);
+  expectCaughtAndFixed(dir / "turned", "--extrinsic '0 0 0 0 0 1 0'", "--extrinsic '0 0 0.036 0 0 1 0'",
+                       1e-4);
 }
 
 // KITTI: camera poses and calib.txt in, camera-frame poses out that match a
@@ -120,7 +124,8 @@ TEST_F(Conventions, KittiCameraPosesComeBackInTheCameraFrame) {
   // About KITTI's Tr (LiDAR -> camera): the axis change, off by half a degree.
   Mat3 axes;
   axes << 0, -1, 0, 0, 0, -1, 1, 0, 0;
-  const Pose tr(Mat3(axes * Eigen::AngleAxisd(0.01, Vec3(1, 2, 3).normalized())), Vec3(-0.004, -0.076, -0.27));
+  const Pose tr(Mat3(axes * Eigen::AngleAxisd(0.01, Vec3(1, 2, 3).normalized())),
+                Vec3(-0.004, -0.076, -0.27));
   const fs::path kitti = dir / "kitti";
   const io::Dataset sim = io::Dataset::open(dir / "sim");
   fs::create_directories(kitti / "velodyne");
@@ -150,8 +155,9 @@ TEST_F(Conventions, KittiCameraPosesComeBackInTheCameraFrame) {
   const test::CommandResult run = test::runOptimize(kitti, dir / "out", "--no-render", 2);
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const auto ate = [&](const fs::path& truth, const fs::path& est) {
-    const test::CommandResult eval = test::runHba("-q eval --gt " + test::quoted(truth) + " --est " +
-                                                  test::quoted(est) + " --force --json " + test::quoted(dir / "e.json"));
+    const test::CommandResult eval =
+        test::runHba("-q eval --gt " + test::quoted(truth) + " --est " + test::quoted(est) +
+                     " --force --json " + test::quoted(dir / "e.json"));
     EXPECT_EQ(eval.exit_code, 0) << eval.output;
     return nlohmann::json::parse(test::readText(dir / "e.json")).at("ate");
   };
@@ -161,7 +167,9 @@ TEST_F(Conventions, KittiCameraPosesComeBackInTheCameraFrame) {
   EXPECT_LT(camera.at("translation_m").at("rmse").get<double>(),
             lidar.at("translation_m").at("rmse").get<double>() + 1e-3);
   // And the LiDAR poses against the camera ground truth are what the issue saw: wrong.
-  EXPECT_GT(ate(dir / "gt_camera.txt", dir / "out" / "poses_kitti.txt").at("rotation_deg").at("rmse").get<double>(), 10.0);
+  EXPECT_GT(
+      ate(dir / "gt_camera.txt", dir / "out" / "poses_kitti.txt").at("rotation_deg").at("rmse").get<double>(),
+      10.0);
 }
 
 // Real Livox data: both wrong conventions are caught before any work.
@@ -170,9 +178,10 @@ TEST(ConventionsReal, Hku1InvertedOrInTheWorldFrameIsCaught) {
   if (!fs::exists(data)) GTEST_SKIP() << data << " not present";
   test::TempDir dir;
   makeCopy(data, dir / "inverted", [](const Pose& p) { return p.inverse(); });
-  makeCopy(data, dir / "world", [](const Pose& p) { return p; }, true);
-  for (const auto& [name, hint] : {std::pair<std::string, std::string>{"inverted", "--invert-poses"},
-                                   {"world", "--scans-in-world"}}) {
+  makeCopy(
+      data, dir / "world", [](const Pose& p) { return p; }, true);
+  for (const auto& [name, hint] :
+       {std::pair<std::string, std::string>{"inverted", "--invert-poses"}, {"world", "--scans-in-world"}}) {
     const test::CommandResult run = test::runOptimize(dir / name, dir / (name + "_out"), "--no-render", 2);
     EXPECT_NE(run.exit_code, 0) << name;
     EXPECT_NE(run.output.find(hint), std::string::npos) << run.output;

@@ -75,8 +75,14 @@ TEST(LargeCoordinates, MapFarAwayIsTheNearMapMoved) {
   ASSERT_EQ(test::runHba("-q simulate --frames 20 --seed 4 -o " + test::quoted(dir / "sim")).exit_code, 0);
   makeShiftedCopy(dir / "sim", "pcd", "pose.json", dir / "far", kUtmOffset);
   for (const char* name : {"map.pcd", "map.ply"}) {
-    ASSERT_EQ(test::runHba("-q map " + test::quoted(dir / "sim") + " -o " + test::quoted(dir / ("near_" + std::string(name)))).exit_code, 0);
-    ASSERT_EQ(test::runHba("-q map " + test::quoted(dir / "far") + " -o " + test::quoted(dir / ("far_" + std::string(name)))).exit_code, 0);
+    ASSERT_EQ(test::runHba("-q map " + test::quoted(dir / "sim") + " -o " +
+                           test::quoted(dir / ("near_" + std::string(name))))
+                  .exit_code,
+              0);
+    ASSERT_EQ(test::runHba("-q map " + test::quoted(dir / "far") + " -o " +
+                           test::quoted(dir / ("far_" + std::string(name))))
+                  .exit_code,
+              0);
     const bool pcd = std::string(name) == "map.pcd";
     const PointCloud near = pcd ? io::readPcd(dir / "near_map.pcd") : io::readPly(dir / "near_map.ply");
     const PointCloud far = pcd ? io::readPcd(dir / "far_map.pcd") : io::readPly(dir / "far_map.ply");
@@ -116,8 +122,8 @@ TEST(LargeCoordinates, CloudWithAnOriginRoundTripsInEveryEncoding) {
   // Neither (0,0,0) placeholders nor a stray point decide the origin: the bulk does.
   PointCloud messy;
   messy.origin = kUtmOffset;
-  messy.add(Vec3f((-kUtmOffset).cast<float>()), 0.0f);                      // (0, 0, 0)
-  messy.add(Vec3f((Vec3(5e7, 0, 0) - kUtmOffset).cast<float>()), 0.0f);      // a stray value
+  messy.add(Vec3f((-kUtmOffset).cast<float>()), 0.0f);                   // (0, 0, 0)
+  messy.add(Vec3f((Vec3(5e7, 0, 0) - kUtmOffset).cast<float>()), 0.0f);  // a stray value
   for (int i = 0; i < 5; ++i) messy.add(Vec3f(0.001f * static_cast<float>(i), 0.25f, 1.5f), 1.0f);
   for (io::PcdEncoding encoding : {io::PcdEncoding::Ascii, io::PcdEncoding::Binary}) {
     io::writePcd(dir / "m.pcd", messy, encoding);

@@ -29,7 +29,8 @@ TEST(Timestamps, SimulatorTumOutputPairsWithGroundTruthByTime) {
   ASSERT_EQ(test::runHba("-q simulate --frames 40 --seed 6 -o " + test::quoted(dir / "sim")).exit_code, 0);
   ASSERT_EQ(test::runOptimize(dir / "sim", dir / "out", "--no-render").exit_code, 0);
   const nlohmann::json by_index = evalJson(dir / "sim" / "gt.txt", dir / "out" / "pose.json", dir / "a.json");
-  const nlohmann::json by_time = evalJson(dir / "sim" / "gt.txt", dir / "out" / "poses_tum.txt", dir / "b.json");
+  const nlohmann::json by_time =
+      evalJson(dir / "sim" / "gt.txt", dir / "out" / "poses_tum.txt", dir / "b.json");
   EXPECT_EQ(by_index.at("association"), "index");
   EXPECT_EQ(by_time.at("association"), "time");
   EXPECT_EQ(by_time.at("matched"), 40);
@@ -43,11 +44,14 @@ TEST(Timestamps, SimulatorTumOutputPairsWithGroundTruthByTime) {
 // against real stamps must fail and say why, not score 10 % of the poses.
 TEST(Timestamps, EvalRefusesTimesThatDoNotAgree) {
   test::TempDir dir;
-  ASSERT_EQ(test::runHba("-q simulate --frames 40 --seed 6 --poses-only -o " + test::quoted(dir / "sim")).exit_code, 0);
+  ASSERT_EQ(
+      test::runHba("-q simulate --frames 40 --seed 6 --poses-only -o " + test::quoted(dir / "sim")).exit_code,
+      0);
   Trajectory indexed = io::readPoses(dir / "sim" / "gt.txt");
   for (std::size_t i = 0; i < indexed.size(); ++i) indexed.stamps[i] = static_cast<double>(i);
   io::writePoses(dir / "indexed.txt", indexed, io::PoseFormat::Tum);
-  const std::string args = "eval --gt " + test::quoted(dir / "sim" / "gt.txt") + " --est " + test::quoted(dir / "indexed.txt");
+  const std::string args =
+      "eval --gt " + test::quoted(dir / "sim" / "gt.txt") + " --est " + test::quoted(dir / "indexed.txt");
   const test::CommandResult refused = test::runHba(args);
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.output.find("only 4 of 40 estimated poses"), std::string::npos) << refused.output;
@@ -79,7 +83,9 @@ TEST(Timestamps, Hku1WithScansNamedByTimeGivesTheSamePoses) {
   ASSERT_EQ(test::runOptimize(data, dir / "a", "--no-render", 2).exit_code, 0);
   const test::CommandResult named = test::runOptimize(copy, dir / "b", "--no-render", 2);
   ASSERT_EQ(named.exit_code, 0) << named.output;
-  EXPECT_LT(test::largestTranslation(test::readOptimizedPoses(dir / "a"), test::readOptimizedPoses(dir / "b")), 1e-9);
+  EXPECT_LT(
+      test::largestTranslation(test::readOptimizedPoses(dir / "a"), test::readOptimizedPoses(dir / "b")),
+      1e-9);
   EXPECT_EQ(io::readPoses(dir / "b" / "poses_tum.txt").stamps, trajectory.stamps);
 }
 
@@ -99,10 +105,12 @@ TEST(EvalTable, LargeErrorsStaySeparated) {
   }
   io::writePoses(dir / "gt.txt", gt, io::PoseFormat::Kitti);
   io::writePoses(dir / "est.txt", est, io::PoseFormat::Kitti);
-  const test::CommandResult run =
-      test::runHba("-q eval --align none --gt " + test::quoted(dir / "gt.txt") + " --est " + test::quoted(dir / "est.txt"));
+  const test::CommandResult run = test::runHba("-q eval --align none --gt " + test::quoted(dir / "gt.txt") +
+                                               " --est " + test::quoted(dir / "est.txt"));
   ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("ATE trans m    1234.500000 1234.500000 1234.500000    0.000000 1234.500000 1234.500000"), std::string::npos)
+  EXPECT_NE(run.output.find(
+                "ATE trans m    1234.500000 1234.500000 1234.500000    0.000000 1234.500000 1234.500000"),
+            std::string::npos)
       << run.output;
 }
 

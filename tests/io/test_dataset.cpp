@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "test_dataset_support.hpp"
 #include "hba/io/dataset.hpp"
+#include "test_dataset_support.hpp"
 
 namespace hba::io {
 namespace {
@@ -19,7 +19,7 @@ TEST(Dataset, HbaLayoutOrdersPlainNamesNumerically) {
   EXPECT_EQ(d.scansDir().filename(), "pcd");
   EXPECT_EQ(d.posesFile().filename(), "pose.json");
   ASSERT_EQ(d.size(), 11u);
-  EXPECT_EQ(d.scanPath(2).filename(), "2.pcd");    // lexical order would put 10.pcd here
+  EXPECT_EQ(d.scanPath(2).filename(), "2.pcd");  // lexical order would put 10.pcd here
   EXPECT_EQ(d.scanPath(10).filename(), "10.pcd");
   for (std::size_t i = 0; i < d.size(); ++i) EXPECT_EQ(d.trajectory().poses[i].t.x(), double(i));
   EXPECT_FALSE(d.trajectory().hasStamps());

@@ -112,7 +112,7 @@ TEST(DatasetTimes, StampUnitsAreRecognized) {
   };
   EXPECT_NEAR(seconds({1577836980100.0, 1577836980200.0}, "ms")[1], 1577836980.2, 1e-6);
   EXPECT_NEAR(seconds({1577836980100000.0, 1577836980200000.0}, "us")[1], 1577836980.2, 1e-6);
-  EXPECT_NEAR(seconds({0.0, 1e8, 2e8}, "ns")[2], 0.2, 1e-12);      // ns from the start
+  EXPECT_NEAR(seconds({0.0, 1e8, 2e8}, "ns")[2], 0.2, 1e-12);  // ns from the start
   EXPECT_NEAR(seconds({0.0, 1e5, 2e5}, "us")[2], 0.2, 1e-12);
   EXPECT_NEAR(seconds({1577836980.1, 1577836980.2}, "")[1], 1577836980.2, 1e-6);
   EXPECT_NEAR(seconds({0.0, 60.0, 120.0}, "")[2], 120.0, 1e-12);  // sparse keyframes in seconds

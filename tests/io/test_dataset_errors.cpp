@@ -37,8 +37,7 @@ TEST(DatasetErrors, CountMismatchNamesBothFilesAndCounts) {
   makeScans(dir / "Scans", {"000000.pcd", "000001.pcd", "000002.pcd"});
   writeText(dir / "odom_poses.txt", kittiPoseLines(2));
   expectErrorMentioning([&] { Dataset::open(dir.path()); },
-                        {"3 scans", (dir / "Scans").string(), "2 poses",
-                         (dir / "odom_poses.txt").string()});
+                        {"3 scans", (dir / "Scans").string(), "2 poses", (dir / "odom_poses.txt").string()});
 }
 
 TEST(DatasetErrors, GapInNumbering) {
@@ -53,8 +52,7 @@ TEST(DatasetErrors, DuplicateNumbers) {
   test::TempDir dir;
   makeScans(dir / "pcd", {"0.pcd", "1.pcd", "01.pcd"});
   writeText(dir / "pose.json", test::hbaPoseLines(3));
-  expectErrorMentioning([&] { Dataset::open(dir.path()); },
-                        {"1.pcd", "same scan number (1)", "01.pcd"});
+  expectErrorMentioning([&] { Dataset::open(dir.path()); }, {"1.pcd", "same scan number (1)", "01.pcd"});
 }
 
 TEST(DatasetErrors, MixedExtensions) {
@@ -84,8 +82,7 @@ TEST(DatasetErrors, SeveralUnknownTrajectoriesAreAmbiguous) {
   makeScans(dir / "Scans", {"000000.pcd"});
   writeText(dir / "lio.txt", kittiPoseLines(1));
   writeText(dir / "slam.txt", kittiPoseLines(1));
-  expectErrorMentioning([&] { Dataset::open(dir.path()); },
-                        {"lio.txt", "slam.txt", "--poses"});
+  expectErrorMentioning([&] { Dataset::open(dir.path()); }, {"lio.txt", "slam.txt", "--poses"});
 }
 
 TEST(DatasetErrors, MissingOverrideIsNamed) {
@@ -93,8 +90,7 @@ TEST(DatasetErrors, MissingOverrideIsNamed) {
   makeScans(dir / "Scans", {"000000.pcd"});
   DatasetOverrides overrides;
   overrides.poses_file = "nope.txt";
-  expectErrorMentioning([&] { Dataset::open(dir.path(), overrides); },
-                        {"nope.txt", "poses file not found"});
+  expectErrorMentioning([&] { Dataset::open(dir.path(), overrides); }, {"nope.txt", "poses file not found"});
 }
 
 TEST(DatasetFallbacks, SingleUnknownTrajectoryIsUsedAndNoted) {

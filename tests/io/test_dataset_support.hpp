@@ -13,9 +13,7 @@
 
 namespace hba::test {
 
-inline std::filesystem::path datasetDir(const std::string& name) {
-  return dataDir() / "datasets" / name;
-}
+inline std::filesystem::path datasetDir(const std::string& name) { return dataDir() / "datasets" / name; }
 
 // Creates `dir` with empty files of these names: discovery never reads them.
 inline void makeScans(const std::filesystem::path& dir, const std::vector<std::string>& names) {

@@ -62,7 +62,7 @@ TEST(PoseFile, TumKeepsStampsAndSkipsComments) {
   ASSERT_EQ(t.size(), 2u);
   ASSERT_TRUE(t.hasStamps());
   EXPECT_DOUBLE_EQ(t.stamps[1], 1305031102.211214);
-  EXPECT_DOUBLE_EQ(t.poses[1].t.x(), 1.3303);  // written "+1.3303"
+  EXPECT_DOUBLE_EQ(t.poses[1].t.x(), 1.3303);                                 // written "+1.3303"
   const Quat expected = Quat(-0.3248, 0.6574, 0.6126, -0.2949).normalized();  // w last in TUM
   EXPECT_NEAR(t.poses[0].q.angularDistance(expected), 0.0, 1e-12);
 }
@@ -109,8 +109,7 @@ TEST(PoseFile, WritingRefusesAnEmptyTrajectoryAndLeavesNoFile) {
                         {"p.txt", "empty"});
   EXPECT_FALSE(fs::exists(dir / "p.txt"));
   expectErrorMentioning(
-      [&] { writePoses(dir / "missing" / "p.txt", randomTrajectory(2, 3), PoseFormat::Hba); },
-      {"missing"});
+      [&] { writePoses(dir / "missing" / "p.txt", randomTrajectory(2, 3), PoseFormat::Hba); }, {"missing"});
 }
 
 TEST(PoseFile, FormatNames) {
@@ -121,8 +120,7 @@ TEST(PoseFile, FormatNames) {
 }
 
 TEST(PoseFile, MissingFileIsNamed) {
-  expectErrorMentioning([] { readPoses("/nonexistent/odom.txt"); },
-                        {"/nonexistent/odom.txt", "not found"});
+  expectErrorMentioning([] { readPoses("/nonexistent/odom.txt"); }, {"/nonexistent/odom.txt", "not found"});
 }
 
 // One bad input, the format to read it as, and what the error must mention.
@@ -153,14 +151,15 @@ INSTANTIATE_TEST_SUITE_P(
     PoseFile, BadPoseFileTest,
     ::testing::Values(
         BadPoseFile{"SixNumbers", kIdentityHba + "1 2 3 1 0 0\n", {"line 2", "expected 7", "found 6"}},
-        BadPoseFile{"KittiShortLine", kIdentityKitti + kIdentityKitti + "1 0 0 0 0 1 0 0 0 0 1\n",
+        BadPoseFile{"KittiShortLine",
+                    kIdentityKitti + kIdentityKitti + "1 0 0 0 0 1 0 0 0 0 1\n",
                     {"line 3", "expected 12", "found 11"}},
-        BadPoseFile{"NotANumber", kIdentityHba + kIdentityHba + "0 0 abc 1 0 0 0\n",
+        BadPoseFile{"NotANumber",
+                    kIdentityHba + kIdentityHba + "0 0 abc 1 0 0 0\n",
                     {"line 3", "'abc' is not a number"}},
         BadPoseFile{"NumberWithJunk", "0 0 0 1.0x 0 0 0\n", {"line 1", "'1.0x'"}},
         BadPoseFile{"NaN", kIdentityHba + "0 nan 0 1 0 0 0\n", {"line 2", "NaN"}},
-        BadPoseFile{"Inf", "0 0 0 1 0 0 -inf\n", {"line 1", "infinite"}},
-        BadPoseFile{"Empty", "", {"empty"}},
+        BadPoseFile{"Inf", "0 0 0 1 0 0 -inf\n", {"line 1", "infinite"}}, BadPoseFile{"Empty", "", {"empty"}},
         BadPoseFile{"OnlyCommentsAndBlanks", "# nothing\n\n\n", {"empty"}},
         BadPoseFile{"ZeroQuaternion", kIdentityHba + "1 2 3 0 0 0 0\n", {"line 2", "zero length"}},
         BadPoseFile{"TinyQuaternion", "1 2 3 1e-9 0 0 1e-9\n", {"line 1", "zero length"}},
@@ -171,9 +170,8 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<BadPoseFile>& case_info) { return case_info.param.name; });
 
 TEST(PoseFile, ForcedFormatReportsTheCountMismatch) {
-  expectErrorMentioning(
-      [] { readPoses(poseData("hba_no_trailing_newline.json"), PoseFormat::Kitti); },
-      {"hba_no_trailing_newline.json", "line 1", "expected 12", "found 7"});
+  expectErrorMentioning([] { readPoses(poseData("hba_no_trailing_newline.json"), PoseFormat::Kitti); },
+                        {"hba_no_trailing_newline.json", "line 1", "expected 12", "found 7"});
 }
 
 }  // namespace

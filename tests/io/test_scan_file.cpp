@@ -17,7 +17,8 @@ TEST(ScanFile, FormatFollowsTheExtensionInAnyCase) {
   EXPECT_TRUE(isScanFile("x.pcd"));
   EXPECT_FALSE(isScanFile("pose.json"));
   EXPECT_FALSE(isScanFile("pcd"));
-  test::expectErrorAbout("scan.las", "unknown scan format '.las'", [] { scanFormatFromExtension("scan.las"); });
+  test::expectErrorAbout("scan.las", "unknown scan format '.las'",
+                         [] { scanFormatFromExtension("scan.las"); });
 }
 
 TEST(ScanFile, WritesAndReadsEveryFormatByExtension) {

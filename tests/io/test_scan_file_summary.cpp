@@ -47,7 +47,8 @@ TEST(ScanFileSummary, BadFilesAreErrorsNamingThem) {
   test::writeText(dir / "odd.bin", std::string(20, '\0'));
   test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16", [&] { storedPointCount(dir / "odd.bin"); });
   test::writeText(dir / "scan.xyz", "");
-  test::expectErrorAbout(dir / "scan.xyz", "unknown scan format", [&] { describeScanFields(dir / "scan.xyz"); });
+  test::expectErrorAbout(dir / "scan.xyz", "unknown scan format",
+                         [&] { describeScanFields(dir / "scan.xyz"); });
 }
 
 }  // namespace

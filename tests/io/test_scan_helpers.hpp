@@ -74,8 +74,6 @@ inline PointCloud makeCloud(std::size_t n, bool with_intensity) {
 // the header, then an odd stride so cuts land at all offsets within a record.
 inline std::size_t truncationStep(std::size_t length) { return length < 400 ? 1 : 7; }
 
-inline bool toolInstalled(const std::string& tool) {
-  return runCommand("command -v " + tool).exit_code == 0;
-}
+inline bool toolInstalled(const std::string& tool) { return runCommand("command -v " + tool).exit_code == 0; }
 
 }  // namespace hba::test

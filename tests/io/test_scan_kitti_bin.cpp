@@ -67,8 +67,10 @@ TEST(KittiBin, PointCountFromTheSizeAlone) {
   writeKittiBin(dir / "a.bin", test::makeCloud(37, true));
   EXPECT_EQ(kittiBinPointCount(dir / "a.bin"), 37u);
   test::writeText(dir / "odd.bin", std::string(33, '\0'));
-  test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16", [&] { kittiBinPointCount(dir / "odd.bin"); });
-  test::expectErrorAbout(dir / "none.bin", "cannot read the file size", [&] { kittiBinPointCount(dir / "none.bin"); });
+  test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16",
+                         [&] { kittiBinPointCount(dir / "odd.bin"); });
+  test::expectErrorAbout(dir / "none.bin", "cannot read the file size",
+                         [&] { kittiBinPointCount(dir / "none.bin"); });
 }
 
 }  // namespace

@@ -21,11 +21,13 @@ void expectReadOrCleanError(const fs::path& path) {
 }
 
 TEST(ScanMutations, FixturesWithRandomBytesChangedNeverCrash) {
-  const fs::path fixtures[] = {
-      test::pcdFixture("hku1_cut_ascii.pcd"),   test::pcdFixture("hku1_cut_binary.pcd"),
-      test::pcdFixture("hku1_cut_binary_compressed.pcd"), test::pcdFixture("fpfh_binary_compressed.pcd"),
-      test::plyFixture("mesh_binary.ply"),      test::plyFixture("hku1_cut_ascii.ply"),
-      test::binFixture("hku1_cut.bin")};
+  const fs::path fixtures[] = {test::pcdFixture("hku1_cut_ascii.pcd"),
+                               test::pcdFixture("hku1_cut_binary.pcd"),
+                               test::pcdFixture("hku1_cut_binary_compressed.pcd"),
+                               test::pcdFixture("fpfh_binary_compressed.pcd"),
+                               test::plyFixture("mesh_binary.ply"),
+                               test::plyFixture("hku1_cut_ascii.ply"),
+                               test::binFixture("hku1_cut.bin")};
   std::mt19937 rng(12345);
   test::TempDir dir;
   for (const fs::path& fixture : fixtures) {

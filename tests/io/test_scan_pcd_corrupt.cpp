@@ -57,9 +57,11 @@ std::vector<CorruptCase> corruptCases() {
       {"count_zero", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 0 1\nWIDTH 1\nDATA ascii\n", "COUNT 0"},
       {"xyz_array", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 3 1 1\nWIDTH 1\nDATA ascii\n", "COUNT 3"},
       {"no_z", "FIELDS x y\nSIZE 4 4\nTYPE F F\nWIDTH 1\nDATA binary\n" + floats({1, 2}), "no x, y and z"},
-      {"duplicate_x", "FIELDS x y z x\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 1\nDATA ascii\n1 2 3 4\n", "appears twice"},
+      {"duplicate_x", "FIELDS x y z x\nSIZE 4 4 4 4\nTYPE F F F F\nWIDTH 1\nDATA ascii\n1 2 3 4\n",
+       "appears twice"},
       {"unknown_encoding", kXyzHeader + "WIDTH 1\nDATA zip\n", "unknown DATA encoding"},
-      {"points_vs_grid", kXyzHeader + "WIDTH 2\nHEIGHT 1\nPOINTS 3\nDATA binary\n" + floats({1, 2, 3, 4, 5, 6, 7, 8, 9}),
+      {"points_vs_grid",
+       kXyzHeader + "WIDTH 2\nHEIGHT 1\nPOINTS 3\nDATA binary\n" + floats({1, 2, 3, 4, 5, 6, 7, 8, 9}),
        "WIDTH x HEIGHT = 2 but POINTS = 3"},
       {"grid_overflow", kXyzHeader + "WIDTH 4294967296\nHEIGHT 4294967296\nDATA binary\n", "overflows"},
       {"negative_width", kXyzHeader + "WIDTH -5\nDATA binary\n", "must not be negative"},
@@ -84,10 +86,12 @@ std::vector<CorruptCase> corruptCases() {
        kXyzHeader + "WIDTH 2\nDATA binary_compressed\n" + compressedBlock(20, 24, std::string(20, '\xff')),
        "corrupt compressed data"},
       {"compressed_short_output",
-       kXyzHeader + "WIDTH 2\nDATA binary_compressed\n" + compressedBlock(13, 24, lzfLiteral(floats({1, 2, 3}))),
+       kXyzHeader + "WIDTH 2\nDATA binary_compressed\n" +
+           compressedBlock(13, 24, lzfLiteral(floats({1, 2, 3}))),
        "corrupt compressed data"},
       {"compressed_impossible_ratio",
-       kXyzHeader + "WIDTH 100000000\nDATA binary_compressed\n" + compressedBlock(4, 1200000000, std::string("\x01\x00\x00\x00", 4)),
+       kXyzHeader + "WIDTH 100000000\nDATA binary_compressed\n" +
+           compressedBlock(4, 1200000000, std::string("\x01\x00\x00\x00", 4)),
        "cannot hold"},
   };
 }
@@ -142,7 +146,8 @@ TEST(PcdCorrupt, LongFileWithoutHeaderIsRejectedAfterABoundedScan) {
   std::string comments;
   while (comments.size() < 200000) comments += "# not a header, just a very long comment block\n";
   test::writeText(dir / "comments.pcd", comments);
-  test::expectErrorAbout(dir / "comments.pcd", "no DATA line in the first", [&] { readPcd(dir / "comments.pcd"); });
+  test::expectErrorAbout(dir / "comments.pcd", "no DATA line in the first",
+                         [&] { readPcd(dir / "comments.pcd"); });
   test::expectErrorAbout(dir / "comments.pcd", "no DATA line in the first",
                          [&] { readPcdHeader(dir / "comments.pcd"); });
 }

@@ -60,7 +60,7 @@ TEST(PcdRead, OrganizedCloudDropsItsNanHoles) {
   EXPECT_EQ(header.height, 6u);
   EXPECT_EQ(header.points, 48u);
   const PointCloud cloud = readPcd(pcdFixture("organized_binary.pcd"));
-  EXPECT_EQ(cloud.size(), 44u);  // the depth image has a 2 x 2 hole
+  EXPECT_EQ(cloud.size(), 44u);        // the depth image has a 2 x 2 hole
   EXPECT_FALSE(cloud.hasIntensity());  // rgb is skipped, not taken for intensity
   for (const Vec3f& p : cloud.points) EXPECT_TRUE(p.allFinite());
   test::expectSameCloud(cloud, readPcd(pcdFixture("organized_ascii.pcd")));

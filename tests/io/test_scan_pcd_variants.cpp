@@ -41,15 +41,16 @@ TEST(PcdVariants, MissingCountHeightAndPointsDefaultSensibly) {
 }
 
 TEST(PcdVariants, MissingWidthIsTakenFromPoints) {
-  const PointCloud cloud = readPcdText("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 2\nDATA ascii\n0 0 0\n1 1 1\n");
+  const PointCloud cloud =
+      readPcdText("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 2\nDATA ascii\n0 0 0\n1 1 1\n");
   EXPECT_EQ(cloud.size(), 2u);
 }
 
 TEST(PcdVariants, IntegerIntensityOfAnyWidthBecomesFloat) {
   for (const char* type : {"U 1", "U 2", "I 4", "U 8", "I 2"}) {
     SCOPED_TRACE(type);
-    std::string content = "FIELDS x y z intensity\nSIZE 4 4 4 " + std::string(type + 2) +
-                          "\nTYPE F F F " + std::string(1, type[0]) + "\nWIDTH 1\nDATA binary\n";
+    std::string content = "FIELDS x y z intensity\nSIZE 4 4 4 " + std::string(type + 2) + "\nTYPE F F F " +
+                          std::string(1, type[0]) + "\nWIDTH 1\nDATA binary\n";
     append(content, 1.0f);
     append(content, 2.0f);
     append(content, 3.0f);
@@ -92,11 +93,13 @@ TEST(PcdVariants, AsciiSkipsArrayValuesAndKeepsIntensity) {
 }
 
 TEST(PcdVariants, NanAndInfPointsAreDroppedInEveryEncoding) {
-  const std::string ascii = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4\nDATA ascii\n"
-                            "1 1 1\nnan nan nan\n2 inf 2\n3 3 3\n";
+  const std::string ascii =
+      "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4\nDATA ascii\n"
+      "1 1 1\nnan nan nan\n2 inf 2\n3 3 3\n";
   EXPECT_EQ(readPcdText(ascii).size(), 2u);
   std::string binary = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 3\nDATA binary\n";
-  for (const float v : {1.0f, std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+  for (const float v :
+       {1.0f, std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
     append(binary, 0.0f);
     append(binary, v);
     append(binary, 0.0f);
@@ -119,7 +122,8 @@ TEST(PcdVariants, HeaderLongerThanTheFirstHeaderReadIsFound) {
   std::string comments;
   while (comments.size() < 6000) comments += "# a tool that writes a long history into its header\n";
   test::TempDir dir;
-  test::writeText(dir / "long.pcd", comments + "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nDATA ascii\n1 2 3\n");
+  test::writeText(dir / "long.pcd",
+                  comments + "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nDATA ascii\n1 2 3\n");
   const PcdHeader header = readPcdHeader(dir / "long.pcd");
   EXPECT_EQ(header.points, 1u);
   EXPECT_EQ(header.data_offset, test::readText(dir / "long.pcd").size() - 6);
@@ -129,8 +133,9 @@ TEST(PcdVariants, HeaderLongerThanTheFirstHeaderReadIsFound) {
 TEST(PcdVariants, EmptyCloudReadsAsEmpty) {
   for (const char* data : {"ascii", "binary", "binary_compressed"}) {
     SCOPED_TRACE(data);
-    const PointCloud cloud = readPcdText("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA " +
-                                         std::string(data) + "\n");
+    const PointCloud cloud =
+        readPcdText("FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA " +
+                    std::string(data) + "\n");
     EXPECT_TRUE(cloud.empty());
   }
 }

@@ -24,7 +24,8 @@ TEST(PcdWrite, RoundTripsFloatsExactlyInEveryEncoding) {
 
 TEST(PcdWrite, RoundTripsExtremeFloats) {
   PointCloud cloud;
-  cloud.add(Vec3f(std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min(), -0.0f), 1e-38f);
+  cloud.add(Vec3f(std::numeric_limits<float>::max(), std::numeric_limits<float>::denorm_min(), -0.0f),
+            1e-38f);
   cloud.add(Vec3f(std::numeric_limits<float>::lowest(), 1e-45f, 16777217.0f), -3.4e38f);
   test::TempDir dir;
   for (const PcdEncoding encoding : kEncodings) {
@@ -58,7 +59,9 @@ TEST(PcdWrite, ReplacesAnExistingFileAndLeavesNoTemporary) {
   writePcd(dir / "out.pcd", test::makeCloud(10, true));
   writePcd(dir / "out.pcd", test::makeCloud(3, false), PcdEncoding::BinaryCompressed);
   EXPECT_EQ(readPcd(dir / "out.pcd").size(), 3u);
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()), 1);
+  EXPECT_EQ(
+      std::distance(std::filesystem::directory_iterator(dir.path()), std::filesystem::directory_iterator()),
+      1);
 }
 
 TEST(PcdWrite, RefusesMisalignedIntensityAndMissingFolder) {
@@ -74,7 +77,8 @@ TEST(PcdWrite, RefusesMisalignedIntensityAndMissingFolder) {
 TEST(PcdWrite, CompressedIsSmallerForStructuredData) {
   test::TempDir dir;
   PointCloud grid;
-  for (int i = 0; i < 4000; ++i) grid.add(Vec3f(static_cast<float>(i % 40), static_cast<float>(i / 40), 0.0f), 7.0f);
+  for (int i = 0; i < 4000; ++i)
+    grid.add(Vec3f(static_cast<float>(i % 40), static_cast<float>(i / 40), 0.0f), 7.0f);
   writePcd(dir / "b.pcd", grid, PcdEncoding::Binary);
   writePcd(dir / "c.pcd", grid, PcdEncoding::BinaryCompressed);
   EXPECT_LT(std::filesystem::file_size(dir / "c.pcd"), std::filesystem::file_size(dir / "b.pcd") / 2);

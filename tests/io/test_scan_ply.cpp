@@ -67,8 +67,10 @@ TEST(PlyRead, ElementsWithListsBeforeTheVerticesAreSkipped) {
                                        "3 0 1 2 9\n4 0 1 2 3 9\n1 2 3 2 0.5 0.5 10\n4 5 6 0 11\n");
   std::string binary = "ply\nformat binary_little_endian 1.0\n" + header_tail;
   binary += bytesOf<std::uint8_t>(3) + bytesOf(0) + bytesOf(1) + bytesOf(2) + bytesOf<std::uint8_t>(9);
-  binary += bytesOf<std::uint8_t>(4) + bytesOf(0) + bytesOf(1) + bytesOf(2) + bytesOf(3) + bytesOf<std::uint8_t>(9);
-  binary += bytesOf(1.0f) + bytesOf(2.0f) + bytesOf(3.0f) + bytesOf<std::uint8_t>(2) + bytesOf(0.5f) + bytesOf(0.5f) + bytesOf(10.0f);
+  binary +=
+      bytesOf<std::uint8_t>(4) + bytesOf(0) + bytesOf(1) + bytesOf(2) + bytesOf(3) + bytesOf<std::uint8_t>(9);
+  binary += bytesOf(1.0f) + bytesOf(2.0f) + bytesOf(3.0f) + bytesOf<std::uint8_t>(2) + bytesOf(0.5f) +
+            bytesOf(0.5f) + bytesOf(10.0f);
   binary += bytesOf(4.0f) + bytesOf(5.0f) + bytesOf(6.0f) + bytesOf<std::uint8_t>(0) + bytesOf(11.0f);
   for (const PointCloud& cloud : {ascii, readPlyText(binary)}) {
     ASSERT_EQ(cloud.size(), 2u);
@@ -81,7 +83,8 @@ TEST(PlyRead, BigEndianIsSupported) {
   std::string content =
       "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nproperty double y\n"
       "property short z\nproperty ushort intensity\nend_header\n";
-  content += bytesOf(1.25f, true) + bytesOf(-2.5, true) + bytesOf<std::int16_t>(-3, true) + bytesOf<std::uint16_t>(300, true);
+  content += bytesOf(1.25f, true) + bytesOf(-2.5, true) + bytesOf<std::int16_t>(-3, true) +
+             bytesOf<std::uint16_t>(300, true);
   const PointCloud cloud = readPlyText(content);
   ASSERT_EQ(cloud.size(), 1u);
   EXPECT_EQ(cloud.points[0], Vec3f(1.25f, -2.5f, -3.0f));
@@ -116,19 +119,25 @@ TEST(PlyCorrupt, EveryCaseThrowsAnErrorNamingTheFileAndProblem) {
       {"no_end_header", bin + "element vertex 1\n" + xyz, "no end_header"},
       {"bad_type", bin + "element vertex 1\nproperty float128 x\nend_header\n", "unknown PLY property type"},
       {"negative_count", bin + "element vertex -1\n" + xyz + "end_header\n", "negative count"},
-      {"huge_count", bin + "element vertex 99999999999999999999999\n" + xyz + "end_header\n", "invalid count"},
+      {"huge_count", bin + "element vertex 99999999999999999999999\n" + xyz + "end_header\n",
+       "invalid count"},
       {"no_vertex", bin + "element face 0\nproperty list uchar int v\nend_header\n", "no vertex element"},
-      {"no_z", bin + "element vertex 1\nproperty float x\nproperty float y\nend_header\n" + std::string(8, '\0'),
+      {"no_z",
+       bin + "element vertex 1\nproperty float x\nproperty float y\nend_header\n" + std::string(8, '\0'),
        "no x, y and z"},
-      {"binary_truncated", bin + "element vertex 3\n" + xyz + "end_header\n" + std::string(20, '\0'), "truncated"},
-      {"binary_count_overflow", bin + "element vertex 2000000000000000000\n" + xyz + "end_header\n", "overflows"},
-      {"list_runs_past_end", bin + "element face 1\nproperty list uint int v\nelement vertex 0\n" + xyz +
-                                 "end_header\n" + std::string("\xff\xff\xff\x0f", 4),
+      {"binary_truncated", bin + "element vertex 3\n" + xyz + "end_header\n" + std::string(20, '\0'),
        "truncated"},
-      {"negative_list_length", bin + "element face 1\nproperty list char int v\nelement vertex 0\n" + xyz +
-                                   "end_header\n\xfe",
+      {"binary_count_overflow", bin + "element vertex 2000000000000000000\n" + xyz + "end_header\n",
+       "overflows"},
+      {"list_runs_past_end",
+       bin + "element face 1\nproperty list uint int v\nelement vertex 0\n" + xyz + "end_header\n" +
+           std::string("\xff\xff\xff\x0f", 4),
+       "truncated"},
+      {"negative_list_length",
+       bin + "element face 1\nproperty list char int v\nelement vertex 0\n" + xyz + "end_header\n\xfe",
        "negative list length"},
-      {"ascii_truncated", "ply\nformat ascii 1.0\nelement vertex 2\n" + xyz + "end_header\n1 2 3\n4 5\n", "truncated"},
+      {"ascii_truncated", "ply\nformat ascii 1.0\nelement vertex 2\n" + xyz + "end_header\n1 2 3\n4 5\n",
+       "truncated"},
       {"ascii_garbage", "ply\nformat ascii 1.0\nelement vertex 1\n" + xyz + "end_header\n1 x 3\n",
        "'x' is not a number"},
   };

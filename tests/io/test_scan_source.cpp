@@ -18,14 +18,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // Three scans in the "scans" layout; scan 1 has no intensity.
-std::vector<PointCloud> writeThreeScans(const fs::path& dir, const std::vector<Pose>& poses,
-                                        bool in_world) {
+std::vector<PointCloud> writeThreeScans(const fs::path& dir, const std::vector<Pose>& poses, bool in_world) {
   std::vector<PointCloud> sensor(3);
   fs::create_directories(dir / "Scans");
   for (std::size_t i = 0; i < 3; ++i) {
     PointCloud stored;
     for (int k = 0; k < 50; ++k) {
-      const Vec3f p(0.5f * static_cast<float>(k), 1.0f + static_cast<float>(i), -0.25f * static_cast<float>(k));
+      const Vec3f p(0.5f * static_cast<float>(k), 1.0f + static_cast<float>(i),
+                    -0.25f * static_cast<float>(k));
       if (i == 1) {
         sensor[i].add(p);
       } else {

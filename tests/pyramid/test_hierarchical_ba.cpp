@@ -100,7 +100,8 @@ TEST(HierarchicalBa, ScansFromMemoryAndFromAFolderGiveTheSamePoses) {
   const io::Dataset dataset = io::Dataset::open(dir.path());
   HbaSettings settings;
   settings.outer_iterations = 1;
-  const HbaResult from_folder = runHierarchicalBa(io::DatasetScanSource(dataset), simulated().initial, settings);
+  const HbaResult from_folder =
+      runHierarchicalBa(io::DatasetScanSource(dataset), simulated().initial, settings);
   const HbaResult from_memory = optimize(settings);
   ASSERT_EQ(from_folder.poses.size(), from_memory.poses.size());
   for (std::size_t i = 0; i < from_folder.poses.size(); ++i) {

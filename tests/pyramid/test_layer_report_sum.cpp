@@ -24,8 +24,8 @@ WindowSummary summary(std::size_t planes, double rms_before, double rms_after, b
 }
 
 TEST(LayerReportSum, SumsCountsAndCostsOverWindows) {
-  const LayerReport r = sumLayerReport({summary(3, 0.02, 0.01, true), summary(1, 0.06, 0.03, false),
-                                        summary(0, 0.0, 0.0, true)});
+  const LayerReport r = sumLayerReport(
+      {summary(3, 0.02, 0.01, true), summary(1, 0.06, 0.03, false), summary(0, 0.0, 0.0, true)});
   EXPECT_EQ(r.windows, 3u);
   EXPECT_EQ(r.planes, 4u);
   EXPECT_EQ(r.plane_points, 80u);

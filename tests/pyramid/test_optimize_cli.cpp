@@ -24,9 +24,8 @@ nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(tes
 // ATE translation RMSE (m) of `est` against the simulator's ground truth.
 double ateRmse(const fs::path& gt, const fs::path& est, const fs::path& scratch) {
   const fs::path json = scratch / "ate.json";
-  const test::CommandResult result =
-      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() +
-                       " --force --json " + json.string());
+  const test::CommandResult result = test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " +
+                                                      est.string() + " --force --json " + json.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
 }
@@ -55,8 +54,8 @@ TEST_F(OptimizeSimulated, DriftingSequenceGetsFiveTimesMoreAccurate) {
   // The picture has its second row: the zoom where the drift's doubled walls got thin.
   const std::string png = test::readText(out() / "before_after.png");
   ASSERT_GT(png.size(), 24u);
-  const auto height = static_cast<unsigned>(static_cast<unsigned char>(png[22])) << 8 |
-                      static_cast<unsigned char>(png[23]);
+  const auto height =
+      static_cast<unsigned>(static_cast<unsigned char>(png[22])) << 8 | static_cast<unsigned char>(png[23]);
   EXPECT_EQ(height, 1100u + 770u);
   const double kitti = ateRmse(data() / "gt.txt", out() / "poses_kitti.txt", dir.path());
   EXPECT_NEAR(kitti, after, 1e-6);
@@ -136,8 +135,8 @@ TEST_F(OptimizeSimulated, OdometryJumpOf60CentimetresIsCorrected) {
   }
   const fs::path poses = dir / "jumped.json";
   test::writeText(poses, jumped.str());
-  run(hba() + " -q optimize " + data().string() + " --poses " + poses.string() +
-      " --format hba -o " + out().string() + " --no-render");
+  run(hba() + " -q optimize " + data().string() + " --poses " + poses.string() + " --format hba -o " +
+      out().string() + " --no-render");
   const double before = ateRmse(data() / "gt.txt", poses, dir.path());
   const double after = ateRmse(data() / "gt.txt", out() / "pose.json", dir.path());
   EXPECT_GT(before, 0.1);
@@ -169,14 +168,14 @@ TEST_F(OptimizeSimulated, SettingsFileAndFlagsCombine) {
   run(hba() + " -q optimize " + data().string() + " -o " + out().string() + " --config " +
       (dir / "settings.yaml").string() + " --stride 2");
   const nlohmann::json settings = readJson(out() / "report.json").at("settings");
-  EXPECT_EQ(settings.at("window"), 6);   // from the file
-  EXPECT_EQ(settings.at("stride"), 2);   // the flag wins
+  EXPECT_EQ(settings.at("window"), 6);  // from the file
+  EXPECT_EQ(settings.at("stride"), 2);  // the flag wins
   EXPECT_DOUBLE_EQ(settings.at("local").at("eigen_ratio").get<double>(), 0.04);
 
   test::writeText(dir / "bad.yaml", "windw: 6\n");
-  const test::CommandResult bad = test::runCommand(hba() + " optimize " + data().string() + " -o " +
-                                                   out().string() + " --config " +
-                                                   (dir / "bad.yaml").string());
+  const test::CommandResult bad =
+      test::runCommand(hba() + " optimize " + data().string() + " -o " + out().string() + " --config " +
+                       (dir / "bad.yaml").string());
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("unknown setting 'windw'"), std::string::npos) << bad.output;
 }

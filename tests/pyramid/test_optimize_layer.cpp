@@ -44,8 +44,8 @@ LayerRun optimizeUneven(int threads, bool keyframe_batches) {
   const KeyframeStore next(kUneven.size());
   StageTimes times;
   LayerRun run;
-  run.outcome = optimizeLayer(layer, scans, kUneven, settings.localBa(), settings, &next, 0.2, times,
-                              "test layer");
+  run.outcome =
+      optimizeLayer(layer, scans, kUneven, settings.localBa(), settings, &next, 0.2, times, "test layer");
   for (std::size_t j = 0; j < kUneven.size(); ++j) run.keyframes.push_back(next.load(j));
   return run;
 }
@@ -66,7 +66,8 @@ TEST(OptimizeLayer, EachWindowGetsWhatItsOwnBaGives) {
   for (std::size_t j = 0; j < kUneven.size(); ++j) {
     SCOPED_TRACE(testing::Message() << "window " << j);
     std::vector<PointCloud> held;
-    for (std::size_t k = 0; k < kUneven[j].count; ++k) held.push_back(scans.source().load(kUneven[j].first + k));
+    for (std::size_t k = 0; k < kUneven[j].count; ++k)
+      held.push_back(scans.source().load(kUneven[j].first + k));
     std::vector<const PointCloud*> clouds;
     for (const PointCloud& cloud : held) clouds.push_back(&cloud);
     const ba::BaResult alone = runWindowBa(layer, kUneven[j], clouds, settings.localBa());

@@ -5,13 +5,13 @@
 #include <cstdio>
 #include <random>
 
+#include "consistency.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/sim/simulation.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
-#include "consistency.hpp"
 #include "refine_stage.hpp"
 #include "simulated_sequence.hpp"
 
@@ -38,8 +38,7 @@ double ate(const std::vector<Pose>& poses) {
   return eval::evaluateTrajectory(simulated().truth, estimate).ate.translation_m.rmse;
 }
 
-std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                      HbaReport& report) {
+std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& settings, HbaReport& report) {
   // The refinement is given layer-1 scans at the scan voxel, as the pyramid passes them.
   const io::MemoryScanSource scans(simulated().scans);
   const voxel::DownsampledScanSource source(scans, settings.scan_voxel);
@@ -119,8 +118,8 @@ TEST(RefineStage, ReassociatesWhileARoundStillGains) {
   EXPECT_GT(report.refinement.rounds, 1);
   EXPECT_LE(report.refinement.rounds, HbaSettings().refinement.association_rounds);
   EXPECT_LT(ate(repeated), ate(single));
-  std::printf("ATE one association %.4f m, %d associations %.4f m\n", ate(single),
-              report.refinement.rounds, ate(repeated));
+  std::printf("ATE one association %.4f m, %d associations %.4f m\n", ate(single), report.refinement.rounds,
+              ate(repeated));
 }
 
 // A small point budget splits the sequence into overlapping blocks; the

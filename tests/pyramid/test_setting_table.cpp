@@ -20,7 +20,8 @@ namespace {
 SettingValue otherValue(const Setting& s) {
   const SettingValue d = s.default_value;
   switch (s.type) {
-    case SettingType::Switch: return !std::get<bool>(d);
+    case SettingType::Switch:
+      return !std::get<bool>(d);
     case SettingType::Choice:
       for (const std::string& name : s.choices) {
         if (name != std::get<std::string>(d)) return name;
@@ -67,7 +68,8 @@ TEST(SettingTable, NamesAreUnique) {
     if (s.type == SettingType::Switch && !s.flag.empty()) {
       EXPECT_EQ(s.flag.rfind("--no-", 0), 0u) << s.flag;
     }
-    for (const std::string& target : s.sets) EXPECT_NO_THROW(settingByKey(target)) << s.key << " sets " << target;
+    for (const std::string& target : s.sets)
+      EXPECT_NO_THROW(settingByKey(target)) << s.key << " sets " << target;
   }
 }
 
@@ -85,9 +87,9 @@ TEST(SettingTable, DefaultsAreInRangeAndAreWhatASettingsObjectHolds) {
 // changes exactly that setting in report.json, and reads back from YAML.
 TEST(SettingTable, EachSettingWritesItsOwnField) {
   const auto before = leaves(settingsToJson(HbaSettings()));
-  EXPECT_EQ(before.size(), static_cast<std::size_t>(std::count_if(
-                               settingTable().begin(), settingTable().end(),
-                               [](const Setting& s) { return !s.shorthand(); })));
+  EXPECT_EQ(before.size(),
+            static_cast<std::size_t>(std::count_if(settingTable().begin(), settingTable().end(),
+                                                   [](const Setting& s) { return !s.shorthand(); })));
   for (const Setting& s : settingTable()) {
     if (s.shorthand()) continue;
     const SettingValue value = otherValue(s);
@@ -105,9 +107,10 @@ TEST(SettingTable, EachSettingWritesItsOwnField) {
     }
     // The same through the file, under the key.
     const std::string leaf = s.key.substr(s.key.find('.') + 1);
-    const std::string yaml = s.key.find('.') == std::string::npos
-                                 ? s.key + ": " + valueText(value) + "\n"
-                                 : s.key.substr(0, s.key.find('.')) + ":\n  " + leaf + ": " + valueText(value) + "\n";
+    const std::string yaml =
+        s.key.find('.') == std::string::npos
+            ? s.key + ": " + valueText(value) + "\n"
+            : s.key.substr(0, s.key.find('.')) + ":\n  " + leaf + ": " + valueText(value) + "\n";
     HbaSettings read;
     applySettingsYaml(yaml, "one.yaml", read);
     EXPECT_EQ(s.get(read), value) << yaml;
@@ -185,11 +188,13 @@ TEST(SettingTable, DocsTableIsTheCodes) {
   std::stringstream text;
   text << in.rdbuf();
   const std::string doc = text.str();
-  const std::string begin = "<!-- settings table: made by the code, HBA_UPDATE_DOCS=1 ctest -R SettingTable -->\n";
+  const std::string begin =
+      "<!-- settings table: made by the code, HBA_UPDATE_DOCS=1 ctest -R SettingTable -->\n";
   const std::string end = "<!-- end of the settings table -->";
   const auto from = doc.find(begin);
   const auto to = doc.find(end);
-  ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to) << "markers missing in " << path;
+  ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to)
+      << "markers missing in " << path;
   const std::string table = doc.substr(from + begin.size(), to - from - begin.size());
   const std::string expected = settingsMarkdown();
   if (table == expected) return;

@@ -121,7 +121,8 @@ TEST(SettingsFile, FlagNamedKeysAreTheSameSettings) {
     applySettingsYaml("iterations: 2\nouter_iterations: 3\n", "both.yaml", s);
     ADD_FAILURE() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("'iterations' and 'outer_iterations' are the same setting"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("'iterations' and 'outer_iterations' are the same setting"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -43,7 +43,8 @@ TEST(SpilledScanSource, LaterLoadsGiveTheSameCloudsWithoutTheSource) {
   const SpilledScanSource spilled(source);
   ASSERT_EQ(spilled.size(), source.size());
   // The first pass in parallel, as the pyramid reads; then twice more.
-  tbb::parallel_for(std::size_t{0}, spilled.size(), [&](std::size_t i) { expectSame(spilled.load(i), source.load(i)); });
+  tbb::parallel_for(std::size_t{0}, spilled.size(),
+                    [&](std::size_t i) { expectSame(spilled.load(i), source.load(i)); });
   const int after_first = source.loads.load();
   EXPECT_EQ(after_first, 2 * 40);  // the spilled source's and the comparison's
   for (int pass = 0; pass < 2; ++pass) {

@@ -33,8 +33,7 @@ TEST(WindowRun, PathBetweenFramesIsAlongTheLayer) {
 TEST(WindowRun, StartsFromTheWindowsFramesAndHoldsTheFirst) {
   const Layer layer = scanLayer(drive().initial);
   const Window window{5, 7};
-  const ba::BaResult result =
-      runWindowBa(layer, window, cloudsOf(window), HbaSettings().localBa());
+  const ba::BaResult result = runWindowBa(layer, window, cloudsOf(window), HbaSettings().localBa());
   ASSERT_EQ(result.poses.size(), 7u);
   EXPECT_GT(result.num_planes, 0u);
   EXPECT_EQ(result.poses.front().t, layer.poses[5].t);

@@ -125,7 +125,7 @@ TEST(LayerCount, PaperFormula) {
 
 TEST(LayerCount, MaxLayersStopsWhenTopFitsOneWindow) {
   EXPECT_EQ(maxLayerCount(10, 10, 5), 1);
-  EXPECT_EQ(maxLayerCount(11, 10, 5), 2);  // 11 frames -> 2 windows -> 2 keyframes
+  EXPECT_EQ(maxLayerCount(11, 10, 5), 2);   // 11 frames -> 2 windows -> 2 keyframes
   EXPECT_EQ(maxLayerCount(300, 10, 5), 4);  // 300 -> 59 -> 11 -> 2
 }
 

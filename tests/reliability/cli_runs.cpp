@@ -38,10 +38,9 @@ CommandResult runHba(const std::string& arguments) {
   return result;
 }
 
-CommandResult runOptimize(const fs::path& data, const fs::path& out, const std::string& extra,
-                          int threads) {
-  return runHba("-j " + std::to_string(threads) + " optimize " + quoted(data) + " -o " +
-                quoted(out) + " " + extra);
+CommandResult runOptimize(const fs::path& data, const fs::path& out, const std::string& extra, int threads) {
+  return runHba("-j " + std::to_string(threads) + " optimize " + quoted(data) + " -o " + quoted(out) + " " +
+                extra);
 }
 
 std::vector<Pose> readOptimizedPoses(const fs::path& out) {

@@ -26,8 +26,7 @@ struct Face {
   Vec3 lo, hi;  // the box the free coordinates are drawn from
 };
 
-std::vector<Vec3> sampleFaces(const std::vector<Face>& faces, std::size_t count,
-                              std::mt19937_64& rng) {
+std::vector<Vec3> sampleFaces(const std::vector<Face>& faces, std::size_t count, std::mt19937_64& rng) {
   std::vector<Vec3> points;
   points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -46,8 +45,8 @@ SceneSampler roomScene(std::size_t points_per_scan) {
   return [points_per_scan](const Vec3&, std::uint64_t seed) {
     std::mt19937_64 rng(seed);
     const Vec3 lo(-6, -6, 0), hi(6, 6, 4);
-    const std::vector<Face> faces = {{2, 0.0, lo, hi},  {2, 4.0, lo, hi}, {0, -6.0, lo, hi},
-                                     {0, 6.0, lo, hi},  {1, -6.0, lo, hi}, {1, 6.0, lo, hi}};
+    const std::vector<Face> faces = {{2, 0.0, lo, hi}, {2, 4.0, lo, hi},  {0, -6.0, lo, hi},
+                                     {0, 6.0, lo, hi}, {1, -6.0, lo, hi}, {1, 6.0, lo, hi}};
     return sampleFaces(faces, points_per_scan, rng);
   };
 }
@@ -57,8 +56,7 @@ SceneSampler corridorScene(std::size_t points_per_scan) {
     std::mt19937_64 rng(seed);
     // Only the stretch within 10 m is seen, so no scan sees an end wall.
     const Vec3 lo(position.x() - 10, -1.5, 0), hi(position.x() + 10, 1.5, 3);
-    const std::vector<Face> faces = {
-        {2, 0.0, lo, hi}, {2, 3.0, lo, hi}, {1, -1.5, lo, hi}, {1, 1.5, lo, hi}};
+    const std::vector<Face> faces = {{2, 0.0, lo, hi}, {2, 3.0, lo, hi}, {1, -1.5, lo, hi}, {1, 1.5, lo, hi}};
     return sampleFaces(faces, points_per_scan, rng);
   };
 }
@@ -99,8 +97,8 @@ std::vector<Pose> perturbed(const std::vector<Pose>& poses, double metres, doubl
   return out;
 }
 
-void writeSceneDataset(const fs::path& dir, const SceneSampler& scene,
-                       const std::vector<Pose>& truth, const std::vector<Pose>& initial) {
+void writeSceneDataset(const fs::path& dir, const SceneSampler& scene, const std::vector<Pose>& truth,
+                       const std::vector<Pose>& initial) {
   fs::create_directories(dir / "pcd");
   std::mt19937_64 noise_rng(99);
   std::normal_distribution<double> noise(0.0, 0.01);

@@ -109,8 +109,7 @@ TEST(DegenerateData, NanAndInfPointsAreDroppedNotPropagated) {
 TEST(DegenerateData, FarAwayPointsDoNotBreakTheRun) {
   TempDir tmp;
   writeRoom(tmp / "data", 12);
-  corruptPoints(tmp / "data" / "pcd" / "4.pcd", 50,
-                [](std::size_t) { return Vec3f(1e30f, -3e38f, 1e25f); });
+  corruptPoints(tmp / "data" / "pcd" / "4.pcd", 50, [](std::size_t) { return Vec3f(1e30f, -3e38f, 1e25f); });
   const test::CommandResult run = test::runOptimize(tmp / "data", tmp / "out");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   test::expectFiniteOptimizeOutputs(tmp / "out", 12);
@@ -162,8 +161,8 @@ TEST(DegenerateData, NonUnitQuaternionsAreRenormalized) {
     const Pose& p = initial[i];
     const double scale = i == 3 ? -1.0 : 3.0;
     char line[256];
-    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t.x(), p.t.y(),
-                  p.t.z(), scale * p.q.w(), scale * p.q.x(), scale * p.q.y(), scale * p.q.z());
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g %.17g\n", p.t.x(), p.t.y(), p.t.z(),
+                  scale * p.q.w(), scale * p.q.x(), scale * p.q.y(), scale * p.q.z());
     text += line;
   }
   fs::create_directories(tmp / "scaled");

@@ -59,15 +59,14 @@ class FullDisk : public testing::Test {
 
 TEST_F(FullDisk, MapTooLargeForTheDiskIsReportedAsSuch) {
   // 6 scans x 3000 points x 16 bytes: about 290 KB, far over 64 KiB.
-  const test::CommandResult run = test::runHba("map " + quoted(tmp_ / "data") + " --voxel 0 -o " +
-                                               quoted(disk_.path() / "map.pcd"));
+  const test::CommandResult run =
+      test::runHba("map " + quoted(tmp_ / "data") + " --voxel 0 -o " + quoted(disk_.path() / "map.pcd"));
   expectDiskFullMessage(run);
   expectEmptyFolder(disk_.path());
 }
 
 TEST_F(FullDisk, SimulateOnAFullDiskIsReportedAsSuch) {
-  const test::CommandResult run =
-      test::runHba("simulate --frames 20 -o " + quoted(disk_.path() / "sim"));
+  const test::CommandResult run = test::runHba("simulate --frames 20 -o " + quoted(disk_.path() / "sim"));
   expectDiskFullMessage(run);
   expectEmptyFolder(disk_.path());
 }

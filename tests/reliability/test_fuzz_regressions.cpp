@@ -58,8 +58,8 @@ TEST_P(FuzzRegression, RejectedWithErrorOrAccepted) {
 
 INSTANTIATE_TEST_SUITE_P(Regressions, FuzzRegression,
                          testing::ValuesIn(savedInputs(HBA_FUZZ_DIR "/regressions")), testName);
-INSTANTIATE_TEST_SUITE_P(Seeds, FuzzRegression,
-                         testing::ValuesIn(savedInputs(HBA_FUZZ_DIR "/corpus")), testName);
+INSTANTIATE_TEST_SUITE_P(Seeds, FuzzRegression, testing::ValuesIn(savedInputs(HBA_FUZZ_DIR "/corpus")),
+                         testName);
 
 // The seeds are the parsers' good inputs: a harness wired to the wrong folder
 // would replay nothing and pass, so insist every target has seeds.

@@ -17,8 +17,7 @@ class InputUntouched : public testing::Test {
  protected:
   void SetUp() override {
     const std::vector<Pose> truth = test::straightPath(8);
-    test::writeSceneDataset(data(), test::roomScene(1000), truth,
-                            test::perturbed(truth, 0.03, 0.3, 3));
+    test::writeSceneDataset(data(), test::roomScene(1000), truth, test::perturbed(truth, 0.03, 0.3, 3));
     before_ = test::snapshotFolder(data());
   }
   fs::path data() const { return tmp_ / "data"; }
@@ -67,8 +66,7 @@ TEST_F(InputUntouched, MapRefusesAnOutputAmongTheScans) {
 
 // Not even beside the scans: the dataset folder is input too.
 TEST_F(InputUntouched, MapRefusesAnOutputInTheDatasetFolder) {
-  const test::CommandResult run =
-      test::runHba("map " + quoted(data()) + " -o " + quoted(data() / "map.pcd"));
+  const test::CommandResult run = test::runHba("map " + quoted(data()) + " -o " + quoted(data() / "map.pcd"));
   EXPECT_NE(run.exit_code, 0) << run.output;
   expectInputUnchanged();
 }

@@ -93,8 +93,7 @@ TEST(InterruptedRuns, KilledSimulateLeavesNoPartialSequence) {
 TEST(InterruptedRuns, KilledOptimizeLeavesNoPartialPoses) {
   TempDir tmp;
   const std::vector<Pose> truth = test::straightPath(20);
-  test::writeSceneDataset(tmp / "data", test::roomScene(), truth,
-                          test::perturbed(truth, 0.03, 0.3, 5));
+  test::writeSceneDataset(tmp / "data", test::roomScene(), truth, test::perturbed(truth, 0.03, 0.3, 5));
   for (const int delay_ms : {50, 200, 400, 800}) {
     const fs::path out = tmp / ("out_" + std::to_string(delay_ms));
     runAndKill({"optimize", (tmp / "data").string(), "-o", out.string()},

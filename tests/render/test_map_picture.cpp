@@ -4,13 +4,13 @@
 
 #include <memory>
 
-#include "hba/core/error.hpp"
-#include "hba/render/colormap.hpp"
-#include "hba/render/map_picture.hpp"
 #include "../eval/synthetic_scans.hpp"
-#include "map_change.hpp"
+#include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
+#include "hba/render/colormap.hpp"
+#include "hba/render/map_picture.hpp"
+#include "map_change.hpp"
 #include "test_support.hpp"
 
 namespace hba::render {
@@ -21,10 +21,13 @@ MapPanel wallPanel(const std::string& title) {
   MapPanel panel;
   panel.title = title;
   for (double y = -3.0; y <= 3.0; y += 0.05) {
-    for (double z = 0.0; z <= 2.0; z += 0.1) panel.map.add(Vec3f(5.0f, static_cast<float>(y), static_cast<float>(z)));
+    for (double z = 0.0; z <= 2.0; z += 0.1)
+      panel.map.add(Vec3f(5.0f, static_cast<float>(y), static_cast<float>(z)));
   }
   panel.trajectories.push_back(
-      {"poses", {Pose(Quat::Identity(), Vec3(0, -2, 1)), Pose(Quat::Identity(), Vec3(0, 2, 1))}, kOptimizedColor});
+      {"poses",
+       {Pose(Quat::Identity(), Vec3(0, -2, 1)), Pose(Quat::Identity(), Vec3(0, 2, 1))},
+       kOptimizedColor});
   return panel;
 }
 
@@ -101,10 +104,10 @@ TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
     shifted.poses.push_back(p);
   }
   io::writePoses(tmp / "after.txt", shifted, io::PoseFormat::Kitti);
-  const auto run = test::runCommand(test::cliPath().string() + " render " + (tmp / "seq").string() +
-                                    " --compare " + (tmp / "after.txt").string() + " --gt " +
-                                    (tmp / "seq" / "odom_poses.txt").string() +
-                                    " --width 1000 --height 700 -o " + (tmp / "cmp.png").string());
+  const auto run =
+      test::runCommand(test::cliPath().string() + " render " + (tmp / "seq").string() + " --compare " +
+                       (tmp / "after.txt").string() + " --gt " + (tmp / "seq" / "odom_poses.txt").string() +
+                       " --width 1000 --height 700 -o " + (tmp / "cmp.png").string());
   ASSERT_EQ(run.exit_code, 0) << run.output;
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<unsigned char, void (*)(void*)> pixels(
@@ -113,7 +116,8 @@ TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
   EXPECT_EQ(w, 1000);
   EXPECT_EQ(h, 700);
   std::size_t lit = 0;  // pixels well above the dark background: map, lines, text
-  for (int i = 0; i < w * h; ++i) lit += pixels.get()[3 * i] + pixels.get()[3 * i + 1] + pixels.get()[3 * i + 2] > 200;
+  for (int i = 0; i < w * h; ++i)
+    lit += pixels.get()[3 * i] + pixels.get()[3 * i + 1] + pixels.get()[3 * i + 2] > 200;
   EXPECT_GT(lit, static_cast<std::size_t>(w * h / 20));
 
   const auto bad = test::runCommand(test::cliPath().string() + " render " + (tmp / "seq").string() +
@@ -133,10 +137,12 @@ TEST(RenderCli, SamePicturesFromScansInMemory) {
     shifted.poses.push_back(p);
   }
   io::writePoses(tmp / "after.txt", shifted, io::PoseFormat::Kitti);
-  const std::string base = test::cliPath().string() + " render " + (tmp / "seq").string() + " --width 900 --height 600";
+  const std::string base =
+      test::cliPath().string() + " render " + (tmp / "seq").string() + " --width 900 --height 600";
   ASSERT_EQ(test::runCommand(base + " -o " + (tmp / "map.png").string()).exit_code, 0);
-  const auto compare = test::runCommand(base + " --compare " + (tmp / "after.txt").string() + " --gt " +
-                                        (tmp / "seq" / "odom_poses.txt").string() + " -o " + (tmp / "cmp.png").string());
+  const auto compare =
+      test::runCommand(base + " --compare " + (tmp / "after.txt").string() + " --gt " +
+                       (tmp / "seq" / "odom_poses.txt").string() + " -o " + (tmp / "cmp.png").string());
   ASSERT_EQ(compare.exit_code, 0) << compare.output;
 
   // The poses as the tool reads them from the files.

@@ -59,8 +59,7 @@ TEST(CliSimulate, RefusesToOverwriteAndRejectsBadFlags) {
 
   const auto bad_sensor = runCommand(simulate("") + " --sensor hdl128 -o " + (dir / "x").string());
   EXPECT_NE(bad_sensor.exit_code, 0);
-  const auto bad_path = runCommand(simulate("") + " --trajectory /no/such/file -o " +
-                                   (dir / "y").string());
+  const auto bad_path = runCommand(simulate("") + " --trajectory /no/such/file -o " + (dir / "y").string());
   EXPECT_NE(bad_path.exit_code, 0);
   EXPECT_NE(bad_path.output.find("/no/such/file"), std::string::npos) << bad_path.output;
   const auto bad_noise = runCommand(simulate("") + " --noise -1 -o " + (dir / "z").string());

@@ -57,9 +57,8 @@ TEST(SimBvh, ClosestHitMatchesBruteForce) {
     for (const Triangle& t : triangles) {
       if (auto d = intersect(ray, t, brute.value_or(1e9))) brute = d;
     }
-    const auto fast = bvh.closestHit(ray, 1e9, [&](std::uint32_t i, double t_max) {
-      return intersect(ray, triangles[i], t_max);
-    });
+    const auto fast = bvh.closestHit(
+        ray, 1e9, [&](std::uint32_t i, double t_max) { return intersect(ray, triangles[i], t_max); });
     ASSERT_EQ(fast.has_value(), brute.has_value()) << "ray " << r;
     if (fast) {
       ++hits;

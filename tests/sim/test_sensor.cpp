@@ -94,10 +94,9 @@ TEST(SimSensor, SpinningPresetsMatchTheirDataSheets) {
     int channels;
     double lowest, highest;
   };
-  for (const Expected& e : {Expected{SensorModel::Vlp16, 16, -15.0, 15.0},
-                            Expected{SensorModel::Hdl32, 32, -30.67, 10.67},
-                            Expected{SensorModel::Hdl64, 64, -24.9, 2.0},
-                            Expected{SensorModel::Os128, 128, -22.5, 22.5}}) {
+  for (const Expected& e :
+       {Expected{SensorModel::Vlp16, 16, -15.0, 15.0}, Expected{SensorModel::Hdl32, 32, -30.67, 10.67},
+        Expected{SensorModel::Hdl64, 64, -24.9, 2.0}, Expected{SensorModel::Os128, 128, -22.5, 22.5}}) {
     const SensorConfig config = sensorPreset(e.model);
     const auto directions = rayDirections(config, 0);
     ASSERT_EQ(directions.size(), config.raysPerFrame());

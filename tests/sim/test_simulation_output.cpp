@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
-
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"

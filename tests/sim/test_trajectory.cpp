@@ -36,8 +36,7 @@ TEST_P(SimTrajectoryShapes, DrivesAtSpeedOnTheGroundAndComesBack) {
     const Vec3 step = t.poses[k + 1].t - t.poses[k].t;
     EXPECT_NEAR(step.head<2>().norm(), 0.5, 0.02) << "frame " << k;
     // Heading along the tangent.
-    EXPECT_GT(t.poses[k].R().col(0).head<2>().normalized().dot(step.head<2>().normalized()),
-              0.99);
+    EXPECT_GT(t.poses[k].R().col(0).head<2>().normalized().dot(step.head<2>().normalized()), 0.99);
     const Vec3& p = t.poses[k].t;
     EXPECT_NEAR(p.z() - terrain.height(p.x(), p.y()), 1.8, 1e-9);
   }
@@ -45,8 +44,7 @@ TEST_P(SimTrajectoryShapes, DrivesAtSpeedOnTheGroundAndComesBack) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllShapes, SimTrajectoryShapes,
-                         ::testing::Values(PathShape::Block, PathShape::Figure8,
-                                           PathShape::Street));
+                         ::testing::Values(PathShape::Block, PathShape::Figure8, PathShape::Street));
 
 TEST(SimTrajectory, PitchFollowsTheSlope) {
   const Terrain terrain(4, 0.05);

@@ -20,8 +20,7 @@ TEST(SimWorld, ThePathStaysFree) {
       for (double lateral : {-1.0, 0.0, 1.0}) {
         const Ray ray{poses[k].t + Vec3(0, 0, height) + lateral * left, step.normalized()};
         const auto hit = s.world.intersect(ray, step.norm());
-        EXPECT_FALSE(hit.has_value()) << "frame " << k << " height " << height << " lateral "
-                                      << lateral;
+        EXPECT_FALSE(hit.has_value()) << "frame " << k << " height " << height << " lateral " << lateral;
       }
     }
   }
@@ -96,8 +95,7 @@ TEST(SimWorld, IndoorSceneEnclosesThePath) {
   std::size_t enclosed = 0, checked = 0;
   for (std::size_t k = 0; k + 1 < poses.size(); k += 5) {
     const Vec3 step = poses[k + 1].t - poses[k].t;
-    EXPECT_FALSE(s.world.intersect(Ray{poses[k].t, step.normalized()}, step.norm()))
-        << "frame " << k;
+    EXPECT_FALSE(s.world.intersect(Ray{poses[k].t, step.normalized()}, step.norm())) << "frame " << k;
     EXPECT_NEAR(poses[k].t.z(), 1.8, 1e-9) << "frame " << k;  // flat floor
     const auto up = s.world.intersect(Ray{poses[k].t, Vec3::UnitZ()}, 20.0);
     const Vec3 left = poses[k].R().col(1);

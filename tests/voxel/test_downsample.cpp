@@ -14,9 +14,20 @@ namespace {
 TEST(VoxelKey, CellIsFloorForEverySignIntegersAndLimits) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1e6, 1e6);
-  std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.5, -0.5, 1e-300, -1e-300,
-                                std::nextafter(-1.0, 0.0), std::nextafter(1.0, 0.0),
-                                -4503599627370495.5, 4503599627370495.5, 3.0e18, -3.0e18};
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                1.0,
+                                -1.0,
+                                0.5,
+                                -0.5,
+                                1e-300,
+                                -1e-300,
+                                std::nextafter(-1.0, 0.0),
+                                std::nextafter(1.0, 0.0),
+                                -4503599627370495.5,
+                                4503599627370495.5,
+                                3.0e18,
+                                -3.0e18};
   for (int i = 0; i < 100000; ++i) values.push_back(u(rng));
   for (int i = -50; i <= 50; ++i) values.push_back(i);
   for (double v : values) {
@@ -30,11 +41,11 @@ TEST(VoxelKey, CellIsFloorForEverySignIntegersAndLimits) {
 
 TEST(Downsample, KeepsOneCentroidPerVoxelInFirstSeenOrder) {
   PointCloud cloud;
-  cloud.add(Vec3f(1.2f, 0.1f, 0.1f), 10.f);   // voxel (1,0,0)
-  cloud.add(Vec3f(0.1f, 0.1f, 0.1f), 2.f);    // voxel (0,0,0)
-  cloud.add(Vec3f(0.3f, 0.5f, 0.7f), 4.f);    // voxel (0,0,0)
-  cloud.add(Vec3f(1.6f, 0.3f, 0.9f), 20.f);   // voxel (1,0,0)
-  cloud.add(Vec3f(-0.1f, 0.1f, 0.1f), 7.f);   // voxel (-1,0,0): floor, not truncation
+  cloud.add(Vec3f(1.2f, 0.1f, 0.1f), 10.f);  // voxel (1,0,0)
+  cloud.add(Vec3f(0.1f, 0.1f, 0.1f), 2.f);   // voxel (0,0,0)
+  cloud.add(Vec3f(0.3f, 0.5f, 0.7f), 4.f);   // voxel (0,0,0)
+  cloud.add(Vec3f(1.6f, 0.3f, 0.9f), 20.f);  // voxel (1,0,0)
+  cloud.add(Vec3f(-0.1f, 0.1f, 0.1f), 7.f);  // voxel (-1,0,0): floor, not truncation
   const PointCloud out = downsample(cloud, 1.0);
   ASSERT_EQ(out.size(), 3u);
   ASSERT_TRUE(out.hasIntensity());

@@ -18,7 +18,8 @@ std::vector<PointCloud> randomScans() {
   std::uniform_real_distribution<float> coordinate(-5.0f, 5.0f);
   std::vector<PointCloud> scans(3);
   for (PointCloud& scan : scans) {
-    for (int k = 0; k < 2000; ++k) scan.add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)), coordinate(rng));
+    for (int k = 0; k < 2000; ++k)
+      scan.add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)), coordinate(rng));
   }
   return scans;
 }

@@ -11,8 +11,7 @@ namespace hba::voxel {
 namespace {
 
 // `count` points on the square [lo, hi]^2 of the plane `axis` = `offset`.
-void addSquare(PointCloud& cloud, std::mt19937& rng, int axis, float offset, float lo, float hi,
-               int count) {
+void addSquare(PointCloud& cloud, std::mt19937& rng, int axis, float offset, float lo, float hi, int count) {
   std::uniform_real_distribution<float> u(lo, hi);
   for (int k = 0; k < count; ++k) {
     Vec3f p(u(rng), u(rng), u(rng));

@@ -39,10 +39,9 @@ struct RefinementSettings {
   RefinementSettings() {
     planes.voxel_size = 1.0;
     // Tighter than the windows' prior: it holds neighbouring frames at the
-    // odometry's relative poses, right to a few centimetres. Looser, frames that the planes barely constrain (a
-    // narrow field of view over open ground) slid by metres along the free
-    // directions while re-association fed them noise; this still lets the
-    // planes move a frame by centimetres where they see it.
+    // odometry's relative poses, right to a few centimetres. Looser, frames that the planes barely constrain
+    // (a narrow field of view over open ground) slid by metres along the free directions while re-association
+    // fed them noise; this still lets the planes move a frame by centimetres where they see it.
     motion_prior.translation_sigma = 0.05;
     motion_prior.translation_per_m = 0.05;
     motion_prior.rotation_sigma_deg = 0.5;
@@ -64,7 +63,7 @@ struct RefinementResult {
   std::size_t observations = 0;  // (frame, plane) clusters
   std::size_t plane_points = 0;
   int iterations = 0;
-  int rounds = 0;  // of the last solve
+  int rounds = 0;                 // of the last solve
   std::size_t held_pairs = 0;     // neighbouring pairs held after sliding
   std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held
   double seconds_associate = 0.0;
@@ -76,10 +75,8 @@ struct RefinementResult {
 // relative pose in `reference` (the odometry; empty: `initial`), whose
 // local steps are usually better than those of a window that slid.
 // Scans are only read.
-RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans,
-                                const std::vector<Pose>& initial,
-                                const RefinementSettings& settings,
-                                const std::vector<double>& path_m = {},
+RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+                                const RefinementSettings& settings, const std::vector<double>& path_m = {},
                                 const std::vector<Pose>& reference = {});
 
 }  // namespace hba::ba

@@ -22,10 +22,10 @@ namespace hba::ba {
 // keyframes far apart (upper layers, the top layer's loops) may move far.
 struct MotionPriorSettings {
   bool enabled = true;
-  double translation_sigma = 0.1;       // m, floor
-  double translation_per_m = 0.1;       // m per m of path between the frames
-  double rotation_sigma_deg = 1.0;      // floor
-  double rotation_per_m_deg = 0.2;      // deg per m of path
+  double translation_sigma = 0.1;   // m, floor
+  double translation_per_m = 0.1;   // m per m of path between the frames
+  double rotation_sigma_deg = 1.0;  // floor
+  double rotation_per_m_deg = 0.2;  // deg per m of path
   // The plane cost is a sum of squared distances with this noise (m): the
   // prior is scaled into the same units (cost * 1/(2 sigma^2) is the
   // negative log-likelihood of both).

@@ -13,8 +13,8 @@ struct PointCluster {
   Vec3 mean = Vec3::Zero();
   Mat3 scatter = Mat3::Zero();
 
-  void add(const Vec3& p);                  // one point (Welford update)
-  void merge(const PointCluster& other);    // parallel-axis combination
+  void add(const Vec3& p);                // one point (Welford update)
+  void merge(const PointCluster& other);  // parallel-axis combination
   // Covariance scatter / count (zero for an empty cluster).
   Mat3 covariance() const;
 };

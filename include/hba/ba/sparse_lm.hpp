@@ -24,8 +24,8 @@ struct SparseLmSettings {
   // Inexact steps: the hierarchy has already removed the long-range error,
   // so loose steps suffice (nclt: 1e-2/50 gave the same map as 1e-4/200 in
   // a third of the time).
-  int cg_max_iterations = 50;             // per LM step
-  double cg_relative_tolerance = 1e-2;    // residual norm, relative to the first
+  int cg_max_iterations = 50;           // per LM step
+  double cg_relative_tolerance = 1e-2;  // residual norm, relative to the first
   // A step that moves any frame further than this is scaled down to it:
   // the refinement polishes centimetres, and a frame that the planes leave
   // (nearly) free must not be thrown away along the free direction.
@@ -47,7 +47,6 @@ Mat6 positiveInverse(const Mat6& block);
 
 // Optimizes `poses` in place on the plane cost plus `prior`.
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                        const SparseLmSettings& settings,
-                                        const MotionPrior& prior = {});
+                                        const SparseLmSettings& settings, const MotionPrior& prior = {});
 
 }  // namespace hba::ba

@@ -25,7 +25,7 @@ using PlaneSettings = voxel::PlaneSettings;
 
 struct BaSettings {
   PlaneSettings planes;
-  int max_iterations = 10;         // LM iterations per association round
+  int max_iterations = 10;  // LM iterations per association round
   // Associations (voxel planes rebuilt from the updated poses) at the finest
   // voxel size; coarse-to-fine rounds below come on top of these.
   int association_rounds = 3;
@@ -36,7 +36,7 @@ struct BaSettings {
   // and the Hessian is taken at the finest association. <= 0 or >=
   // voxel_size: one size for all rounds (the paper).
   double final_voxel_size = 0.0;
-  double reject_ratio = 0.05;      // drop this fraction of planes, worst residuals first
+  double reject_ratio = 0.05;             // drop this fraction of planes, worst residuals first
   double relative_cost_tolerance = 1e-4;  // stop when the cost settles
   // Neighbouring frames are held weakly at their input relative pose.
   MotionPriorSettings motion_prior;
@@ -70,10 +70,10 @@ struct BaResult {
   double fixed_map_cost_initial = 0.0;
   double fixed_map_cost_final = 0.0;
   bool trusted = true;
-  int rounds = 0;                   // association rounds run
-  std::size_t num_planes = 0;       // plane features used in the last round
+  int rounds = 0;              // association rounds run
+  std::size_t num_planes = 0;  // plane features used in the last round
   std::size_t num_plane_points = 0;
-  int iterations = 0;               // LM iterations over all rounds
+  int iterations = 0;  // LM iterations over all rounds
   // Per plane of the last round: RMS point-to-plane distance (m) before and
   // after, in the same order.
   std::vector<double> plane_rms_initial;
@@ -92,8 +92,7 @@ struct BaResult {
 // from `initial`. Frame 0 is held fixed (gauge). `path_m[k]` is the path (m)
 // between frames k and k+1 for the motion prior (empty: straight distances).
 // Thread-safe and deterministic for any thread count. Scans are only read.
-BaResult optimizeWindow(const std::vector<const PointCloud*>& scans,
-                        const std::vector<Pose>& initial, const BaSettings& settings,
-                        const std::vector<double>& path_m = {});
+BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
+                        const BaSettings& settings, const std::vector<double>& path_m = {});
 
 }  // namespace hba::ba

@@ -29,7 +29,7 @@ class AtomicFile {
 };
 
 // Convenience: writes what `fill` puts into the stream, atomically.
-void writeFileAtomically(const std::filesystem::path& target,
-                         const std::function<void(std::ostream&)>& fill, bool binary = true);
+void writeFileAtomically(const std::filesystem::path& target, const std::function<void(std::ostream&)>& fill,
+                         bool binary = true);
 
 }  // namespace hba

@@ -17,7 +17,6 @@ namespace hba::eval {
 
 enum class Alignment { None, SE3, Sim3 };
 
-
 // x -> scale * R x + t. The identity by default.
 struct Similarity {
   Mat3 R = Mat3::Identity();
@@ -32,8 +31,7 @@ struct Similarity {
 // argmin over S of sum_i |target_i - S(source_i)|^2, with scale fixed to 1
 // unless `with_scale`. Needs at least 3 pairs and non-coincident sources;
 // throws hba::Error otherwise. Reflections are excluded (det R = +1).
-Similarity umeyama(const std::vector<Vec3>& source, const std::vector<Vec3>& target,
-                   bool with_scale);
+Similarity umeyama(const std::vector<Vec3>& source, const std::vector<Vec3>& target, bool with_scale);
 
 // The alignment of `estimate` onto `reference` (positions only) of the given
 // kind; identity for Alignment::None.
@@ -46,6 +44,7 @@ namespace hba {
 template <>
 struct EnumNames<eval::Alignment> {
   static constexpr const char* what = "alignment";
-  static constexpr EnumName<eval::Alignment> names[] = {{eval::Alignment::None, "none"}, {eval::Alignment::SE3, "se3"}, {eval::Alignment::Sim3, "sim3"}};
+  static constexpr EnumName<eval::Alignment> names[] = {
+      {eval::Alignment::None, "none"}, {eval::Alignment::SE3, "se3"}, {eval::Alignment::Sim3, "sim3"}};
 };
 }  // namespace hba

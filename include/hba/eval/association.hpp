@@ -15,11 +15,10 @@ enum class AssociationMode {
   Time    // each estimated pose with the nearest reference stamp within a tolerance
 };
 
-
 // Matched pose pairs, in increasing order of the estimate's index.
 struct Association {
-  std::vector<std::size_t> reference;  // index into the reference trajectory
-  std::vector<std::size_t> estimate;   // index into the estimated trajectory
+  std::vector<std::size_t> reference;             // index into the reference trajectory
+  std::vector<std::size_t> estimate;              // index into the estimated trajectory
   AssociationMode mode = AssociationMode::Index;  // Index or Time: how the pairs were made
   std::size_t size() const { return reference.size(); }
 };
@@ -35,8 +34,8 @@ Association associateByTime(const std::vector<double>& reference_stamps,
                             const std::vector<double>& estimate_stamps, double max_diff);
 
 // Dispatches on `mode` (Auto as documented above). Throws hba::Error.
-Association associate(const Trajectory& reference, const Trajectory& estimate,
-                      AssociationMode mode, double max_time_diff);
+Association associate(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode,
+                      double max_time_diff);
 
 }  // namespace hba::eval
 
@@ -44,6 +43,8 @@ namespace hba {
 template <>
 struct EnumNames<eval::AssociationMode> {
   static constexpr const char* what = "association";
-  static constexpr EnumName<eval::AssociationMode> names[] = {{eval::AssociationMode::Auto, "auto"}, {eval::AssociationMode::Index, "index"}, {eval::AssociationMode::Time, "time"}};
+  static constexpr EnumName<eval::AssociationMode> names[] = {{eval::AssociationMode::Auto, "auto"},
+                                                              {eval::AssociationMode::Index, "index"},
+                                                              {eval::AssociationMode::Time, "time"}};
 };
 }  // namespace hba

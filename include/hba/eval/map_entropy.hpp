@@ -15,17 +15,17 @@
 namespace hba::eval {
 
 struct MmeSettings {
-  double radius = 0.3;       // m; neighbours at distance < radius
-  int min_neighbors = 15;    // see strictly_more
-  bool strictly_more = true; // use a point if count > min_neighbors (else >=)
-  bool count_query = true;   // the query point is one of its own neighbours
+  double radius = 0.3;             // m; neighbours at distance < radius
+  int min_neighbors = 15;          // see strictly_more
+  bool strictly_more = true;       // use a point if count > min_neighbors (else >=)
+  bool count_query = true;         // the query point is one of its own neighbours
   bool sample_covariance = false;  // divide by n - 1 (default: by n, as PCL does)
 };
 
 struct MmeResult {
-  double mme = 0.0;            // NaN when no point qualifies
-  std::size_t points = 0;      // map points
-  std::size_t used = 0;        // points with enough neighbours and det > 0
+  double mme = 0.0;        // NaN when no point qualifies
+  std::size_t points = 0;  // map points
+  std::size_t used = 0;    // points with enough neighbours and det > 0
 };
 
 // Runs in parallel (oneTBB); the result does not depend on the thread count:

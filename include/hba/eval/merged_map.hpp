@@ -26,11 +26,10 @@ enum class VoxelRule {
 // What the output cloud's intensity field carries (the io writers store
 // x y z intensity only, so a colour cue travels there).
 enum class MapColor {
-  None,    // the mean input intensity of the voxel (none if the scans have none)
-  Scan,    // the index of the first scan that touched the voxel
-  Height   // the point's z in metres
+  None,   // the mean input intensity of the voxel (none if the scans have none)
+  Scan,   // the index of the first scan that touched the voxel
+  Height  // the point's z in metres
 };
-
 
 struct MapSettings {
   double voxel = 0.1;  // m; <= 0 keeps every point
@@ -81,6 +80,7 @@ namespace hba {
 template <>
 struct EnumNames<eval::MapColor> {
   static constexpr const char* what = "map colour";
-  static constexpr EnumName<eval::MapColor> names[] = {{eval::MapColor::None, "none"}, {eval::MapColor::Scan, "scan"}, {eval::MapColor::Height, "height"}};
+  static constexpr EnumName<eval::MapColor> names[] = {
+      {eval::MapColor::None, "none"}, {eval::MapColor::Scan, "scan"}, {eval::MapColor::Height, "height"}};
 };
 }  // namespace hba

@@ -34,8 +34,8 @@ PoseErrors absoluteErrors(const std::vector<Pose>& reference, const std::vector<
 
 // Index pairs (i, j), one for every start i: j = i + delta for frames; for
 // metres the first j whose reference path length from i reaches delta.
-std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Pose>& reference,
-                                                          double delta, DeltaUnit unit);
+std::vector<std::pair<std::size_t, std::size_t>> rpePairs(const std::vector<Pose>& reference, double delta,
+                                                          DeltaUnit unit);
 // Per-pair RPE of associated sequences over the given pairs.
 PoseErrors relativeErrors(const std::vector<Pose>& reference, const std::vector<Pose>& estimate,
                           const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
@@ -73,6 +73,7 @@ namespace hba {
 template <>
 struct EnumNames<eval::DeltaUnit> {
   static constexpr const char* what = "delta unit";
-  static constexpr EnumName<eval::DeltaUnit> names[] = {{eval::DeltaUnit::Frames, "frames"}, {eval::DeltaUnit::Meters, "m"}};
+  static constexpr EnumName<eval::DeltaUnit> names[] = {{eval::DeltaUnit::Frames, "frames"},
+                                                        {eval::DeltaUnit::Meters, "m"}};
 };
 }  // namespace hba

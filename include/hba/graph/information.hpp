@@ -33,10 +33,9 @@ struct InformationSettings {
 // holding the window's first frame (as the BA does; the relative pose is
 // gauge-invariant, so any frame gives the same covariance), the covariance of
 // frames a and b is propagated through the residual's Jacobians, and the
-// result is inverted (symmetric, positive definite). Throws hba::Error on a == b, an index out of range, a Hessian of
-// the wrong size or with non-finite entries, or invalid settings.
-Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses,
-                             std::size_t a, std::size_t b,
-                             const InformationSettings& settings = {});
+// result is inverted (symmetric, positive definite). Throws hba::Error on a == b, an index out of range, a
+// Hessian of the wrong size or with non-finite entries, or invalid settings.
+Mat6 relativePoseInformation(const Eigen::MatrixXd& hessian, const std::vector<Pose>& poses, std::size_t a,
+                             std::size_t b, const InformationSettings& settings = {});
 
 }  // namespace hba::graph

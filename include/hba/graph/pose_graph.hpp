@@ -67,7 +67,6 @@ PoseGraphResult optimizePoseGraph(const std::vector<Pose>& initial,
 
 // Sum over factors of e^T Omega e at `poses` (no robust loss).
 double factorGraphCost(const std::vector<Pose>& poses, const FactorGraph& factors);
-double poseGraphCost(const std::vector<Pose>& poses,
-                     const std::vector<RelativePoseFactor>& factors);
+double poseGraphCost(const std::vector<Pose>& poses, const std::vector<RelativePoseFactor>& factors);
 
 }  // namespace hba::graph

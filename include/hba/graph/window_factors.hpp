@@ -31,8 +31,7 @@ enum class FactorPairs {
 std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<Pose>& optimized_window_poses,
                                               const std::vector<std::size_t>& layer1_indices,
-                                              FactorPairs pairs,
-                                              const InformationSettings& settings = {});
+                                              FactorPairs pairs, const InformationSettings& settings = {});
 
 }  // namespace hba::graph
 
@@ -40,9 +39,8 @@ namespace hba {
 template <>
 struct EnumNames<graph::FactorPairs> {
   static constexpr const char* what = "factor pairs";
-  static constexpr EnumName<graph::FactorPairs> names[] = {
-      {graph::FactorPairs::Adjacent, "adjacent"},
-      {graph::FactorPairs::AllPairs, "all"},
-      {graph::FactorPairs::FromFirst, "from_first"}};
+  static constexpr EnumName<graph::FactorPairs> names[] = {{graph::FactorPairs::Adjacent, "adjacent"},
+                                                           {graph::FactorPairs::AllPairs, "all"},
+                                                           {graph::FactorPairs::FromFirst, "from_first"}};
 };
 }  // namespace hba

@@ -33,11 +33,11 @@ struct DatasetOverrides {
   std::optional<std::filesystem::path> scans_dir;
   std::optional<std::filesystem::path> poses_file;
   std::optional<PoseFormat> pose_format;
-  std::optional<std::filesystem::path> times_file;  // one stamp (s) a line, one per scan
-  bool invert_poses = false;    // the file holds world-to-sensor poses
-  std::optional<Pose> extrinsic;  // T_body_sensor: the file holds poses of another body
+  std::optional<std::filesystem::path> times_file;   // one stamp (s) a line, one per scan
+  bool invert_poses = false;                         // the file holds world-to-sensor poses
+  std::optional<Pose> extrinsic;                     // T_body_sensor: the file holds poses of another body
   std::optional<std::filesystem::path> calibration;  // KITTI calib.txt: the file holds camera-0 poses
-  bool scans_in_world = false;  // the scans were saved already moved into the world
+  bool scans_in_world = false;                       // the scans were saved already moved into the world
 };
 
 // One thing discovery decided or noticed (which file it picked, what it

@@ -25,8 +25,7 @@ Trajectory readPoses(const std::filesystem::path& path);  // detected format
 // Written atomically, every number in the shortest form that reads back
 // exactly. TUM needs stamps; without them the pose index is written as the
 // time and the header line says so.
-void writePoses(const std::filesystem::path& path, const Trajectory& trajectory,
-                PoseFormat format);
+void writePoses(const std::filesystem::path& path, const Trajectory& trajectory, PoseFormat format);
 
 // TUM stamps are seconds, but some exporters write Unix milli-, micro- or
 // nanoseconds (1.7e12, 1.7e15, 1.7e18), or nanoseconds from the start (steps
@@ -44,6 +43,7 @@ namespace hba {
 template <>
 struct EnumNames<io::PoseFormat> {
   static constexpr const char* what = "pose format";
-  static constexpr EnumName<io::PoseFormat> names[] = {{io::PoseFormat::Hba, "hba"}, {io::PoseFormat::Kitti, "kitti"}, {io::PoseFormat::Tum, "tum"}};
+  static constexpr EnumName<io::PoseFormat> names[] = {
+      {io::PoseFormat::Hba, "hba"}, {io::PoseFormat::Kitti, "kitti"}, {io::PoseFormat::Tum, "tum"}};
 };
 }  // namespace hba

@@ -19,10 +19,10 @@
 namespace hba::pyramid {
 
 enum class ConventionVerdict {
-  AsGiven,       // the poses as given make the crispest map (or nothing tells)
-  PosesInverted, // inverting every pose makes a clearly crisper map
-  ScansInWorld,  // the scans line up without any pose
-  TurnedBody,    // the poses are of a body turned against the sensor (`turn`)
+  AsGiven,          // the poses as given make the crispest map (or nothing tells)
+  PosesInverted,    // inverting every pose makes a clearly crisper map
+  ScansInWorld,     // the scans line up without any pose
+  TurnedBody,       // the poses are of a body turned against the sensor (`turn`)
   ScansNotInWorld,  // --scans-in-world was given, but the scans as stored line up
 };
 
@@ -38,18 +38,18 @@ struct ConventionCheck {
   // Occupied voxels of the merged stretches per candidate, relative to the
   // mean occupancy of one scan (lower = crisper).
   double as_given = 0.0, inverted = 0.0, in_world = 0.0;
-  double turned = 0.0;            // the best of the 23 turned bodies
-  double as_stored = 0.0;         // with --scans-in-world undone (0 unless it was given)
-  Mat3 turn = Mat3::Identity();   // its rotation T_body_sensor
-  std::size_t stretches = 0;  // stretches with enough motion to tell; 0: nothing checked
-  std::string message;        // what is wrong and which flag fixes it (empty when AsGiven)
+  double turned = 0.0;           // the best of the 23 turned bodies
+  double as_stored = 0.0;        // with --scans-in-world undone (0 unless it was given)
+  Mat3 turn = Mat3::Identity();  // its rotation T_body_sensor
+  std::size_t stretches = 0;     // stretches with enough motion to tell; 0: nothing checked
+  std::string message;           // what is wrong and which flag fixes it (empty when AsGiven)
 };
 
 struct ConventionSettings {
   double voxel = 0.5;            // m
   double stretch_length = 10.0;  // m of path per stretch (or the rotation below)
   double stretch_rotation_deg = 45.0;
-  std::size_t stretch_scans = 8; // scans merged per stretch
+  std::size_t stretch_scans = 8;  // scans merged per stretch
   std::size_t max_stretches = 4;
   double decisive_ratio = 0.7;  // another candidate needs at most this share of the voxels
 };

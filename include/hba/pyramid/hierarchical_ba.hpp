@@ -14,8 +14,8 @@ namespace hba::pyramid {
 
 // What one layer's BAs did in one outer iteration.
 struct LayerReport {
-  int iteration = 0;  // outer iteration, from 1
-  int layer = 0;      // pyramid layer, from 1 (layer 1 = input scans)
+  int iteration = 0;    // outer iteration, from 1
+  int layer = 0;        // pyramid layer, from 1 (layer 1 = input scans)
   bool global = false;  // the top layer's single global BA
   std::size_t frames = 0;
   std::size_t windows = 0;
@@ -23,14 +23,14 @@ struct LayerReport {
   // Windows whose BA made the planes found at their input poses blurrier:
   // they keep their input poses (trust check, docs/pyramid.md).
   std::size_t windows_untrusted = 0;
-  std::size_t planes = 0;        // summed over windows
-  std::size_t plane_points = 0;  // summed over windows
-  std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
+  std::size_t planes = 0;              // summed over windows
+  std::size_t plane_points = 0;        // summed over windows
+  std::size_t cloud_points = 0;        // points in this layer's clouds (after downsampling)
   std::size_t lm_iterations = 0;       // summed over windows
   std::size_t association_rounds = 0;  // summed over windows
-  double cost_before = 0.0;      // summed BA cost over windows
+  double cost_before = 0.0;            // summed BA cost over windows
   double cost_after = 0.0;
-  double rms_before = 0.0;       // point-to-plane RMS over all plane points (m)
+  double rms_before = 0.0;  // point-to-plane RMS over all plane points (m)
   double rms_after = 0.0;
   double seconds = 0.0;
 };
@@ -65,7 +65,7 @@ struct GroupRefinementReport {
 struct RefinementReport {
   bool ran = false;
   GroupRefinementReport groups;
-  std::size_t blocks = 0;  // consecutive, overlapping stretches of frames (memory bound)
+  std::size_t blocks = 0;       // consecutive, overlapping stretches of frames (memory bound)
   std::size_t scan_points = 0;  // points held, summed over blocks (at refine_scan_voxel)
   std::size_t planes = 0;
   std::size_t observations = 0;
@@ -73,8 +73,8 @@ struct RefinementReport {
   double rms_before = 0.0;  // m, on the refinement's planes
   double rms_after = 0.0;
   int iterations = 0;
-  int rounds = 0;  // associations, summed over blocks
-  std::size_t held_pairs = 0;  // neighbouring pairs that slid and were held (summed over blocks)
+  int rounds = 0;                 // associations, summed over blocks
+  std::size_t held_pairs = 0;     // neighbouring pairs that slid and were held (summed over blocks)
   std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held
   double seconds = 0.0;
 };
@@ -106,12 +106,12 @@ struct HbaReport {
   // Wall time by stage. Reading and downsampling run together in parallel,
   // as do voxelization and LM; their wall time is split in proportion to
   // the thread time each part took.
-  double seconds_read = 0.0;       // reading scans and stored keyframes
-  double seconds_downsample = 0.0; // downsampling layer-1 scans
-  double seconds_voxelize = 0.0;   // plane extraction and point clusters, all BAs
-  double seconds_solve = 0.0;      // LM of all BAs
-  double seconds_keyframes = 0.0;  // building keyframe clouds
-  double seconds_graph = 0.0;     // pose graph solves
+  double seconds_read = 0.0;        // reading scans and stored keyframes
+  double seconds_downsample = 0.0;  // downsampling layer-1 scans
+  double seconds_voxelize = 0.0;    // plane extraction and point clusters, all BAs
+  double seconds_solve = 0.0;       // LM of all BAs
+  double seconds_keyframes = 0.0;   // building keyframe clouds
+  double seconds_graph = 0.0;       // pose graph solves
   double seconds_total = 0.0;
   // The last outer iteration moved no pose beyond tolerance (else the
   // iteration limit stopped them; the default is one pass).

@@ -89,7 +89,7 @@ struct HbaSettings {
   // -j sets it.
   int threads = 0;
 
-  int outer_iterations{};  // bottom-up + top-down rounds at most
+  int outer_iterations{};           // bottom-up + top-down rounds at most
   double outer_tolerance_m = 1e-3;  // stop when no pose moved more than this
   double outer_tolerance_deg = 1e-3;
 
@@ -129,7 +129,6 @@ template <>
 struct EnumNames<pyramid::TopDownMode> {
   static constexpr const char* what = "top-down mode";
   static constexpr EnumName<pyramid::TopDownMode> names[] = {
-      {pyramid::TopDownMode::PoseGraph, "pose_graph"},
-      {pyramid::TopDownMode::DirectAssign, "direct_assign"}};
+      {pyramid::TopDownMode::PoseGraph, "pose_graph"}, {pyramid::TopDownMode::DirectAssign, "direct_assign"}};
 };
 }  // namespace hba

@@ -16,8 +16,7 @@ namespace hba::pyramid {
 
 // Applies the keys present in `yaml_text` on top of `settings`. Throws
 // hba::Error naming `source` (a file name, for messages) and the bad key.
-void applySettingsYaml(const std::string& yaml_text, const std::string& source,
-                       HbaSettings& settings);
+void applySettingsYaml(const std::string& yaml_text, const std::string& source, HbaSettings& settings);
 void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings);
 
 // Throws hba::Error if the settings are out of range (negative voxel, ...).

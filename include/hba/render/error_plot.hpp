@@ -11,11 +11,11 @@
 namespace hba::render {
 
 struct ErrorSeries {
-  std::vector<double> x;             // time (s) or index, ascending
+  std::vector<double> x;  // time (s) or index, ascending
   std::vector<double> translation_m;
   std::vector<double> rotation_deg;
   std::string x_label = "time (s)";
-  std::string title;                 // e.g. the estimate's file name
+  std::string title;  // e.g. the estimate's file name
 };
 
 Image renderErrorPlot(const ErrorSeries& series, int width = 1200, int height = 720);

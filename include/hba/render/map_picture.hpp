@@ -25,11 +25,11 @@ struct Box2 {
 Box2 parseBox(const std::string& text);
 
 struct RenderSettings {
-  int width = 1800;   // whole picture, pixels
+  int width = 1800;  // whole picture, pixels
   int height = 1100;
-  double voxel = 0.1;            // m, downsampling of each merged map
-  std::optional<Box2> crop;      // show only this region (at full resolution)
-  bool side_view = true;         // add the side strip under each bird's-eye view
+  double voxel = 0.1;        // m, downsampling of each merged map
+  std::optional<Box2> crop;  // show only this region (at full resolution)
+  bool side_view = true;     // add the side strip under each bird's-eye view
   // Colour by the panels' `values` on this scale instead of by height.
   struct ValueScale {
     double low = 0.0, high = 1.0;
@@ -39,9 +39,9 @@ struct RenderSettings {
 };
 
 // Distinct trajectory colours, chosen to stand out from the height colours.
-inline constexpr Rgb kInitialColor{255, 70, 200};     // magenta
-inline constexpr Rgb kOptimizedColor{245, 245, 245};  // white
-inline constexpr Rgb kGroundTruthColor{40, 255, 140}; // green
+inline constexpr Rgb kInitialColor{255, 70, 200};      // magenta
+inline constexpr Rgb kOptimizedColor{245, 245, 245};   // white
+inline constexpr Rgb kGroundTruthColor{40, 255, 140};  // green
 
 struct TrajectoryLayer {
   std::string label;
@@ -61,7 +61,7 @@ struct MapPanel {
 struct TopViewTransform {
   double origin_x = 0, origin_y = 0;  // world point at the view's top-left corner
   double pixels_per_meter = 1;
-  int left = 0, top = 0;              // the view's top-left pixel in the picture
+  int left = 0, top = 0;  // the view's top-left pixel in the picture
   Eigen::Vector2d toPixel(double x, double y) const {
     return {left + (x - origin_x) * pixels_per_meter, top + (origin_y - y) * pixels_per_meter};
   }

@@ -35,16 +35,14 @@ class Bvh {
     std::uint32_t count = 0;  // primitives in a leaf; 0 for an inner node
     std::uint8_t axis = 0;    // split axis of an inner node, to visit the near child first
   };
-  void split(std::uint32_t node_index, const std::vector<Aabb>& bounds,
-             const std::vector<Vec3>& centers);
+  void split(std::uint32_t node_index, const std::vector<Aabb>& bounds, const std::vector<Vec3>& centers);
 
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> order_;  // primitive indices, grouped by leaf
 };
 
 template <class IntersectFn>
-std::optional<BvhHit> Bvh::closestHit(const Ray& ray, double t_max,
-                                      IntersectFn&& intersect) const {
+std::optional<BvhHit> Bvh::closestHit(const Ray& ray, double t_max, IntersectFn&& intersect) const {
   std::optional<BvhHit> best;
   if (nodes_.empty()) return best;
   const Vec3 inverse_direction = ray.direction.cwiseInverse();

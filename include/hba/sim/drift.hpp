@@ -37,7 +37,6 @@ struct DriftConfig {
 // Throws hba::Error for negative rates or sigmas.
 void validate(const DriftConfig& config);
 // Deterministic for a seed. The first pose is kept exact (it fixes the frame).
-std::vector<Pose> applyDrift(const std::vector<Pose>& truth, const DriftConfig& config,
-                             std::uint64_t seed);
+std::vector<Pose> applyDrift(const std::vector<Pose>& truth, const DriftConfig& config, std::uint64_t seed);
 
 }  // namespace hba::sim

@@ -23,7 +23,6 @@ namespace hba::sim {
 // forward-looking solid-state sensor with a non-repetitive rosette.
 enum class SensorModel { Vlp16, Hdl32, Hdl64, Os128, Livox };
 
-
 struct SensorConfig {
   SensorModel model = SensorModel::Vlp16;
   // Spinning sensors.
@@ -35,8 +34,8 @@ struct SensorConfig {
   int points_per_frame = 24000;
   double field_of_view_deg = 70.4;  // full cone angle
   // Both.
-  double min_range = 0.5;   // m
-  double max_range = 100.0; // m
+  double min_range = 0.5;     // m
+  double max_range = 100.0;   // m
   double range_noise = 0.02;  // m, standard deviation
   double dropout = 0.02;      // probability that a return is lost
 
@@ -62,12 +61,11 @@ struct Return {
 
 // Scans frame `frame` from `sensor_pose` (sensor to world). Deterministic in
 // (seed, frame): the noise comes from a generator of that frame alone.
-std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose,
-                                const SensorConfig& config, std::uint64_t seed,
-                                std::size_t frame);
+std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose, const SensorConfig& config,
+                                std::uint64_t seed, std::size_t frame);
 // The same scan as a float cloud with intensity.
-PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig& config,
-                std::uint64_t seed, std::size_t frame);
+PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig& config, std::uint64_t seed,
+                std::size_t frame);
 
 }  // namespace hba::sim
 
@@ -75,6 +73,10 @@ namespace hba {
 template <>
 struct EnumNames<sim::SensorModel> {
   static constexpr const char* what = "sensor";
-  static constexpr EnumName<sim::SensorModel> names[] = {{sim::SensorModel::Vlp16, "vlp16"}, {sim::SensorModel::Hdl32, "hdl32"}, {sim::SensorModel::Hdl64, "hdl64"}, {sim::SensorModel::Os128, "os128"}, {sim::SensorModel::Livox, "livox"}};
+  static constexpr EnumName<sim::SensorModel> names[] = {{sim::SensorModel::Vlp16, "vlp16"},
+                                                         {sim::SensorModel::Hdl32, "hdl32"},
+                                                         {sim::SensorModel::Hdl64, "hdl64"},
+                                                         {sim::SensorModel::Os128, "os128"},
+                                                         {sim::SensorModel::Livox, "livox"}};
 };
 }  // namespace hba

@@ -39,8 +39,8 @@ struct SimulationConfig {
 struct Simulation {
   SimulationConfig config;
   Terrain terrain{0, 0.0};
-  Trajectory truth;          // sensor poses, with stamps
-  std::vector<Pose> initial; // drifted (or loop-closed noisy) poses
+  Trajectory truth;           // sensor poses, with stamps
+  std::vector<Pose> initial;  // drifted (or loop-closed noisy) poses
   World world;
 };
 

@@ -21,7 +21,6 @@ namespace hba::sim {
 // driven (within limits), so a sequence ends by revisiting where it started.
 enum class PathShape { Block, Figure8, Street };
 
-
 struct TrajectoryConfig {
   PathShape shape = PathShape::Block;
   // If set, follow this trajectory file (KITTI/TUM/HBA, via io::readPoses)
@@ -58,6 +57,8 @@ namespace hba {
 template <>
 struct EnumNames<sim::PathShape> {
   static constexpr const char* what = "path shape";
-  static constexpr EnumName<sim::PathShape> names[] = {{sim::PathShape::Block, "block"}, {sim::PathShape::Figure8, "figure8"}, {sim::PathShape::Street, "street"}};
+  static constexpr EnumName<sim::PathShape> names[] = {{sim::PathShape::Block, "block"},
+                                                       {sim::PathShape::Figure8, "figure8"},
+                                                       {sim::PathShape::Street, "street"}};
 };
 }  // namespace hba

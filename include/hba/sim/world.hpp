@@ -43,12 +43,12 @@ class World {
 // What the procedural world contains. Densities are per 10 000 m^2 of the
 // area around the path (within `populated_distance` of it).
 struct WorldConfig {
-  double max_slope = 0.03;          // terrain grade
-  double ground_cell = 2.0;         // m, ground mesh resolution
-  double margin = 60.0;             // m of ground beyond the path's bounding box
-  double road_half_width = 3.5;     // kerbs stand here, left and right of the path
-  double corridor = 5.0;            // m kept free of buildings and walls around the path
-  double populated_distance = 40.0; // objects are placed at most this far from the path
+  double max_slope = 0.03;           // terrain grade
+  double ground_cell = 2.0;          // m, ground mesh resolution
+  double margin = 60.0;              // m of ground beyond the path's bounding box
+  double road_half_width = 3.5;      // kerbs stand here, left and right of the path
+  double corridor = 5.0;             // m kept free of buildings and walls around the path
+  double populated_distance = 40.0;  // objects are placed at most this far from the path
   double buildings = 30.0;
   double walls = 12.0;
   double poles = 25.0;
@@ -82,6 +82,9 @@ namespace hba {
 template <>
 struct EnumNames<sim::Scene> {
   static constexpr const char* what = "scene";
-  static constexpr EnumName<sim::Scene> names[] = {{sim::Scene::Mixed, "mixed"}, {sim::Scene::City, "city"}, {sim::Scene::Open, "open"}, {sim::Scene::Indoor, "indoor"}};
+  static constexpr EnumName<sim::Scene> names[] = {{sim::Scene::Mixed, "mixed"},
+                                                   {sim::Scene::City, "city"},
+                                                   {sim::Scene::Open, "open"},
+                                                   {sim::Scene::Indoor, "indoor"}};
 };
 }  // namespace hba

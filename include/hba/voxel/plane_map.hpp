@@ -22,7 +22,7 @@ struct PlaneSettings {
   // lambda_min / lambda_mid >= line_ratio is a line (its normal can spin about
   // it) and is not used as a plane.
   double line_ratio = 0.25;
-  int min_frames = 2;         // a plane seen by fewer frames constrains nothing
+  int min_frames = 2;  // a plane seen by fewer frames constrains nothing
 };
 
 // One point of one scan: scans[frame].points[index].
@@ -44,7 +44,6 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings);
 // index order) and does not depend on hashing or on the thread count.
 // Throws hba::Error if the sizes differ, a scan is null, or settings are invalid.
 std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
-                                        const std::vector<Pose>& poses,
-                                        const PlaneSettings& settings);
+                                        const std::vector<Pose>& poses, const PlaneSettings& settings);
 
 }  // namespace hba::voxel

@@ -33,9 +33,7 @@ struct VoxelKey {
 
   bool operator==(const VoxelKey& o) const { return x == o.x && y == o.y && z == o.z; }
   // Lexicographic, used to visit cells in an order independent of hashing.
-  bool operator<(const VoxelKey& o) const {
-    return std::tie(x, y, z) < std::tie(o.x, o.y, o.z);
-  }
+  bool operator<(const VoxelKey& o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
 };
 
 struct VoxelKeyHash {
