@@ -170,8 +170,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     }
   }
   const auto graph_start = Clock::now();
-  graph::PoseGraphSettings graph_settings;
-  graph_settings.max_iterations = settings.graph_max_iterations;
+  graph::PoseGraphSettings graph_settings = settings.graph;
   graph_settings.threads = settings.threads;  // resolved by runHierarchicalBa
   graph::PoseGraphResult solved = graph::optimizePoseGraph(assigned, factors, graph_settings);
   iteration_report.factors = factors.size();

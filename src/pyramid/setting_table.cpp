@@ -205,7 +205,7 @@ std::vector<Setting> makeTable() {
   t.push_back(prior);
   t.push_back(integer(
       "graph_max_iterations", "", 100, atLeast(1),
-      [](HbaSettings& h) -> int& { return h.graph_max_iterations; },
+      [](HbaSettings& h) -> int& { return h.graph.max_iterations; },
       "Levenberg-Marquardt iterations of the pose graph at most"));
   t.push_back(onOff(
       "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },

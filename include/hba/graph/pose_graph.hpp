@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/core/types.hpp"
 #include "hba/graph/factor_graph.hpp"
@@ -70,3 +71,13 @@ double factorGraphCost(const std::vector<Pose>& poses, const FactorGraph& factor
 double poseGraphCost(const std::vector<Pose>& poses, const std::vector<RelativePoseFactor>& factors);
 
 }  // namespace hba::graph
+
+namespace hba {
+template <>
+struct EnumNames<graph::RobustLoss> {
+  static constexpr const char* what = "robust loss";
+  static constexpr EnumName<graph::RobustLoss> names[] = {{graph::RobustLoss::None, "none"},
+                                                          {graph::RobustLoss::Huber, "huber"},
+                                                          {graph::RobustLoss::Cauchy, "cauchy"}};
+};
+}  // namespace hba

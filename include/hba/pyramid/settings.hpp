@@ -7,6 +7,7 @@
 #include "hba/ba/window_ba.hpp"
 #include "hba/core/enum_names.hpp"
 #include "hba/graph/information.hpp"
+#include "hba/graph/pose_graph.hpp"
 #include "hba/graph/window_factors.hpp"
 #include "hba/pyramid/window_plan.hpp"  // maxLayerCount
 
@@ -56,7 +57,8 @@ struct HbaSettings {
   graph::InformationSettings information;
   TopDownMode top_down{};
   FactorPairs factor_pairs{};
-  int graph_max_iterations{};
+  // The top-down pose graph's solver (its threads come from `threads`).
+  graph::PoseGraphSettings graph;
 
   // The last stage: one sparse plane BA over every layer-1 frame at the
   // finest voxel, from the hierarchy's poses (docs/pyramid.md).
