@@ -207,6 +207,11 @@ std::vector<Setting> makeTable() {
       "graph_max_iterations", "", 100, atLeast(1),
       [](HbaSettings& h) -> int& { return h.graph.max_iterations; },
       "Levenberg-Marquardt iterations of the pose graph at most"));
+  t.push_back(choice<graph::RobustLoss>(
+      "graph_robust_loss", "--graph-robust-loss", graph::RobustLoss::None,
+      [](HbaSettings& h) -> graph::RobustLoss& { return h.graph.robust_loss; },
+      "robust loss on the pose graph's window factors (a window that went wrong "
+      "pulls less)"));
   t.push_back(onOff(
       "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
       "the final sparse BA over every scan"));
