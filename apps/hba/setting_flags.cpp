@@ -37,25 +37,27 @@ void SettingFlags::addTo(CLI::App* command) {
     std::optional<SettingValue>& slot = given_[i];
     const Setting& typed = pyramid::valueSetting(setting);
     const std::string help = describe(setting);
+    std::string names = setting.flag;
+    for (const std::string& old : setting.old_flags) names += "," + old;
     CLI::Option* option = nullptr;
     switch (typed.type) {
       case SettingType::Switch:
         // A switch's flag turns it off (--no-refine).
         group->add_flag_callback(
-            setting.flag, [&slot] { slot = false; }, help);
+            names, [&slot] { slot = false; }, help);
         continue;
       case SettingType::Integer:
       case SettingType::Count:
         option = group->add_option_function<long long>(
-            setting.flag, [&slot](const long long& v) { slot = v; }, help);
+            names, [&slot](const long long& v) { slot = v; }, help);
         break;
       case SettingType::Real:
         option = group->add_option_function<double>(
-            setting.flag, [&slot](const double& v) { slot = v; }, help);
+            names, [&slot](const double& v) { slot = v; }, help);
         break;
       case SettingType::Choice:
         option = group->add_option_function<std::string>(
-            setting.flag, [&slot](const std::string& v) { slot = normalizedEnumName(v); }, help);
+            names, [&slot](const std::string& v) { slot = normalizedEnumName(v); }, help);
         option->check(CLI::IsMember(typed.choices, normalizedEnumName));
         break;
     }

@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
   double voxel = 0.1;
   int threads = 0;
   app.add_option("DIR", dir, "Dataset folder (any layout hba reads)")->required();
-  app.add_option("--voxel", voxel, "Downsampling voxel (m), as optimize's --scan-voxel")
+  app.add_option("--voxel", voxel, "Downsampling voxel (m), as optimize's --downsample-scans")
       ->capture_default_str();
   app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);

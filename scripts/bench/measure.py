@@ -3,7 +3,7 @@ import datetime
 import os
 import shutil
 
-SCAN_VOXEL_M = 0.1  # optimize's default --scan-voxel: the floor reads what optimize reads
+SCAN_VOXEL_M = 0.1  # optimize's default --downsample-scans: the floor reads what optimize reads
 # The merged map's entropy grows costly with the sequence; above this many
 # frames it is skipped and the report says so.
 MME_MAX_FRAMES = 5000

@@ -28,12 +28,12 @@ std::vector<std::size_t> partnersOf(std::size_t from, std::size_t count, FactorP
   return partners;
 }
 
-void checkNodes(const std::vector<std::size_t>& layer1_indices, std::size_t count) {
-  if (layer1_indices.size() != count) {
-    throw Error("window factors: " + std::to_string(layer1_indices.size()) +
-                " layer-1 indices for a window of " + std::to_string(count) + " poses");
+void checkNodes(const std::vector<std::size_t>& nodes, std::size_t count) {
+  if (nodes.size() != count) {
+    throw Error("window factors: " + std::to_string(nodes.size()) + " nodes for a window of " +
+                std::to_string(count) + " poses");
   }
-  std::vector<std::size_t> sorted = layer1_indices;
+  std::vector<std::size_t> sorted = nodes;
   std::sort(sorted.begin(), sorted.end());
   if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
     throw Error("window factors: two window frames map to the same layer-1 node");
@@ -44,19 +44,19 @@ void checkNodes(const std::vector<std::size_t>& layer1_indices, std::size_t coun
 
 std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<Pose>& optimized_window_poses,
-                                              const std::vector<std::size_t>& layer1_indices,
-                                              FactorPairs pairs, const InformationSettings& settings) {
+                                              const std::vector<std::size_t>& nodes, FactorPairs pairs,
+                                              const InformationSettings& settings) {
   const std::vector<Pose>& poses = optimized_window_poses;
   validateWindowHessian(hessian, poses, settings);
-  checkNodes(layer1_indices, poses.size());
+  checkNodes(nodes, poses.size());
 
   const auto covariance = anchoredCovariance(hessian, kGaugeFrame, settings);
   std::vector<RelativePoseFactor> factors;
   for (std::size_t from = 0; from < poses.size(); ++from) {
     for (const std::size_t to : partnersOf(from, poses.size(), pairs)) {
       RelativePoseFactor factor;
-      factor.from = layer1_indices[from];
-      factor.to = layer1_indices[to];
+      factor.from = nodes[from];
+      factor.to = nodes[to];
       factor.measurement = relative(poses[from], poses[to]);
       factor.information =
           relativeInformationFromAnchored(covariance, poses, kGaugeFrame, from, to, settings);

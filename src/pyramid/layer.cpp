@@ -5,8 +5,8 @@ namespace hba::pyramid {
 Layer scanLayer(const std::vector<Pose>& poses) {
   Layer layer;
   layer.poses = poses;
-  layer.anchors.resize(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) layer.anchors[i] = i;
+  layer.nodes.resize(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) layer.nodes[i] = i;
   layer.distance_m.assign(poses.size(), 0.0);
   for (std::size_t i = 1; i < poses.size(); ++i) {
     layer.distance_m[i] = layer.distance_m[i - 1] + (poses[i].t - poses[i - 1].t).norm();

@@ -16,8 +16,8 @@ namespace hba::pyramid {
 // The frames of one layer. Every layer streams its clouds: layer 1 from the
 // input scans, upper layers from their keyframe store on disk.
 struct Layer {
-  std::vector<std::size_t> anchors;  // layer-1 index of each frame
-  std::vector<Pose> poses;           // current world poses of the frames
+  std::vector<std::size_t> nodes;  // pose-graph node of each frame: the layer-1 scan it starts at
+  std::vector<Pose> poses;         // current world poses of the frames
   // Path length (m) along the layer-1 poses from the first frame to each
   // frame: how far apart two frames are, for the motion prior.
   std::vector<double> distance_m;

@@ -77,8 +77,9 @@ Setting choice(std::string key, std::string flag, E default_value, FieldOf<E> re
   return s;
 }
 
-Setting withAliases(Setting s, std::vector<std::string> aliases) {
+Setting withAliases(Setting s, std::vector<std::string> aliases, std::vector<std::string> old_flags = {}) {
   s.aliases = std::move(aliases);
+  s.old_flags = std::move(old_flags);
   return s;
 }
 
@@ -168,12 +169,17 @@ std::vector<Setting> makeTable() {
           "iterations", "--iterations", 1, atLeast(1),
           [](HbaSettings& h) -> int& { return h.outer_iterations; }, "bottom-up + top-down rounds at most"),
       {"outer_iterations"}));
-  t.push_back(real(
-      "scan_voxel", "--scan-voxel", 0.1, zeroOr("off", 1e-3, 100),
-      [](HbaSettings& h) -> double& { return h.scan_voxel; }, "downsampling of the input scans, m"));
-  t.push_back(real(
-      "keyframe_voxel", "--keyframe-voxel", 0.2, zeroOr("off", 1e-3, 100),
-      [](HbaSettings& h) -> double& { return h.keyframe_voxel; }, "downsampling of keyframes, m"));
+  // Downsampling, named apart from the plane maps' root voxels (--voxel-*).
+  t.push_back(withAliases(real(
+                              "downsample_scans", "--downsample-scans", 0.1, zeroOr("off", 1e-3, 100),
+                              [](HbaSettings& h) -> double& { return h.scan_voxel; },
+                              "voxel the input scans are downsampled to, m"),
+                          {"scan_voxel"}, {"--scan-voxel"}));
+  t.push_back(withAliases(real(
+                              "downsample_keyframes", "--downsample-keyframes", 0.2, zeroOr("off", 1e-3, 100),
+                              [](HbaSettings& h) -> double& { return h.keyframe_voxel; },
+                              "voxel keyframes are downsampled to, m"),
+                          {"keyframe_voxel"}, {"--keyframe-voxel"}));
   t.push_back(real(
       "keyframe_voxel_growth", "", 1.0, between(1, 10),
       [](HbaSettings& h) -> double& { return h.keyframe_voxel_growth; },
@@ -220,7 +226,7 @@ std::vector<Setting> makeTable() {
       [](HbaSettings& h) -> double& { return h.refinement.planes.voxel_size; },
       "the final sparse BA's root voxel, m"));
   t.push_back(real(
-      "refine_scan_voxel", "", 0.2, zeroOr("as scan_voxel", 1e-3, 100),
+      "refine_scan_voxel", "", 0.2, zeroOr("as downsample_scans", 1e-3, 100),
       [](HbaSettings& h) -> double& { return h.refine_scan_voxel; }, "scans held at this density for it, m"));
   t.push_back(count(
       "refine_max_points", "", 20'000'000, atLeast(1000),

@@ -10,11 +10,11 @@ Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
 
   Layer upper;
   const std::size_t n = plan.size();
-  upper.anchors.reserve(n);
+  upper.nodes.reserve(n);
   upper.poses.reserve(n);
   upper.distance_m.reserve(n);
   for (std::size_t j = 0; j < n; ++j) {
-    upper.anchors.push_back(lower.anchors[plan[j].first]);
+    upper.nodes.push_back(lower.nodes[plan[j].first]);
     upper.distance_m.push_back(lower.distance_m[plan[j].first]);
     if (j == 0) {
       upper.poses.push_back(outcome.windows[j].optimized.front());

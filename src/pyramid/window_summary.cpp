@@ -12,10 +12,10 @@ WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba
   out.outcome.window = window;
   out.outcome.optimized = result.poses;
   out.outcome.has_planes = result.num_planes > 0;
-  const auto first = layer.anchors.begin() + static_cast<long>(window.first);
-  const std::vector<std::size_t> anchors(first, first + static_cast<long>(window.count));
-  out.outcome.factors = graph::windowFactors(result.hessian, result.poses, anchors, settings.factor_pairs,
-                                             settings.information);
+  const auto first = layer.nodes.begin() + static_cast<long>(window.first);
+  const std::vector<std::size_t> nodes(first, first + static_cast<long>(window.count));
+  out.outcome.factors =
+      graph::windowFactors(result.hessian, result.poses, nodes, settings.factor_pairs, settings.information);
   out.cost_before = result.initial_cost;
   out.cost_after = result.final_cost;
   out.planes = result.num_planes;

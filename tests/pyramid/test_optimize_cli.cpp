@@ -208,6 +208,15 @@ TEST_F(OptimizeSimulated, ShorthandFlagsYieldToSpecificOnes) {
   EXPECT_EQ(settings.at("refine_groups"), true);  // every setting is in the report
 }
 
+// A renamed flag still reads under its earlier name.
+TEST_F(OptimizeSimulated, EarlierFlagNamesStillRead) {
+  const test::CommandResult printed =
+      test::runCommand(hba() + " optimize --print-config --scan-voxel 0.15 --downsample-keyframes 0.3");
+  ASSERT_EQ(printed.exit_code, 0) << printed.output;
+  EXPECT_NE(printed.output.find("downsample_scans: 0.15"), std::string::npos) << printed.output;
+  EXPECT_NE(printed.output.find("downsample_keyframes: 0.3"), std::string::npos) << printed.output;
+}
+
 }  // namespace
 }  // namespace hba
 

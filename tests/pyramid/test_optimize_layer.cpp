@@ -125,7 +125,7 @@ TEST(OptimizeLayer, OneWindowBatchesGiveTheSameAsOneBatch) {
 TEST(OptimizeLayer, TheUpperLayerFollowsTheUnevenPlan) {
   const Layer lower = scanLayer(drive().initial);
   const Layer upper = buildUpperLayer(lower, unevenRun().outcome, nullptr);
-  EXPECT_EQ(upper.anchors, (std::vector<std::size_t>{0, 5, 10, 14}));
+  EXPECT_EQ(upper.nodes, (std::vector<std::size_t>{0, 5, 10, 14}));
   ASSERT_EQ(upper.poses.size(), 4u);
   const auto& w2 = unevenRun().outcome.windows[2].optimized;
   // Window 3 starts 4 frames into window 2.

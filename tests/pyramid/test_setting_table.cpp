@@ -64,6 +64,7 @@ TEST(SettingTable, NamesAreUnique) {
     if (!s.flag.empty()) {
       EXPECT_TRUE(flags.insert(s.flag).second) << s.flag;
     }
+    for (const std::string& old : s.old_flags) EXPECT_TRUE(flags.insert(old).second) << old;
     EXPECT_FALSE(s.help.empty()) << s.key;
     if (s.type == SettingType::Switch && !s.flag.empty()) {
       EXPECT_EQ(s.flag.rfind("--no-", 0), 0u) << s.flag;

@@ -13,7 +13,7 @@ using test::expectNear;
 Layer lowerLayer(std::size_t frames) {
   Layer lower;
   for (std::size_t i = 0; i < frames; ++i) {
-    lower.anchors.push_back(10 * i);  // as if the lower layer were layer 2
+    lower.nodes.push_back(10 * i);  // as if the lower layer were layer 2
     lower.distance_m.push_back(1.5 * static_cast<double>(i));
     lower.poses.push_back(test::poseAt(static_cast<double>(i), 0.0, 0.0));
   }
@@ -23,7 +23,7 @@ Layer lowerLayer(std::size_t frames) {
 TEST(UpperLayer, KeyframesAreAnchoredAtTheirWindowsFirstFrames) {
   const LayerOutcome outcome = test::handMadeLayerOutcome(test::unevenPlan());
   const Layer upper = buildUpperLayer(lowerLayer(14), outcome, nullptr);
-  EXPECT_EQ(upper.anchors, (std::vector<std::size_t>{0, 30, 70}));
+  EXPECT_EQ(upper.nodes, (std::vector<std::size_t>{0, 30, 70}));
   EXPECT_EQ(upper.distance_m, (std::vector<double>{0.0, 4.5, 10.5}));
   EXPECT_EQ(upper.keyframes.get(), nullptr);
 }

@@ -47,7 +47,7 @@ TEST(WindowRun, StartsFromTheWindowsFramesAndHoldsTheFirst) {
 
 TEST(WindowSummary, FactorsJoinTheLayerOneFramesTheWindowAnchors) {
   Layer layer = scanLayer(drive().initial);
-  for (std::size_t i = 0; i < layer.anchors.size(); ++i) layer.anchors[i] = 3 * i;
+  for (std::size_t i = 0; i < layer.nodes.size(); ++i) layer.nodes[i] = 3 * i;
   const Window window{5, 7};
   const ba::BaResult result = runWindowBa(layer, window, cloudsOf(window), HbaSettings().localBa());
   const WindowSummary summary = summarizeWindow(layer, window, result, HbaSettings());

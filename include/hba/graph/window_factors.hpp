@@ -22,16 +22,16 @@ enum class FactorPairs {
 };
 
 // `hessian` (6K x 6K) and `optimized_window_poses` (K) come from one BA window
-// (hba::ba::BaResult); `layer1_indices[k]` is the layer-1 node of window frame
-// k (frame j of layer i is node j * s^(i-1)). Each factor's measurement is
+// (hba::ba::BaResult); `nodes[k]` is the pose-graph node of window frame k
+// (the layer-1 scan a keyframe's window starts at). Each factor's measurement is
 // relative(poses[i], poses[j]) for a window pair (i, j), mapped to nodes
-// (layer1_indices[i], layer1_indices[j]). All pairs share one inversion of
+// (nodes[i], nodes[j]). All pairs share one inversion of
 // the window's Hessian. Throws hba::Error when the sizes disagree, two
 // frames map to the same node, or the Hessian is invalid.
 std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<Pose>& optimized_window_poses,
-                                              const std::vector<std::size_t>& layer1_indices,
-                                              FactorPairs pairs, const InformationSettings& settings = {});
+                                              const std::vector<std::size_t>& nodes, FactorPairs pairs,
+                                              const InformationSettings& settings = {});
 
 }  // namespace hba::graph
 

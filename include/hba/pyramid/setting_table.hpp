@@ -43,6 +43,8 @@ struct Setting {
   std::vector<std::string> aliases;
   // "--window"; a Switch's flag is "--no-x" and turns it off; "" = YAML only.
   std::string flag;
+  // Earlier names of the flag, still accepted.
+  std::vector<std::string> old_flags;
   std::string help;  // one line, with the unit
   SettingType type = SettingType::Real;
   SettingRange range;

@@ -1,6 +1,6 @@
 #pragma once
 // Which frames of a layer each local window covers. Everything after the
-// plan (keyframe poses and anchors, direct assignment, the next layer's
+// plan (keyframe poses and nodes, direct assignment, the next layer's
 // size) reads the windows' own first frame and count, never a stride, so a
 // plan with uneven windows works unchanged.
 #include <cstddef>
