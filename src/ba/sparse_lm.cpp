@@ -319,9 +319,8 @@ Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd&
 }  // namespace
 
 // The exact Hessian's blocks can be indefinite far from the optimum:
-// inverting their clamped diagonal instead gave preconditioned steps of
-// 1e13 m that only the step cap stopped, and left the result to rounding
-// (BENCHMARKS.md, session 7).
+// inverting their clamped diagonal instead gave huge preconditioned steps
+// that only the step cap stopped, and left the result to rounding.
 Mat6 positiveInverse(const Mat6& block) {
   const Eigen::LDLT<Mat6> ldlt(block);
   if (ldlt.info() == Eigen::Success && ldlt.isPositive()) {

@@ -120,7 +120,7 @@ std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<
 }
 
 // Each block's fixed map, kept on disk for the re-measured self-check (44
-// bytes a plane cluster: 200 MB for 1000 HDL-32 frames), so that the groups'
+// bytes a plane cluster, hundreds of MB on long sequences), so that the groups'
 // result is measured without reading and voxelizing every block again, and
 // without holding the maps in memory while later blocks are refined. The
 // folder (a KeyframeStore of no keyframes: a private temporary folder,
@@ -290,8 +290,8 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     c.region_input_rms.push_back(region.input_rms);
     c.region_final_rms.push_back(region.final_rms);
     // The input's own planes favour the input a little where a loop
-    // closure pulls frames towards earlier scans (hku1's return: +5 %
-    // here while the map's entropy drops): warn only beyond that.
+    // closure pulls frames towards earlier scans (the region's RMS rises a
+    // little while the map's entropy drops): warn only beyond that.
     if (region.final_rms > region.input_rms * 1.10) {
       warn(report, fmt::format("frames from {}: less consistent than the input (plane RMS "
                                "{:.4f} -> {:.4f} m)",

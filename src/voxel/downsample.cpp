@@ -28,7 +28,7 @@ struct CellSum {
 PointCloud downsample(const PointCloud& cloud, double voxel_size) {
   if (!(voxel_size > 0.0)) return cloud;
   // A scan at scan voxels has about a cell a point: a table sized for that
-  // never regrows (27 % faster on a raw HDL-32 scan). Clouds of millions
+  // never regrows. Clouds of millions
   // start smaller, so that a coarse voxel does not cost a huge table.
   const std::size_t points_per_cell = cloud.size() <= (std::size_t{1} << 20) ? 1 : 4;
   const CellAssignment cells = assignCells(cloud.points, voxel_size, points_per_cell);

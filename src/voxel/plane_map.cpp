@@ -196,8 +196,8 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
 
   // Root voxels, their ids ascending (counting sort by cell).
   // Plane voxels (metres) gather dozens to thousands of points each: a
-  // table sized for one cell in four points would be mostly empty (268 MB
-  // for a 20 M-point refinement block).
+  // table sized for one cell in four points would be mostly empty (hundreds
+  // of MB for a refinement block).
   constexpr std::size_t kPointsPerPlaneVoxel = 64;
   const CellAssignment cells = assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
   CellMembers members = membersOf(cells);

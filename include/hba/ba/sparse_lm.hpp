@@ -22,8 +22,8 @@ struct SparseLmSettings {
   double relative_cost_tolerance = 1e-5;  // stop when a step gains less than this share
   double initial_damping = 1e-4;          // mu, relative to the Hessian diagonal
   // Inexact steps: the hierarchy has already removed the long-range error,
-  // so loose steps suffice (nclt: 1e-2/50 gave the same map as 1e-4/200 in
-  // a third of the time).
+  // so loose steps suffice (docs/ba.md: tighter ones gave the same maps, in
+  // more time).
   int cg_max_iterations = 50;           // per LM step
   double cg_relative_tolerance = 1e-2;  // residual norm, relative to the first
   // A step that moves any frame further than this is scaled down to it:
