@@ -6,15 +6,21 @@ function(hba_add_module name)
   set(target hba_${name})
   if(ARG_SOURCES)
     add_library(${target} STATIC ${ARG_SOURCES})
-    target_include_directories(${target} PUBLIC ${PROJECT_SOURCE_DIR}/include)
-    target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE hba_warnings ${ARG_PRIVATE_DEPS})
+    target_include_directories(${target} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>
+                                                $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+    target_link_libraries(${target} PUBLIC ${ARG_DEPS} PRIVATE $<BUILD_INTERFACE:hba_warnings> ${ARG_PRIVATE_DEPS})
     set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   else()
     add_library(${target} INTERFACE)
-    target_include_directories(${target} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_include_directories(${target} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                   $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
     target_link_libraries(${target} INTERFACE ${ARG_DEPS})
   endif()
+  # Installed as hba::<name> (hba_core -> hba::core).
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
   add_library(hba::${name} ALIAS ${target})
+  set_property(GLOBAL APPEND PROPERTY HBA_MODULE_TARGETS ${target})
 endfunction()
 
 # hba_add_test(<name> SOURCES ... DEPS ...)

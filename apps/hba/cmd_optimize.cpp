@@ -29,6 +29,7 @@
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "output_dir.hpp"
 #include "setting_flags.hpp"
+#include "version_text.hpp"
 
 namespace hba::cli {
 namespace {
@@ -145,6 +146,7 @@ void writeReport(const fs::path& out, const pyramid::HbaResult& result, const io
                  const pyramid::HbaSettings& settings, const nlohmann::json& conventions) {
   nlohmann::json report = pyramid::reportToJson(result.report);
   report["convention_check"] = conventions;
+  report["hba"] = {{"version", HBA_VERSION}, {"revision", HBA_REVISION}};
   report["input"] = {
       {"dataset", fs::absolute(dataset.root()).string()},
       {"layout", dataset.layout()},

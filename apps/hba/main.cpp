@@ -14,6 +14,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
+#include "version_text.hpp"
 #include "number_checks.hpp"
 #include "progress_display.hpp"
 #include "usage_errors.hpp"
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
       "hba: turns a drifting LiDAR sequence into a globally consistent map\n"
       "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
   app.name("hba");
-  app.set_version_flag("--version", std::string(HBA_VERSION));
+  app.set_version_flag("--version", hba::cli::versionText());
   app.require_subcommand(1);
   app.fallthrough();
 
