@@ -14,10 +14,10 @@
 #include "hba/core/error.hpp"
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
-#include "version_text.hpp"
 #include "number_checks.hpp"
 #include "progress_display.hpp"
 #include "usage_errors.hpp"
+#include "version_text.hpp"
 
 namespace {
 

@@ -29,7 +29,8 @@ int main() {
   config.drift.translation = 0.03;
   const hba::sim::Simulation simulation = hba::sim::prepareSimulation(config);
   std::vector<hba::PointCloud> scans;
-  for (std::size_t i = 0; i < simulation.initial.size(); ++i) scans.push_back(hba::sim::simulateFrame(simulation, i));
+  for (std::size_t i = 0; i < simulation.initial.size(); ++i)
+    scans.push_back(hba::sim::simulateFrame(simulation, i));
 
   const hba::io::MemoryScanSource source(std::move(scans));
   const hba::pyramid::HbaResult result =
