@@ -35,7 +35,8 @@ py::dict ate(const py::handle& reference, const py::handle& estimate, const std:
   est.poses = posesFromArray(estimate, "estimate");
   const eval::TrajectoryEvaluation r = eval::evaluateTrajectory(ref, est, options);
   py::dict alignment;
-  alignment["rotation"] = py::array_t<double>({3, 3}, {sizeof(double), 3 * sizeof(double)}, r.alignment.R.data());
+  alignment["rotation"] =
+      py::array_t<double>({3, 3}, {sizeof(double), 3 * sizeof(double)}, r.alignment.R.data());
   alignment["translation"] = py::array_t<double>(3, r.alignment.t.data());
   alignment["scale"] = r.alignment.scale;
   py::dict out;
@@ -75,7 +76,8 @@ void bindEval(py::module_& m) {
         "'rotation_deg' statistics (rmse, mean, median, std, min, max, count), 'matched' and "
         "'alignment' (rotation, translation, scale mapping the estimate onto the reference).");
   m.def("mme", &mme, py::arg("scans"), py::arg("poses"), py::arg("voxel") = eval::MapSettings{}.voxel,
-        py::arg("radius") = eval::MmeSettings{}.radius, py::arg("min_neighbors") = eval::MmeSettings{}.min_neighbors,
+        py::arg("radius") = eval::MmeSettings{}.radius,
+        py::arg("min_neighbors") = eval::MmeSettings{}.min_neighbors,
         "Mean map entropy of the scans merged with `poses` and downsampled to `voxel` (m), as "
         "`hba mme`: lower is crisper. scans: a list of (N, 3)/(N, 4) arrays or an hba.Dataset.");
 }

@@ -108,15 +108,18 @@ void bindDataset(py::module_& m) {
       .def("__len__", &io::Dataset::size)
       .def("__getitem__", &loadScan, py::arg("index"))
       .def("scan_path", [](const io::Dataset& d, py::ssize_t i) { return d.scanPath(scanIndex(d, i)); })
-      .def_property_readonly("poses", [](const io::Dataset& d) { return arrayFromPoses(d.trajectory().poses); },
-                             "sensor-to-world poses, (K, 4, 4)")
-      .def_property_readonly("stamps", [](const io::Dataset& d) { return stampsArray(d.trajectory().stamps); },
-                             "times (s) of the poses, or None")
+      .def_property_readonly(
+          "poses", [](const io::Dataset& d) { return arrayFromPoses(d.trajectory().poses); },
+          "sensor-to-world poses, (K, 4, 4)")
+      .def_property_readonly(
+          "stamps", [](const io::Dataset& d) { return stampsArray(d.trajectory().stamps); },
+          "times (s) of the poses, or None")
       .def_property_readonly("layout", &io::Dataset::layout)
       .def_property_readonly("root", &io::Dataset::root)
       .def_property_readonly("scans_dir", &io::Dataset::scansDir)
       .def_property_readonly("poses_file", &io::Dataset::posesFile)
-      .def_property_readonly("pose_format", [](const io::Dataset& d) { return hba::toString(d.poseFormat()); })
+      .def_property_readonly("pose_format",
+                             [](const io::Dataset& d) { return hba::toString(d.poseFormat()); })
       .def_property_readonly("notes",
                              [](const io::Dataset& d) {
                                std::vector<std::string> notes;
@@ -124,8 +127,8 @@ void bindDataset(py::module_& m) {
                                return notes;
                              })
       .def("__repr__", [](const io::Dataset& d) {
-        return "hba.Dataset('" + d.root().string() + "', " + d.layout() + " layout, " + std::to_string(d.size()) +
-               " scans)";
+        return "hba.Dataset('" + d.root().string() + "', " + d.layout() + " layout, " +
+               std::to_string(d.size()) + " scans)";
       });
 }
 
@@ -145,8 +148,8 @@ void bindIo(py::module_& m) {
   bindDataset(m);
   m.def("open_dataset", &openDataset, py::arg("path"), py::kw_only(), py::arg("scans") = py::none(),
         py::arg("poses") = py::none(), py::arg("pose_format") = py::none(), py::arg("times") = py::none(),
-        py::arg("invert_poses") = false, py::arg("extrinsic") = py::none(), py::arg("calibration") = py::none(),
-        py::arg("scans_in_world") = false,
+        py::arg("invert_poses") = false, py::arg("extrinsic") = py::none(),
+        py::arg("calibration") = py::none(), py::arg("scans_in_world") = false,
         "Opens a dataset folder as `hba optimize DIR` does (docs/io_datasets.md); the keywords are "
         "its --scans, --poses, --format, --times, --invert-poses, --extrinsic (4x4), --calib and "
         "--scans-in-world. Reads no scan until asked.");

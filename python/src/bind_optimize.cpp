@@ -59,8 +59,8 @@ void bindOptimize(py::module_& m) {
       .def_readonly("report", &OptimizeResult::report,
                     "the run report (report.json's library part, with 'settings')")
       .def("__repr__", [](const OptimizeResult& r) {
-        return "hba.Result(" + std::to_string(r.poses.shape(0)) + " poses, report keys: " +
-               std::string(py::str(py::list(r.report.attr("keys")()))) + ")";
+        return "hba.Result(" + std::to_string(r.poses.shape(0)) +
+               " poses, report keys: " + std::string(py::str(py::list(r.report.attr("keys")()))) + ")";
       });
   m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), kOptimizeDoc);
   m.def("settings", &settingsDict,

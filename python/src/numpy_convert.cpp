@@ -93,7 +93,8 @@ std::vector<Pose> posesFromArray(const py::handle& poses, const std::string& wha
 
 Pose poseFromMatrix(const py::handle& matrix, const std::string& what) {
   auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(matrix);
-  if (!m || m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4) throw Error(what + ": expected a 4x4 matrix");
+  if (!m || m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4)
+    throw Error(what + ": expected a 4x4 matrix");
   return posesFromArray(m.reshape({1, 4, 4}), what).front();
 }
 
@@ -112,6 +113,10 @@ py::array_t<double> arrayFromPoses(const std::vector<Pose>& poses) {
 std::unique_ptr<io::ScanSource> scanSourceFrom(const py::handle& scans) {
   if (py::isinstance<io::Dataset>(scans)) {
     return std::make_unique<io::DatasetScanSource>(scans.cast<const io::Dataset&>());
+  }
+  if (py::isinstance<py::str>(scans)) {
+    throw Error("scans: '" + scans.cast<std::string>() +
+                "' is a name, not scans; pass hba.open_dataset(name) for a folder");
   }
   if (py::isinstance<py::array>(scans) || !py::isinstance<py::sequence>(scans)) {
     throw Error("scans: expected a list of (N, 3) or (N, 4) arrays, or an hba.Dataset");

@@ -48,6 +48,12 @@ class OptimizeMatchesCli(unittest.TestCase):
         self.assertEqual(result.poses.shape, (20, 4, 4))
         self.assertFalse(result.report["refinement"]["ran"])
 
+    def test_a_folder_name_is_not_scans(self):
+        with self.assertRaisesRegex(hba.Error, "pass hba.open_dataset"):
+            hba.optimize(self.data, self.initial)
+        with self.assertRaisesRegex(hba.Error, r"scans\[1\]: expected an \(N, 3\) or \(N, 4\) array"):
+            hba.optimize([self.scans[0], self.scans[1][:, :2]], self.initial[:2])
+
     def test_pose_count_must_match_scan_count(self):
         with self.assertRaisesRegex(hba.Error, "pose"):
             hba.optimize(self.scans, self.initial[:-1], threads=1)
