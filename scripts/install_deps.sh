@@ -10,6 +10,7 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libstb-dev libnanoflann-dev liblzf-dev
+  pybind11-dev python3-dev python3-numpy
   clang-format
 )
 case "${1:-}" in

@@ -1,0 +1,71 @@
+// hba.optimize: the whole method (runHierarchicalBa) on scans and poses from Python.
+#include <pybind11/numpy.h>
+
+#include "bindings.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/report_json.hpp"
+#include "hba/pyramid/settings_file.hpp"
+#include "json_to_python.hpp"
+#include "numpy_convert.hpp"
+#include "settings_kwargs.hpp"
+
+namespace py = pybind11;
+
+namespace hba::python {
+namespace {
+
+struct OptimizeResult {
+  py::array_t<double> poses;  // (K, 4, 4)
+  py::dict report;            // report.json's library part, settings included
+};
+
+OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::kwargs& kwargs) {
+  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans);
+  const std::vector<Pose> initial = posesFromArray(poses, "poses");
+  pyramid::HbaResult result;
+  {
+    // Python threads run on while hba works; nothing below touches Python.
+    const py::gil_scoped_release release;
+    result = pyramid::runHierarchicalBa(*source, initial, settings);
+  }
+  nlohmann::json report = pyramid::reportToJson(result.report);
+  report["settings"] = pyramid::settingsToJson(settings);
+  return {arrayFromPoses(result.poses), py::dict(toPython(report))};
+}
+
+py::dict settingsDict(const py::kwargs& kwargs) {
+  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  nlohmann::json out = pyramid::settingsToJson(settings);
+  out["threads"] = settings.threads;
+  return py::dict(toPython(out));
+}
+
+const char* const kOptimizeDoc = R"(Optimizes the poses of a sequence, as `hba optimize` does.
+
+scans: a list of (N, 3) or (N, 4) arrays (x y z [intensity], sensor frame),
+       or an hba.Dataset (read from disk as needed).
+poses: (K, 4, 4) sensor-to-world poses, one per scan.
+**settings: the YAML keys of `hba optimize --config` (docs/settings.md):
+       window=10, refine=False, local={"voxel_size": 2.0}; threads=N as -j N.
+Returns an hba.Result: .poses (K, 4, 4) and .report (report.json's dict).
+Raises hba.Error for a bad setting, array or pose count.)";
+
+}  // namespace
+
+void bindOptimize(py::module_& m) {
+  py::class_<OptimizeResult>(m, "Result", "What hba.optimize returns")
+      .def_readonly("poses", &OptimizeResult::poses, "optimized sensor-to-world poses, (K, 4, 4)")
+      .def_readonly("report", &OptimizeResult::report,
+                    "the run report (report.json's library part, with 'settings')")
+      .def("__repr__", [](const OptimizeResult& r) {
+        return "hba.Result(" + std::to_string(r.poses.shape(0)) +
+               " poses, report keys: " + std::string(py::str(py::list(r.report.attr("keys")()))) + ")";
+      });
+  m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), kOptimizeDoc);
+  m.def("settings", &settingsDict,
+        "Every setting hba.optimize would run with for these keywords (defaults for the rest), as "
+        "the dict report['settings'] holds, plus 'threads'; raises hba.Error as hba.optimize does.");
+}
+
+}  // namespace hba::python

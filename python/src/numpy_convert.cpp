@@ -1,0 +1,133 @@
+#include "numpy_convert.hpp"
+
+#include "hba/core/error.hpp"
+#include "hba/io/dataset.hpp"
+
+namespace py = pybind11;
+
+namespace hba::python {
+namespace {
+
+std::string shapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t d = 0; d < array.ndim(); ++d) {
+    text += (d > 0 ? ", " : "") + std::to_string(array.shape(d));
+  }
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+// Tolerant enough for matrices written with 6 to 9 digits (KITTI files),
+// strict enough to refuse a scaled or sheared matrix.
+constexpr double kRigidTolerance = 1e-5;
+
+bool isRigid(const Mat4& m) {
+  const Mat3 r = m.topLeftCorner<3, 3>();
+  const bool orthonormal = (r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() < kRigidTolerance;
+  const bool last_row = m.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1));
+  return orthonormal && r.determinant() > 0 && last_row && m.allFinite();
+}
+
+}  // namespace
+
+PointCloud cloudFromArray(const py::handle& array, const std::string& what) {
+  const auto points = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
+  if (!points) throw Error(what + ": expected a numpy array of points (N, 3) or (N, 4)");
+  if (points.ndim() != 2 || (points.shape(1) != 3 && points.shape(1) != 4)) {
+    throw Error(what + ": expected an (N, 3) or (N, 4) array (x y z [intensity]), got shape " +
+                shapeText(points));
+  }
+  const auto n = static_cast<std::size_t>(points.shape(0));
+  const bool with_intensity = points.shape(1) == 4;
+  const auto view = points.unchecked<2>();
+  PointCloud cloud;
+  cloud.reserve(n, with_intensity);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    const Vec3f p(view(row, 0), view(row, 1), view(row, 2));
+    if (with_intensity) {
+      cloud.add(p, view(row, 3));
+    } else {
+      cloud.add(p);
+    }
+  }
+  return cloud;
+}
+
+py::array_t<float> arrayFromCloud(const PointCloud& cloud) {
+  const py::ssize_t columns = cloud.hasIntensity() ? 4 : 3;
+  py::array_t<float> array({static_cast<py::ssize_t>(cloud.size()), columns});
+  auto view = array.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    // Scans have a zero origin; a map's points are moved back to the world.
+    const Vec3f p = cloud.origin.isZero() ? cloud.points[i] : cloud.world(i).cast<float>();
+    for (py::ssize_t c = 0; c < 3; ++c) view(row, c) = p[c];
+    if (cloud.hasIntensity()) view(row, 3) = cloud.intensity[i];
+  }
+  return array;
+}
+
+std::vector<Pose> posesFromArray(const py::handle& poses, const std::string& what) {
+  const auto matrices = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(poses);
+  if (!matrices) throw Error(what + ": expected a (K, 4, 4) array of poses");
+  if (matrices.ndim() != 3 || matrices.shape(1) != 4 || matrices.shape(2) != 4) {
+    throw Error(what + ": expected a (K, 4, 4) array of sensor-to-world poses, got shape " +
+                shapeText(matrices));
+  }
+  const auto view = matrices.unchecked<3>();
+  std::vector<Pose> out;
+  out.reserve(static_cast<std::size_t>(matrices.shape(0)));
+  for (py::ssize_t k = 0; k < matrices.shape(0); ++k) {
+    Mat4 m;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) m(r, c) = view(k, r, c);
+    }
+    if (!isRigid(m)) {
+      throw Error(what + "[" + std::to_string(k) +
+                  "]: not a rigid transform (rotation not orthonormal, or last row not 0 0 0 1)");
+    }
+    out.push_back(Pose::fromMatrix(m));
+  }
+  return out;
+}
+
+Pose poseFromMatrix(const py::handle& matrix, const std::string& what) {
+  auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(matrix);
+  if (!m || m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4)
+    throw Error(what + ": expected a 4x4 matrix");
+  return posesFromArray(m.reshape({1, 4, 4}), what).front();
+}
+
+py::array_t<double> arrayFromPoses(const std::vector<Pose>& poses) {
+  py::array_t<double> array({static_cast<py::ssize_t>(poses.size()), py::ssize_t{4}, py::ssize_t{4}});
+  auto view = array.mutable_unchecked<3>();
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const Mat4 m = poses[k].matrix();
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) view(static_cast<py::ssize_t>(k), r, c) = m(r, c);
+    }
+  }
+  return array;
+}
+
+std::unique_ptr<io::ScanSource> scanSourceFrom(const py::handle& scans) {
+  if (py::isinstance<io::Dataset>(scans)) {
+    return std::make_unique<io::DatasetScanSource>(scans.cast<const io::Dataset&>());
+  }
+  if (py::isinstance<py::str>(scans)) {
+    throw Error("scans: '" + scans.cast<std::string>() +
+                "' is a name, not scans; pass hba.open_dataset(name) for a folder");
+  }
+  if (py::isinstance<py::array>(scans) || !py::isinstance<py::sequence>(scans)) {
+    throw Error("scans: expected a list of (N, 3) or (N, 4) arrays, or an hba.Dataset");
+  }
+  std::vector<PointCloud> clouds;
+  const auto sequence = py::reinterpret_borrow<py::sequence>(scans);
+  clouds.reserve(sequence.size());
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    clouds.push_back(cloudFromArray(sequence[i], "scans[" + std::to_string(i) + "]"));
+  }
+  return std::make_unique<io::MemoryScanSource>(std::move(clouds));
+}
+
+}  // namespace hba::python

@@ -1,0 +1,36 @@
+#pragma once
+// Scans and poses between numpy arrays and hba's types. Every conversion
+// checks shapes and throws hba::Error naming the argument (`what`), so a
+// Python user sees which array is wrong.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/io/scan_source.hpp"
+
+namespace hba::python {
+
+// An (N, 3) array (x y z) or (N, 4) array (x y z intensity), any real dtype.
+PointCloud cloudFromArray(const pybind11::handle& array, const std::string& what);
+// (N, 4) float32 with intensity, (N, 3) without.
+pybind11::array_t<float> arrayFromCloud(const PointCloud& cloud);
+
+// A (K, 4, 4) array, or anything numpy turns into one (a list of 4x4);
+// every matrix must be a rigid transform.
+std::vector<Pose> posesFromArray(const pybind11::handle& poses, const std::string& what);
+pybind11::array_t<double> arrayFromPoses(const std::vector<Pose>& poses);
+
+// One 4x4 rigid transform.
+Pose poseFromMatrix(const pybind11::handle& matrix, const std::string& what);
+
+// Where hba reads the scans of `scans` from: an hba.Dataset is read from
+// disk as needed (it must outlive the source: the caller's argument keeps it
+// alive); a sequence of arrays is copied into memory. Needs the GIL.
+std::unique_ptr<io::ScanSource> scanSourceFrom(const pybind11::handle& scans);
+
+}  // namespace hba::python

@@ -1,0 +1,69 @@
+"""hba.ate and hba.mme: zero for the truth, worse for drifted poses."""
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+import hba
+from support import main, scan_paths, simulate
+
+
+def moved(poses, rotation_angle, translation):
+    """The whole trajectory in another world frame."""
+    c, s = np.cos(rotation_angle), np.sin(rotation_angle)
+    frame = np.eye(4)
+    frame[:3, :3] = [[c, -s, 0], [s, c, 0], [0, 0, 1]]
+    frame[:3, 3] = translation
+    return frame @ poses
+
+
+class Evaluation(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        data = simulate(cls.tmp.name, frames=30, seed=5)
+        cls.gt = hba.read_poses(os.path.join(data, "gt.txt"))
+        cls.drifted = hba.read_poses(os.path.join(data, "pose.json"))
+        cls.scans = [hba.read_scan(path) for path in scan_paths(data)]
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_ate_of_the_truth_is_zero(self):
+        ate = hba.ate(self.gt, self.gt)
+        self.assertEqual(ate["matched"], len(self.gt))
+        self.assertLess(ate["translation_m"]["rmse"], 1e-12)
+        self.assertLess(ate["rotation_deg"]["max"], 1e-6)
+
+    def test_alignment_removes_a_change_of_world_frame(self):
+        other_frame = moved(self.gt, 0.7, [10.0, -3.0, 2.0])
+        self.assertLess(hba.ate(self.gt, other_frame, align="se3")["translation_m"]["rmse"], 1e-9)
+        self.assertGreater(hba.ate(self.gt, other_frame, align="none")["translation_m"]["rmse"], 1.0)
+        aligned = hba.ate(self.gt, other_frame)["alignment"]
+        self.assertEqual(aligned["rotation"].shape, (3, 3))
+        self.assertAlmostEqual(aligned["scale"], 1.0)
+
+    def test_drifted_poses_have_a_larger_ate(self):
+        drift = hba.ate(self.gt, self.drifted)["translation_m"]
+        self.assertGreater(drift["rmse"], 1e-3)
+        self.assertGreaterEqual(drift["max"], drift["rmse"])
+
+    def test_unknown_alignment_says_did_you_mean(self):
+        with self.assertRaisesRegex(hba.Error, "did you mean 'sim3'"):
+            hba.ate(self.gt, self.gt, align="sim3x")
+
+    def test_truth_makes_the_crisper_map(self):
+        truth = hba.mme(self.scans, self.gt)
+        drifted = hba.mme(self.scans, self.drifted)
+        self.assertTrue(np.isfinite(truth))
+        self.assertLess(truth, drifted)
+
+    def test_mme_needs_a_pose_per_scan(self):
+        with self.assertRaises(hba.Error):
+            hba.mme(self.scans, self.gt[:-1])
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,72 @@
+"""hba.optimize's keywords are the YAML settings, read and checked as `hba optimize --config` reads them."""
+import unittest
+
+import numpy as np
+
+import hba
+from support import main
+
+NO_SCANS = ([], np.zeros((0, 4, 4)))
+
+
+class SettingsKwargs(unittest.TestCase):
+    def test_defaults_without_keywords(self):
+        settings = hba.settings()
+        self.assertEqual(settings["threads"], 0)
+        self.assertIn("window", settings)
+        self.assertIsInstance(settings["local"], dict)
+
+    def test_keywords_reach_the_settings(self):
+        settings = hba.settings(window=12, stride=4, refine=False, scan_voxel=0.25,
+                                local={"voxel_size": 2.5}, threads=2)
+        self.assertEqual(settings["window"], 12)
+        self.assertEqual(settings["stride"], 4)
+        self.assertIs(settings["refine"], False)
+        self.assertEqual(settings["downsample_scans"], 0.25)  # scan_voxel is its other name
+        self.assertEqual(settings["local"]["voxel_size"], 2.5)
+        self.assertEqual(settings["global"]["voxel_size"], hba.settings()["global"]["voxel_size"])
+        self.assertEqual(settings["threads"], 2)
+
+    def test_numpy_numbers_are_numbers(self):
+        settings = hba.settings(window=np.int64(12), scan_voxel=np.float32(0.5))
+        self.assertEqual(settings["window"], 12)
+        self.assertEqual(settings["downsample_scans"], 0.5)
+
+    def test_unknown_name_says_did_you_mean(self):
+        with self.assertRaisesRegex(hba.Error, r"unknown setting 'windw' \(did you mean 'window'\?\)"):
+            hba.optimize(*NO_SCANS, windw=10)
+
+    def test_unknown_name_in_a_section_says_did_you_mean(self):
+        with self.assertRaisesRegex(hba.Error, r"'local.voxel_sise' \(did you mean 'voxel_size'\?\)"):
+            hba.settings(local={"voxel_sise": 2.0})
+
+    def test_errors_are_value_errors(self):
+        with self.assertRaises(ValueError):
+            hba.settings(windw=10)
+
+    def test_out_of_range_value_is_refused(self):
+        with self.assertRaisesRegex(hba.Error, "window must be"):
+            hba.optimize(*NO_SCANS, window=1)
+        with self.assertRaisesRegex(hba.Error, "scan"):
+            hba.settings(scan_voxel=-1.0)
+
+    def test_stride_must_stay_below_window(self):
+        with self.assertRaisesRegex(hba.Error, "stride must be below window"):
+            hba.settings(window=5, stride=5)
+
+    def test_wrong_types_are_refused(self):
+        with self.assertRaisesRegex(hba.Error, "'window' has a value of the wrong type"):
+            hba.settings(window=10.5)
+        with self.assertRaisesRegex(hba.Error, "'window' has a value of type list"):
+            hba.settings(window=[10])
+        with self.assertRaisesRegex(hba.Error, "threads must be an integer >= 0"):
+            hba.settings(threads=-1)
+
+    def test_a_choice_takes_its_names(self):
+        self.assertEqual(hba.settings(top_down="direct_assign")["top_down"], "direct_assign")
+        with self.assertRaisesRegex(hba.Error, "top_down"):
+            hba.settings(top_down="direct")
+
+
+if __name__ == "__main__":
+    main()
