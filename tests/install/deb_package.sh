@@ -13,6 +13,9 @@ dpkg-deb -x "$deb" "$work/root"
 test -f "$work/root/usr/lib/cmake/hba/hbaConfig.cmake"
 test -f "$work/root/usr/include/hba/pyramid/hierarchical_ba.hpp"
 test -f "$work/root/usr/share/doc/hba/LICENSE"
+if [ -n "${3:-}" ]; then  # the Python module, when the build has one
+  ls "$work"/root/usr/lib/python3/dist-packages/hba.*.so > /dev/null
+fi
 printed=$("$work/root/usr/bin/hba" --version)
 echo "$printed"
 grep -q "^hba $version (git " <<< "$printed"
