@@ -21,7 +21,7 @@ using detail::storeLittleEndian;
 
 constexpr double kScale = 0.001;  // m per integer step
 constexpr std::uint8_t kReturnOneOfOne = 0x11;
-// Global encoding bit 4: the CRS, if any, would be WKT (required of formats 6-10).
+// Global encoding bit 4: the CRS, if any, is WKT (the only kind formats 6-10 may use).
 constexpr std::uint16_t kWktEncoding = 1u << 4;
 
 struct Quantization {
