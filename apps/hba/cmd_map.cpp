@@ -1,4 +1,4 @@
-// `hba map DATA -o map.pcd|map.ply`: the merged, voxel-downsampled map.
+// `hba map DATA -o map.pcd|map.ply|map.las`: the merged, voxel-downsampled map.
 #include <spdlog/spdlog.h>
 
 #include <filesystem>
@@ -9,6 +9,7 @@
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/merged_map.hpp"
+#include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/scan_source.hpp"
@@ -30,7 +31,9 @@ struct MapArgs {
 void run(MapArgs& args) {
   const fs::path output = args.output;
   const std::string extension = output.extension().string();
-  if (extension != ".pcd" && extension != ".ply") failAt(output, "the map must be a .pcd or .ply file");
+  if (extension != ".pcd" && extension != ".ply" && extension != ".las") {
+    failAt(output, "the map must be a .pcd, .ply or .las file");
+  }
   args.settings.color = parseEnum<eval::MapColor>(args.color);
 
   const io::Dataset dataset = args.data.open();
@@ -38,9 +41,15 @@ void run(MapArgs& args) {
   refuseToReplace(output, args.force);
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
   const io::DatasetScanSource scans(dataset);
-  const PointCloud map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings);
+  // LAS has a field for the scan index (point source ID), so it gets one
+  // beside the intensity whatever --color chose.
+  io::LasPointExtras las_extras;
+  const PointCloud map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings,
+                                              extension == ".las" ? &las_extras.scan_index : nullptr);
   if (extension == ".pcd") {
     io::writePcd(output, map);
+  } else if (extension == ".las") {
+    io::writeLas(output, map, las_extras);
   } else {
     io::writePly(output, map);
   }
@@ -54,7 +63,7 @@ void registerMapCommand(CLI::App& app) {
   auto args = std::make_shared<MapArgs>();
   auto* command = app.add_subcommand("map", "Write the merged, voxel-downsampled map of a dataset");
   args->data.addTo(command);
-  command->add_option("-o,--output", args->output, "Output map file (.pcd or .ply)")->required();
+  command->add_option("-o,--output", args->output, "Output map file (.pcd, .ply or .las)")->required();
   command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
       ->check(nonNegative())

@@ -69,8 +69,15 @@ PointCloud VoxelMerger::result() const {
   return out;
 }
 
+std::vector<std::uint32_t> VoxelMerger::firstScans() const {
+  std::vector<std::uint32_t> scans;
+  scans.reserve(cells_.size());
+  for (const Cell& cell : cells_) scans.push_back(cell.first_scan);
+  return scans;
+}
+
 PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                          const MapSettings& settings) {
+                          const MapSettings& settings, std::vector<std::uint32_t>* first_scans) {
   if (poses.size() != scans.size()) {
     throw Error("there are " + std::to_string(scans.size()) + " scans but " + std::to_string(poses.size()) +
                 " poses were given");
@@ -84,6 +91,7 @@ PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& 
     merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
     progress.advance();
   }
+  if (first_scans) *first_scans = merger.firstScans();
   return merger.result();
 }
 

@@ -93,7 +93,7 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
     return root;
   }
   failAt(root, "no scans found: none of the folders " + joined(asStrings(kScanFolderNames)) +
-                   " exists with .pcd/.bin/.ply files in it, nor are there scans in the folder "
+                   " exists with .pcd/.bin/.ply/.las files in it, nor are there scans in the folder "
                    "itself; give the folder with --scans");
 }
 

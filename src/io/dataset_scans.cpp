@@ -145,7 +145,7 @@ ScanFiles listScans(const fs::path& dir) {
     files.push_back(path);
     return true;
   });
-  if (files.empty()) failAt(dir, "no scan files (.pcd, .bin or .ply) in this folder");
+  if (files.empty()) failAt(dir, "no scan files (.pcd, .bin, .ply or .las) in this folder");
 
   std::vector<NumberedScan> scans;
   scans.reserve(files.size());

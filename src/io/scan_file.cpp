@@ -4,6 +4,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
+#include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "text_parsing.hpp"
@@ -16,6 +17,7 @@ std::optional<ScanFormat> formatOf(const std::filesystem::path& path) {
   if (detail::equalsIgnoreCase(extension, ".pcd")) return ScanFormat::Pcd;
   if (detail::equalsIgnoreCase(extension, ".bin")) return ScanFormat::KittiBin;
   if (detail::equalsIgnoreCase(extension, ".ply")) return ScanFormat::Ply;
+  if (detail::equalsIgnoreCase(extension, ".las")) return ScanFormat::Las;
   return std::nullopt;
 }
 
@@ -24,7 +26,7 @@ std::optional<ScanFormat> formatOf(const std::filesystem::path& path) {
 ScanFormat scanFormatFromExtension(const std::filesystem::path& path) {
   if (const auto format = formatOf(path)) return *format;
   failAt(path, "unknown scan format " + detail::quoteToken(path.extension().string()) +
-                   " (hba reads .pcd, .bin and .ply)");
+                   " (hba reads .pcd, .bin, .ply and .las)");
 }
 
 bool isScanFile(const std::filesystem::path& path) { return formatOf(path).has_value(); }
@@ -37,6 +39,8 @@ PointCloud readScan(const std::filesystem::path& path) {
       return readKittiBin(path);
     case ScanFormat::Ply:
       return readPly(path);
+    case ScanFormat::Las:
+      return readLas(path);
   }
   failAt(path, "unknown scan format");
 }
@@ -51,6 +55,9 @@ void writeScan(const std::filesystem::path& path, const PointCloud& cloud) {
       break;
     case ScanFormat::Ply:
       writePly(path, cloud);
+      break;
+    case ScanFormat::Las:
+      writeLas(path, cloud);
       break;
   }
 }

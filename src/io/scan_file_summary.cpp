@@ -3,6 +3,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
+#include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/scan_file.hpp"
 
@@ -31,6 +32,8 @@ std::uint64_t storedPointCount(const std::filesystem::path& path) {
       return kittiBinPointCount(path);
     case ScanFormat::Ply:
       return readScan(path).size();
+    case ScanFormat::Las:
+      return readLasHeader(path).point_count;
   }
   failAt(path, "unknown scan format");
 }
@@ -55,6 +58,14 @@ ScanFileFields describeScanFields(const std::filesystem::path& path) {
       out.fields = {"x", "y", "z"};
       if (readScan(path).hasIntensity()) out.fields.push_back("intensity");
       out.encoding = "PLY";
+      break;
+    }
+    case ScanFormat::Las: {
+      const LasHeader header = readLasHeader(path);
+      out.fields = {"x", "y", "z", "intensity"};
+      out.encoding = "LAS " + std::to_string(header.version_major) + "." +
+                     std::to_string(header.version_minor) + " point format " +
+                     std::to_string(header.point_format);
       break;
     }
   }

@@ -1,10 +1,15 @@
 // `hba mme` and `hba map` end to end.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <regex>
+#include <set>
 
 #include "hba/eval/merged_map.hpp"
+#include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
@@ -106,6 +111,63 @@ TEST(MapCli, WritesPlyAndRefusesToWriteIntoTheInput) {
   EXPECT_NE(into_scans.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(tmp / "seq" / "Scans" / "map.pcd"));
   EXPECT_NE(runCommand(base + (tmp / "map.xyz").string()).exit_code, 0);
+}
+
+// A LAS map carries the intensity --color chose and, in every point's point
+// source ID, the first scan's index, whatever --color says.
+TEST(MapCli, WritesLasWithIntensityAndScanIndex) {
+  TempDir tmp;
+  writeSyntheticDataset(tmp / "seq", syntheticPoses());
+  const std::string base = cliPath().string() + " map " + (tmp / "seq").string() + " --voxel 0.1 -o ";
+  ASSERT_EQ(runCommand(base + (tmp / "map.las").string()).exit_code, 0);
+  ASSERT_EQ(runCommand(base + (tmp / "map.pcd").string()).exit_code, 0);
+  ASSERT_EQ(runCommand(base + (tmp / "scans.pcd").string() + " --color scan").exit_code, 0);
+  const PointCloud las = io::readLas(tmp / "map.las");
+  const PointCloud pcd = io::readPcd(tmp / "map.pcd");
+  const PointCloud scans = io::readPcd(tmp / "scans.pcd");
+  ASSERT_GT(pcd.size(), 1000u);
+  ASSERT_EQ(las.size(), pcd.size());
+  ASSERT_TRUE(pcd.hasIntensity());
+  const std::string bytes = readText(tmp / "map.las");
+  const std::size_t first_record = 375, record_length = 30, source_id = 20;
+  std::set<std::uint16_t> seen;
+  for (std::size_t i = 0; i < las.size(); ++i) {
+    ASSERT_LE((las.world(i) - pcd.world(i)).cwiseAbs().maxCoeff(), 0.0005 + 1e-6) << "point " << i;
+    ASSERT_EQ(las.intensity[i], std::round(pcd.intensity[i])) << "point " << i;
+    std::uint16_t scan = 0;
+    std::memcpy(&scan, &bytes[first_record + i * record_length + source_id], sizeof(scan));
+    ASSERT_EQ(scan, scans.intensity[i]) << "point " << i;
+    seen.insert(scan);
+  }
+  EXPECT_EQ(seen.size(), syntheticPoses().size());  // every scan contributed
+}
+
+// A dataset whose scans are .las files reads like one of .pcd files.
+TEST(MapCli, ADatasetOfLasScansGivesTheSameMap) {
+  TempDir tmp;
+  writeSyntheticDataset(tmp / "pcd", syntheticPoses());
+  std::filesystem::create_directories(tmp / "las" / "Scans");
+  const std::vector<PointCloud> clouds = syntheticScans(syntheticPoses());
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    io::writeLas(tmp / "las" / "Scans" / (std::to_string(i) + ".las"), clouds[i]);
+  }
+  std::filesystem::copy_file(tmp / "pcd" / "odom_poses.txt", tmp / "las" / "odom_poses.txt");
+  const CommandResult info = runCommand(cliPath().string() + " info " + (tmp / "las").string());
+  ASSERT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find(".las"), std::string::npos) << info.output;
+  const std::string map = " map --voxel 0 -o ";
+  ASSERT_EQ(runCommand(cliPath().string() + map + (tmp / "las.pcd").string() + " " + (tmp / "las").string())
+                .exit_code,
+            0);
+  ASSERT_EQ(runCommand(cliPath().string() + map + (tmp / "pcd.pcd").string() + " " + (tmp / "pcd").string())
+                .exit_code,
+            0);
+  const PointCloud from_las = io::readPcd(tmp / "las.pcd");
+  const PointCloud from_pcd = io::readPcd(tmp / "pcd.pcd");
+  ASSERT_EQ(from_las.size(), from_pcd.size());
+  for (std::size_t i = 0; i < from_las.size(); i += 13) {
+    ASSERT_LE((from_las.world(i) - from_pcd.world(i)).cwiseAbs().maxCoeff(), 0.001) << "point " << i;
+  }
 }
 
 }  // namespace

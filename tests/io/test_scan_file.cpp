@@ -14,11 +14,12 @@ TEST(ScanFile, FormatFollowsTheExtensionInAnyCase) {
   EXPECT_EQ(scanFormatFromExtension("a/000001.PCD"), ScanFormat::Pcd);
   EXPECT_EQ(scanFormatFromExtension("velodyne/000001.bin"), ScanFormat::KittiBin);
   EXPECT_EQ(scanFormatFromExtension("cloud.Ply"), ScanFormat::Ply);
+  EXPECT_EQ(scanFormatFromExtension("survey/strip.LAS"), ScanFormat::Las);
   EXPECT_TRUE(isScanFile("x.pcd"));
   EXPECT_FALSE(isScanFile("pose.json"));
   EXPECT_FALSE(isScanFile("pcd"));
-  test::expectErrorAbout("scan.las", "unknown scan format '.las'",
-                         [] { scanFormatFromExtension("scan.las"); });
+  test::expectErrorAbout("scan.laz", "unknown scan format '.laz'",
+                         [] { scanFormatFromExtension("scan.laz"); });
 }
 
 TEST(ScanFile, WritesAndReadsEveryFormatByExtension) {

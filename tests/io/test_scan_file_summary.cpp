@@ -20,7 +20,7 @@ using Fields = std::vector<std::string>;
 TEST(ScanFileSummary, PointCountsOfEveryFormat) {
   test::TempDir dir;
   const PointCloud cloud = test::makeCloud(37, true);
-  for (const char* name : {"a.pcd", "a.bin", "a.ply"}) {
+  for (const char* name : {"a.pcd", "a.bin", "a.ply", "a.las"}) {
     writeScan(dir / name, cloud);
     EXPECT_EQ(storedPointCount(dir / name), 37u) << name;
   }
@@ -40,6 +40,11 @@ TEST(ScanFileSummary, FieldsAndEncodingOfEveryFormat) {
   const ScanFileFields ply = describeScanFields(test::plyFixture("hku1_cut_binary.ply"));
   EXPECT_EQ(ply.fields, (Fields{"x", "y", "z", "intensity"}));
   EXPECT_EQ(ply.encoding, "PLY");
+  test::TempDir dir;
+  writeScan(dir / "a.las", test::makeCloud(5, true));
+  const ScanFileFields las = describeScanFields(dir / "a.las");
+  EXPECT_EQ(las.fields, (Fields{"x", "y", "z", "intensity"}));
+  EXPECT_EQ(las.encoding, "LAS 1.4 point format 6");
 }
 
 TEST(ScanFileSummary, BadFilesAreErrorsNamingThem) {

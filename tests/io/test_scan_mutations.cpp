@@ -5,7 +5,9 @@
 
 #include <random>
 
+#include "hba/io/las.hpp"
 #include "hba/io/scan_file.hpp"
+#include "test_las_bytes.hpp"
 #include "test_scan_helpers.hpp"
 
 namespace hba::io {
@@ -21,7 +23,19 @@ void expectReadOrCleanError(const fs::path& path) {
 }
 
 TEST(ScanMutations, FixturesWithRandomBytesChangedNeverCrash) {
-  const fs::path fixtures[] = {test::pcdFixture("hku1_cut_ascii.pcd"),
+  // LAS has no checked-in fixture: one written by hba, one made by hand
+  // (LAS 1.2 with a VLR and longer records).
+  test::TempDir las_dir;
+  writeLas(las_dir / "hba.las", test::makeCloud(200, true));
+  test::LasSpec spec;
+  spec.vlr_payloads = {24};
+  spec.record_length = 31;
+  std::vector<test::LasPointInts> points;
+  for (int i = 0; i < 200; ++i) points.push_back({i * 13, -i * 7, i * i, static_cast<std::uint16_t>(i)});
+  test::writeText(las_dir / "made_1_2.las", test::lasBytes(spec, points));
+  const fs::path fixtures[] = {las_dir / "hba.las",
+                               las_dir / "made_1_2.las",
+                               test::pcdFixture("hku1_cut_ascii.pcd"),
                                test::pcdFixture("hku1_cut_binary.pcd"),
                                test::pcdFixture("hku1_cut_binary_compressed.pcd"),
                                test::pcdFixture("fpfh_binary_compressed.pcd"),
@@ -56,7 +70,7 @@ TEST(ScanMutations, NoiseNeverCrashes) {
   for (int trial = 0; trial < 60; ++trial) {
     std::string noise(static_cast<std::size_t>(trial * 37), '\0');
     for (char& c : noise) c = static_cast<char>(byte(rng));
-    for (const char* extension : {".pcd", ".ply", ".bin"}) {
+    for (const char* extension : {".pcd", ".ply", ".bin", ".las"}) {
       const fs::path path = dir / (std::to_string(trial) + extension);
       test::writeText(path, noise);
       expectReadOrCleanError(path);

@@ -48,6 +48,8 @@ class VoxelMerger {
   void add(const PointCloud& scan, const Pose& pose, std::uint32_t scan_index);
   std::size_t voxelCount() const { return cells_.size(); }
   PointCloud result() const;
+  // The index of the first scan that touched each of result()'s points, in its order.
+  std::vector<std::uint32_t> firstScans() const;
 
  private:
   struct Cell {
@@ -67,9 +69,11 @@ class VoxelMerger {
 
 // Streams every scan of `scans` through a VoxelMerger with `poses` (one per
 // scan). When the first pose is more than 10 km out, the map's points are
-// relative to its position (the map's `origin`). Throws hba::Error.
+// relative to its position (the map's `origin`). When `first_scans` is
+// given, it receives each map point's first scan index (the LAS writer
+// stores it whatever --color says). Throws hba::Error.
 PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                          const MapSettings& settings);
+                          const MapSettings& settings, std::vector<std::uint32_t>* first_scans = nullptr);
 
 // Downsamples a cloud that is already in the world frame (a map file).
 PointCloud downsampleMap(const PointCloud& cloud, const MapSettings& settings);

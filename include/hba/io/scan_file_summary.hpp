@@ -1,6 +1,6 @@
 #pragma once
 // What a scan file holds, read as cheaply as its format allows (a PCD's
-// header, a .bin's size; a PLY is read whole): for `hba info`.
+// or LAS header, a .bin's size; a PLY is read whole): for `hba info`.
 #include <cstdint>
 #include <filesystem>
 #include <string>
