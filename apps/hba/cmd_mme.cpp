@@ -65,7 +65,8 @@ void registerMmeCommand(CLI::App& app) {
       app.add_subcommand("mme", "Mean map entropy of the merged map (lower = crisper); DIR or --map FILE");
   args->data.addTo(command);
   command->get_option("DIR")->required(false);
-  command->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin/.las) instead of a dataset")
+  command
+      ->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin/.las) instead of a dataset")
       ->check(CLI::ExistingFile);
   command->add_option("--voxel", args->map.voxel, "Voxel size of the merged map (m; 0 = keep all)")
       ->check(nonNegative())
