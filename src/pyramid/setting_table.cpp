@@ -15,7 +15,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 template <typename T>
 using FieldOf = std::function<T&(HbaSettings&)>;
 
-// A setting stored in one field of HbaSettings.
+// A setting stored in one field of HbaSettings. One accessor serves both
+// directions: `get` casts constness away only to call it, and only reads.
 template <typename T>
 Setting field(std::string key, std::string flag, SettingType type, T default_value, SettingRange range,
               FieldOf<T> ref, std::string help) {
