@@ -6,8 +6,6 @@
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
-#include <tbb/global_control.h>
-#include <tbb/info.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -173,9 +171,7 @@ void run(const OptimizeArgs& args) {
   if (args.output.empty()) throw CLI::RequiredError("--output");
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
-  settings.threads = static_cast<int>(
-      std::min<std::size_t>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
-                            static_cast<std::size_t>(tbb::info::default_concurrency())));
+  settings.threads = pyramid::resolvedThreadCount(settings);
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);

@@ -30,7 +30,6 @@ void SettingFlags::addTo(CLI::App* command) {
   given_.assign(table.size(), std::nullopt);
   CLI::App* group = command->add_option_group(
       "Settings", "Settings (also in a --config YAML file; docs/settings.md lists them all)");
-  const pyramid::HbaSettings defaults;
   for (std::size_t i = 0; i < table.size(); ++i) {
     const Setting& setting = table[i];
     if (setting.flag.empty()) continue;
@@ -61,7 +60,7 @@ void SettingFlags::addTo(CLI::App* command) {
         option->check(CLI::IsMember(typed.choices, normalizedEnumName));
         break;
     }
-    if (!setting.shorthand()) option->default_str(pyramid::valueText(setting.get(defaults)));
+    if (!setting.shorthand()) option->default_str(pyramid::valueText(setting.default_value));
   }
 }
 
@@ -73,11 +72,7 @@ void SettingFlags::applyTo(pyramid::HbaSettings& settings) const {
       if (setting.shorthand() != shorthands || !given_[i]) continue;
       // The range is checked with the whole settings (checkSettings), which
       // names the setting.
-      if (!setting.shorthand()) {
-        setting.set(settings, *given_[i]);
-        continue;
-      }
-      for (const std::string& key : setting.sets) pyramid::settingByKey(key).set(settings, *given_[i]);
+      pyramid::applySetting(setting, *given_[i], settings);
     }
   }
 }

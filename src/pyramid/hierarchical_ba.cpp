@@ -34,15 +34,6 @@ void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, con
   checkSettings(s);  // the ranges of the setting table
 }
 
-// settings.threads, or (0) as many as this process allows (hba -j, a
-// tbb::global_control, or the machine's cores).
-int threadCount(const HbaSettings& settings) {
-  if (settings.threads > 0) return settings.threads;
-  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  return static_cast<int>(
-      std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
-}
-
 void logLayer(const LayerReport& r) {
   spdlog::info("  layer {}{}: {} frames, {} windows, {} planes, plane RMS {:.4f} -> {:.4f} m, {:.2f} s",
                r.layer, r.global ? " (global BA)" : "", r.frames, r.windows, r.planes, r.rms_before,
@@ -242,13 +233,22 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
 
 }  // namespace
 
+// settings.threads, or (0) as many as this process allows (hba -j, a
+// tbb::global_control, or the machine's cores).
+int resolvedThreadCount(const HbaSettings& settings) {
+  if (settings.threads > 0) return settings.threads;
+  const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  return static_cast<int>(
+      std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
+}
+
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings) {
   validate(scans, initial, settings);
   // Every parallel part runs on this many threads: TBB's within the arena,
   // Ceres's through the pose graph's settings.
   HbaSettings resolved = settings;
-  resolved.threads = threadCount(settings);
+  resolved.threads = resolvedThreadCount(settings);
   tbb::task_arena arena(resolved.threads);
   const TimedClouds layer_one(scans, settings.scan_voxel);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m

@@ -104,4 +104,12 @@ void checkSettingValue(const Setting& setting, const SettingValue& value) {
   if (!inInterval(s.range, number)) fail();
 }
 
+void applySetting(const Setting& setting, const SettingValue& value, HbaSettings& settings) {
+  if (!setting.shorthand()) {
+    setting.set(settings, value);
+    return;
+  }
+  for (const std::string& key : setting.sets) settingByKey(key).set(settings, value);
+}
+
 }  // namespace hba::pyramid

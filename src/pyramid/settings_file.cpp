@@ -109,14 +109,6 @@ SettingValue readValue(const YAML::Node& node, const Setting& setting, const std
   bad(source, "'" + name + "' has a value of the wrong type; it takes " + rangeText(setting));
 }
 
-void applyOne(const Setting& setting, const SettingValue& value, HbaSettings& settings) {
-  if (!setting.shorthand()) {
-    setting.set(settings, value);
-    return;
-  }
-  for (const std::string& key : setting.sets) settingByKey(key).set(settings, value);
-}
-
 nlohmann::json toJson(const SettingValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b;
   if (const long long* i = std::get_if<long long>(&value)) return *i;
@@ -172,7 +164,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source, 
         } catch (const Error& e) {
           bad(source, e.what());
         }
-        applyOne(setting, value, settings);
+        applySetting(setting, value, settings);
       }
     }
   } catch (const YAML::Exception& e) {
@@ -232,7 +224,6 @@ std::string settingsToYaml(const HbaSettings& settings) {
 }
 
 std::string settingsMarkdown() {
-  const HbaSettings defaults;
   std::string out =
       "| YAML key | flag | default | takes | what it sets |\n"
       "|---|---|---|---|---|\n";
@@ -249,7 +240,7 @@ std::string settingsMarkdown() {
       for (const std::string& target : s.sets) what += " `" + target + "`";
       fallback = "as they are";
     } else {
-      fallback = valueText(s.get(defaults));
+      fallback = valueText(s.default_value);
     }
     out += "| " + key + " | " + cell(s.flag) + " | " + (s.shorthand() ? fallback : "`" + fallback + "`") +
            " | " + rangeText(s) + " | " + what + " |\n";

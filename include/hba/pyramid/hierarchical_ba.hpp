@@ -135,4 +135,8 @@ struct HbaResult {
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings);
 
+// The threads a run of `settings` uses: settings.threads, or (0) as many as
+// this process allows (hba -j, a tbb::global_control, or the machine's cores).
+int resolvedThreadCount(const HbaSettings& settings);
+
 }  // namespace hba::pyramid

@@ -87,5 +87,7 @@ std::string valueText(const SettingValue& value);
 // Throws hba::Error "setting KEY must be ..." when `value` is out of range or
 // of the wrong kind.
 void checkSettingValue(const Setting& setting, const SettingValue& value);
+// Sets `setting` (every setting a shorthand stands for) to `value`.
+void applySetting(const Setting& setting, const SettingValue& value, HbaSettings& settings);
 
 }  // namespace hba::pyramid
