@@ -1,0 +1,42 @@
+#pragma once
+// Revisit detection by the current poses (docs/closure.md): frames that come
+// back within reach of an earlier place, far apart along the path. Odometry
+// drifts, so "within reach" grows with the path driven between the two
+// visits; each candidate carries the search bounds its verification needs.
+#include <cstddef>
+#include <vector>
+
+#include "hba/core/pose.hpp"
+
+namespace hba::closure {
+
+struct RevisitSettings {
+  // Bound of the odometry's drift: position error per metre of path driven
+  // between the visits, and heading error in degrees per metre.
+  double drift = 0.05;
+  double drift_deg_per_m = 0.05;
+  // Two frames at most this far apart (after allowing for drift) may see
+  // the same place: about the range at which scans share structure.
+  double reach_m = 10.0;
+  // Less path than this between two frames is the same pass, not a revisit.
+  double min_separation_m = 50.0;
+  // At most one candidate per this much path of the later visit.
+  double spacing_m = 10.0;
+  // Caps of the search a candidate asks of its verification.
+  double max_search_m = 30.0;
+  double max_search_deg = 30.0;
+};
+
+struct RevisitCandidate {
+  std::size_t from = 0;  // the earlier visit
+  std::size_t to = 0;    // the later one
+  double path_m = 0.0;   // driven between them
+  double distance_m = 0.0;
+  double search_radius_m = 0.0;  // the translation the verification must search
+  double search_yaw_deg = 0.0;
+};
+
+// Ordered by `to`. Throws hba::Error for settings that are not positive.
+std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings);
+
+}  // namespace hba::closure

@@ -1,0 +1,161 @@
+#include "hba/closure/closure_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hba/core/error.hpp"
+#include "hba/core/relative_pose_error.hpp"
+#include "hba/graph/pose_graph.hpp"
+
+namespace hba::closure {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+double loopChi2(const graph::LoopClosureFactor& f, const std::vector<Pose>& poses, Vec6& error) {
+  error = relativePoseError(f.measurement, poses[f.from], poses[f.to]);
+  return error.dot(f.information * error);
+}
+
+double priorChi2(const graph::PositionPriorFactor& f, const std::vector<Pose>& poses) {
+  const Vec3 e = poses[f.node].t - f.position;
+  return e.dot(f.information * e);
+}
+
+struct Verdicts {
+  std::vector<double> loop_chi2, prior_chi2;
+  std::vector<bool> loop_beyond, prior_beyond;  // past the gate (and the loops' tolerance)
+};
+
+Verdicts judge(const std::vector<Pose>& poses, const std::vector<graph::LoopClosureFactor>& loops,
+               const std::vector<graph::PositionPriorFactor>& priors, const ClosureGraphSettings& s) {
+  Verdicts v;
+  for (const auto& loop : loops) {
+    Vec6 e;
+    const double chi2 = loopChi2(loop, poses, e);
+    const bool off = e.head<3>().norm() > s.loop_tolerance_m || e.tail<3>().norm() > s.loop_tolerance_deg * kDegree;
+    v.loop_chi2.push_back(chi2);
+    v.loop_beyond.push_back(chi2 > s.loop_gate && off);
+  }
+  for (const auto& prior : priors) {
+    const double chi2 = priorChi2(prior, poses);
+    v.prior_chi2.push_back(chi2);
+    v.prior_beyond.push_back(chi2 > s.prior_gate);
+  }
+  return v;
+}
+
+// Drops the worst active factors beyond the gate: one loop (a wrong loop
+// makes its right neighbours look wrong too, until it is gone), or a tenth
+// of the priors beyond it (priors are many and each pulls little).
+bool dropWorst(const Verdicts& v, std::vector<bool>& loop_kept, std::vector<bool>& prior_kept) {
+  std::size_t worst_loop = loop_kept.size();
+  for (std::size_t i = 0; i < loop_kept.size(); ++i) {
+    if (loop_kept[i] && v.loop_beyond[i] &&
+        (worst_loop == loop_kept.size() || v.loop_chi2[i] > v.loop_chi2[worst_loop])) {
+      worst_loop = i;
+    }
+  }
+  if (worst_loop < loop_kept.size()) {
+    loop_kept[worst_loop] = false;
+    return true;
+  }
+  std::vector<std::size_t> beyond;
+  for (std::size_t i = 0; i < prior_kept.size(); ++i) {
+    if (prior_kept[i] && v.prior_beyond[i]) beyond.push_back(i);
+  }
+  if (beyond.empty()) return false;
+  std::sort(beyond.begin(), beyond.end(),
+            [&](std::size_t a, std::size_t b) { return v.prior_chi2[a] > v.prior_chi2[b]; });
+  const std::size_t drop = std::max<std::size_t>(1, beyond.size() / 10);
+  for (std::size_t k = 0; k < drop; ++k) prior_kept[beyond[k]] = false;
+  return true;
+}
+
+// Brings back dropped factors that now agree well inside the gate.
+bool readmit(const Verdicts& v, const ClosureGraphSettings& s, std::vector<bool>& loop_kept,
+             std::vector<bool>& prior_kept, std::vector<int>& loop_returns, std::vector<int>& prior_returns) {
+  bool any = false;
+  for (std::size_t i = 0; i < loop_kept.size(); ++i) {
+    if (!loop_kept[i] && !v.loop_beyond[i] && v.loop_chi2[i] < 0.25 * s.loop_gate && loop_returns[i] == 0) {
+      loop_kept[i] = true;
+      ++loop_returns[i];
+      any = true;
+    }
+  }
+  for (std::size_t i = 0; i < prior_kept.size(); ++i) {
+    if (!prior_kept[i] && v.prior_chi2[i] < 0.25 * s.prior_gate && prior_returns[i] == 0) {
+      prior_kept[i] = true;
+      ++prior_returns[i];
+      any = true;
+    }
+  }
+  return any;
+}
+
+}  // namespace
+
+graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::size_t k,
+                                         const OdometryNoise& noise) {
+  graph::RelativePoseFactor f;
+  f.from = k;
+  f.to = k + 1;
+  f.measurement = relative(input[k], input[k + 1]);
+  const double step = f.measurement.t.norm();
+  const double sigma_t = noise.translation_m + noise.translation_per_m * step;
+  const double sigma_r = (noise.rotation_deg + noise.rotation_deg_per_m * step) * kDegree;
+  f.information.setZero();
+  f.information.diagonal() << Vec3::Constant(1.0 / (sigma_t * sigma_t)), Vec3::Constant(1.0 / (sigma_r * sigma_r));
+  return f;
+}
+
+ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
+                                     const std::vector<graph::LoopClosureFactor>& loops,
+                                     const std::vector<graph::PositionPriorFactor>& priors,
+                                     const ClosureGraphSettings& settings) {
+  const OdometryNoise& n = settings.odometry;
+  if (!(n.translation_m > 0.0) || !(n.rotation_deg > 0.0) || !(n.translation_per_m >= 0.0) ||
+      !(n.rotation_deg_per_m >= 0.0)) {
+    throw Error("closure graph: odometry sigmas must be positive");
+  }
+  ClosureGraphResult result;
+  result.poses = input;
+  result.loop_kept.assign(loops.size(), true);
+  result.prior_kept.assign(priors.size(), true);
+  if (input.size() < 2 || (loops.empty() && priors.empty())) return result;
+
+  std::vector<graph::RelativePoseFactor> steps;
+  for (std::size_t k = 0; k + 1 < input.size(); ++k) steps.push_back(odometryFactor(input, k, n));
+  graph::PoseGraphSettings solver;
+  solver.threads = settings.threads;
+  solver.max_iterations = 200;
+
+  std::vector<int> loop_returns(loops.size(), 0), prior_returns(priors.size(), 0);
+  const auto solve = [&] {
+    graph::FactorGraph graph(steps);
+    for (std::size_t i = 0; i < loops.size(); ++i) {
+      if (result.loop_kept[i]) graph.add(loops[i]);
+    }
+    for (std::size_t i = 0; i < priors.size(); ++i) {
+      if (result.prior_kept[i]) graph.add(priors[i]);
+    }
+    // Every round starts from the input: a solution bent by a dropped
+    // factor is no better a start than the input.
+    result.poses = graph::optimizeFactorGraph(input, graph, solver).poses;
+    ++result.rounds;
+    return judge(result.poses, loops, priors, settings);
+  };
+  Verdicts verdicts = solve();
+  while (result.rounds < settings.max_rounds) {
+    const bool changed = dropWorst(verdicts, result.loop_kept, result.prior_kept) ||
+                         readmit(verdicts, settings, result.loop_kept, result.prior_kept, loop_returns,
+                                 prior_returns);
+    if (!changed) break;
+    verdicts = solve();
+  }
+  result.loop_chi2 = verdicts.loop_chi2;
+  result.prior_chi2 = verdicts.prior_chi2;
+  return result;
+}
+
+}  // namespace hba::closure

@@ -1,0 +1,69 @@
+#include "hba/closure/revisits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "hba/core/error.hpp"
+
+namespace hba::closure {
+namespace {
+
+void validate(const RevisitSettings& s) {
+  const auto positive = [](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("revisit detection: ") + name + " must be > 0");
+  };
+  const auto non_negative = [](double v, const char* name) {
+    if (!(v >= 0.0) || !std::isfinite(v)) throw Error(std::string("revisit detection: ") + name + " must be >= 0");
+  };
+  non_negative(s.drift, "drift");
+  non_negative(s.drift_deg_per_m, "drift_deg_per_m");
+  positive(s.reach_m, "reach_m");
+  positive(s.min_separation_m, "min_separation_m");
+  positive(s.spacing_m, "spacing_m");
+  non_negative(s.max_search_m, "max_search_m");
+  non_negative(s.max_search_deg, "max_search_deg");
+}
+
+std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
+  std::vector<double> s(poses.size(), 0.0);
+  for (std::size_t k = 1; k < poses.size(); ++k) s[k] = s[k - 1] + (poses[k].t - poses[k - 1].t).norm();
+  return s;
+}
+
+}  // namespace
+
+std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings) {
+  validate(settings);
+  const std::vector<double> s = cumulativePath(poses);
+  std::vector<RevisitCandidate> found;
+  double next_sample = settings.min_separation_m;
+  for (std::size_t j = 0; j < poses.size(); ++j) {
+    if (s[j] < next_sample) continue;
+    // The earlier frame that is nearest relative to what drift allows.
+    RevisitCandidate best;
+    double best_ratio = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < j && s[j] - s[i] >= settings.min_separation_m; ++i) {
+      const double path = s[j] - s[i];
+      const double slack = std::min(settings.drift * path, settings.max_search_m);
+      const double distance = (poses[j].t - poses[i].t).norm();
+      const double ratio = distance / (settings.reach_m + slack);
+      if (ratio <= 1.0 && ratio < best_ratio) {
+        best_ratio = ratio;
+        best.from = i;
+        best.to = j;
+        best.path_m = path;
+        best.distance_m = distance;
+        best.search_radius_m = slack;
+        best.search_yaw_deg = std::min(settings.drift_deg_per_m * path, settings.max_search_deg);
+      }
+    }
+    if (std::isfinite(best_ratio)) {
+      found.push_back(best);
+      next_sample = s[j] + settings.spacing_m;
+    }
+  }
+  return found;
+}
+
+}  // namespace hba::closure
