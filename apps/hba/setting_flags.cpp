@@ -18,7 +18,9 @@ std::string describe(const Setting& setting) {
   // Which BA a sectioned setting belongs to (local.eigen_ratio: the windows').
   const auto dot = setting.key.find('.');
   if (dot != std::string::npos) text = setting.key.substr(0, dot) + " BA: " + text;
-  if (typed.type == SettingType::Switch) text = "Off: " + text;
+  if (typed.type == SettingType::Switch) {
+    text = (std::get<bool>(typed.default_value) ? "Off: " : "On: ") + text;
+  }
   if (!typed.range.zero.empty()) text += "; 0 = " + typed.range.zero;
   return text;
 }
@@ -41,9 +43,9 @@ void SettingFlags::addTo(CLI::App* command) {
     CLI::Option* option = nullptr;
     switch (typed.type) {
       case SettingType::Switch:
-        // A switch's flag turns it off (--no-refine).
+        // A switch's flag turns it from its default: off (--no-refine) or on (--revisits).
         group->add_flag_callback(
-            names, [&slot] { slot = false; }, help);
+            names, [&slot, on = !std::get<bool>(typed.default_value)] { slot = on; }, help);
         continue;
       case SettingType::Integer:
       case SettingType::Count:

@@ -33,7 +33,8 @@ Verdicts judge(const std::vector<Pose>& poses, const std::vector<graph::LoopClos
   for (const auto& loop : loops) {
     Vec6 e;
     const double chi2 = loopChi2(loop, poses, e);
-    const bool off = e.head<3>().norm() > s.loop_tolerance_m || e.tail<3>().norm() > s.loop_tolerance_deg * kDegree;
+    const bool off =
+        e.head<3>().norm() > s.loop_tolerance_m || e.tail<3>().norm() > s.loop_tolerance_deg * kDegree;
     v.loop_chi2.push_back(chi2);
     v.loop_beyond.push_back(chi2 > s.loop_gate && off);
   }
@@ -105,7 +106,8 @@ graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::si
   const double sigma_t = noise.translation_m + noise.translation_per_m * step;
   const double sigma_r = (noise.rotation_deg + noise.rotation_deg_per_m * step) * kDegree;
   f.information.setZero();
-  f.information.diagonal() << Vec3::Constant(1.0 / (sigma_t * sigma_t)), Vec3::Constant(1.0 / (sigma_r * sigma_r));
+  f.information.diagonal() << Vec3::Constant(1.0 / (sigma_t * sigma_t)),
+      Vec3::Constant(1.0 / (sigma_r * sigma_r));
   return f;
 }
 
@@ -147,9 +149,9 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   };
   Verdicts verdicts = solve();
   while (result.rounds < settings.max_rounds) {
-    const bool changed = dropWorst(verdicts, result.loop_kept, result.prior_kept) ||
-                         readmit(verdicts, settings, result.loop_kept, result.prior_kept, loop_returns,
-                                 prior_returns);
+    const bool changed =
+        dropWorst(verdicts, result.loop_kept, result.prior_kept) ||
+        readmit(verdicts, settings, result.loop_kept, result.prior_kept, loop_returns, prior_returns);
     if (!changed) break;
     verdicts = solve();
   }

@@ -22,14 +22,15 @@ Vec3 positionAt(const Trajectory& odometry, std::size_t after, double stamp) {
 FramePriors attachPriors(const std::vector<io::TimedPosition>& priors, const Trajectory& odometry,
                          double max_gap_s) {
   if (!odometry.hasStamps() || odometry.stamps.size() != odometry.size()) {
-    throw Error("position priors are matched to scans by time, but the sequence has no timestamps "
-                "(give its times with --times, or a stamped trajectory)");
+    throw Error(
+        "position priors are matched to scans by time, but the sequence has no timestamps "
+        "(give its times with --times, or a stamped trajectory)");
   }
   FramePriors out;
   const std::vector<double>& stamps = odometry.stamps;
   for (const io::TimedPosition& prior : priors) {
-    const std::size_t after =
-        static_cast<std::size_t>(std::lower_bound(stamps.begin(), stamps.end(), prior.stamp) - stamps.begin());
+    const std::size_t after = static_cast<std::size_t>(
+        std::lower_bound(stamps.begin(), stamps.end(), prior.stamp) - stamps.begin());
     std::size_t nearest = after;
     if (after == stamps.size() ||
         (after > 0 && prior.stamp - stamps[after - 1] < stamps[after] - prior.stamp)) {

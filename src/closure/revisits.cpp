@@ -11,10 +11,12 @@ namespace {
 
 void validate(const RevisitSettings& s) {
   const auto positive = [](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("revisit detection: ") + name + " must be > 0");
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw Error(std::string("revisit detection: ") + name + " must be > 0");
   };
   const auto non_negative = [](double v, const char* name) {
-    if (!(v >= 0.0) || !std::isfinite(v)) throw Error(std::string("revisit detection: ") + name + " must be >= 0");
+    if (!(v >= 0.0) || !std::isfinite(v))
+      throw Error(std::string("revisit detection: ") + name + " must be >= 0");
   };
   non_negative(s.drift, "drift");
   non_negative(s.drift_deg_per_m, "drift_deg_per_m");

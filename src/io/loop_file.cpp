@@ -34,9 +34,9 @@ std::vector<LoopRecord> readLoopFile(const fs::path& path, std::size_t frame_cou
   for (const detail::NumberRow& row : detail::readNumberRows(path)) {
     const std::vector<double>& v = row.values;
     if (v.size() != 2 && v.size() != 9) {
-      failAtLine(path, row.line,
-                 "expected 2 numbers (i j) or 9 (i j tx ty tz qx qy qz qw), found " +
-                     std::to_string(v.size()));
+      failAtLine(
+          path, row.line,
+          "expected 2 numbers (i j) or 9 (i j tx ty tz qx qy qz qw), found " + std::to_string(v.size()));
     }
     LoopRecord loop;
     loop.line = row.line;

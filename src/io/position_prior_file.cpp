@@ -33,8 +33,9 @@ std::vector<TimedPosition> readPositionPriorFile(const fs::path& path) {
       failAtLine(path, row.line, "sigma must be positive (metres, one standard deviation)");
     }
     if (!priors.empty() && !(prior.stamp > priors.back().stamp)) {
-      failAtLine(path, row.line, "stamps must increase (this one is not after line " +
-                                     std::to_string(priors.back().line) + "'s)");
+      failAtLine(
+          path, row.line,
+          "stamps must increase (this one is not after line " + std::to_string(priors.back().line) + "'s)");
     }
     priors.push_back(prior);
   }

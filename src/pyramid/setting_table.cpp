@@ -220,6 +220,21 @@ std::vector<Setting> makeTable() {
       "robust loss on the pose graph's window factors (a window that went wrong "
       "pulls less)"));
   t.push_back(onOff(
+      "revisits", "--revisits", false, [](HbaSettings& h) -> bool& { return h.revisits; },
+      "find places the poses come back to, verify them with the plane BA and close them"));
+  t.push_back(real(
+      "revisit_drift", "--revisit-drift", 0.05, between(0, 1),
+      [](HbaSettings& h) -> double& { return h.revisit.drift; },
+      "how far the input may have drifted between two visits, share of the path driven"));
+  t.push_back(real(
+      "revisit_reach", "", 10.0, between(0.5, 1000),
+      [](HbaSettings& h) -> double& { return h.revisit.reach_m; },
+      "frames this close (beyond drift) may see the same place, m"));
+  t.push_back(real(
+      "revisit_min_path", "", 50.0, between(1, 1e6),
+      [](HbaSettings& h) -> double& { return h.revisit.min_separation_m; },
+      "less path than this between two frames is one pass, not a revisit, m"));
+  t.push_back(onOff(
       "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
       "the final sparse BA over every scan"));
   t.push_back(real(

@@ -78,7 +78,8 @@ TEST_F(ClosureGraph, PriorsSetTheFrameAndOutliersAreDropped) {
   for (const Pose& p : truth) truth_in_world.push_back(world * p);
   // Metres of drift in another frame become errors below the priors' noise.
   double squares = 0.0;
-  for (std::size_t k = 0; k < truth.size(); ++k) squares += (r.poses[k].t - truth_in_world[k].t).squaredNorm();
+  for (std::size_t k = 0; k < truth.size(); ++k)
+    squares += (r.poses[k].t - truth_in_world[k].t).squaredNorm();
   EXPECT_LT(std::sqrt(squares / static_cast<double>(truth.size())), 0.5);
   EXPECT_LT(test::largestError(r.poses, truth_in_world), 1.0);
 }

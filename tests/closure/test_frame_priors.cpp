@@ -37,8 +37,9 @@ TEST(FramePriors, APriorBetweenScansGoesToTheNearestMovedByTheOdometry) {
 
 TEST(FramePriors, PriorsAwayFromEveryScanAreCounted) {
   const Trajectory odometry = straightDrive(20);
-  const FramePriors p = attachPriors(
-      {at(90.0, Vec3::Zero(), 1.0), at(100.0, Vec3::Zero(), 1.0), at(102.3, Vec3::Zero(), 1.0)}, odometry, 0.2);
+  const FramePriors p =
+      attachPriors({at(90.0, Vec3::Zero(), 1.0), at(100.0, Vec3::Zero(), 1.0), at(102.3, Vec3::Zero(), 1.0)},
+                   odometry, 0.2);
   EXPECT_EQ(p.factors.size(), 1u);
   EXPECT_EQ(p.outside, 2u);
 }

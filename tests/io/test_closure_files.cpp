@@ -26,7 +26,8 @@ std::string errorOf(const std::function<void()>& read) {
 
 TEST(LoopFile, ReadsPairsWithAndWithoutARelativePose) {
   TempDir dir;
-  writeText(dir / "loops.txt", "# i j [tx ty tz qx qy qz qw]\n3 40\n41 5 1 2 3 0 0 0.7071067811865476 0.7071067811865476\n");
+  writeText(dir / "loops.txt",
+            "# i j [tx ty tz qx qy qz qw]\n3 40\n41 5 1 2 3 0 0 0.7071067811865476 0.7071067811865476\n");
   const auto loops = readLoopFile(dir / "loops.txt", 50);
   ASSERT_EQ(loops.size(), 2u);
   EXPECT_EQ(loops[0].from, 3u);

@@ -66,8 +66,9 @@ TEST(SettingTable, NamesAreUnique) {
     }
     for (const std::string& old : s.old_flags) EXPECT_TRUE(flags.insert(old).second) << old;
     EXPECT_FALSE(s.help.empty()) << s.key;
+    // A switch's flag turns it from its default, and says so.
     if (s.type == SettingType::Switch && !s.flag.empty()) {
-      EXPECT_EQ(s.flag.rfind("--no-", 0), 0u) << s.flag;
+      EXPECT_EQ(s.flag.rfind("--no-", 0) == 0, std::get<bool>(s.default_value)) << s.flag;
     }
     for (const std::string& target : s.sets)
       EXPECT_NO_THROW(settingByKey(target)) << s.key << " sets " << target;

@@ -44,8 +44,8 @@ struct ClosureGraphSettings {
 
 struct ClosureGraphResult {
   std::vector<Pose> poses;
-  std::vector<bool> loop_kept;   // per loop given
-  std::vector<bool> prior_kept;  // per prior given
+  std::vector<bool> loop_kept;    // per loop given
+  std::vector<bool> prior_kept;   // per prior given
   std::vector<double> loop_chi2;  // e^T Omega e at `poses`
   std::vector<double> prior_chi2;
   int rounds = 0;  // solves

@@ -5,6 +5,7 @@
 
 #include "hba/ba/global_refinement.hpp"
 #include "hba/ba/window_ba.hpp"
+#include "hba/closure/revisits.hpp"
 #include "hba/core/enum_names.hpp"
 #include "hba/graph/information.hpp"
 #include "hba/graph/pose_graph.hpp"
@@ -83,6 +84,12 @@ struct HbaSettings {
   std::size_t group_min_frames{};
   std::size_t group_max_count{};
   double group_voxel{};
+
+  // The closure stage before the hierarchy (docs/closure.md): find places
+  // the sequence comes back to by its poses, verify them with the plane BA
+  // and close them, as loops from a file are.
+  bool revisits{};
+  closure::RevisitSettings revisit;
 
   // Worker threads of every parallel part, the pose graph's Ceres solve
   // included; 0 = as many as the process allows (hba -j, a
