@@ -14,10 +14,13 @@
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
+#include "hba/closure/frame_priors.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
+#include "hba/io/loop_file.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/position_prior_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/convention_check.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
@@ -39,6 +42,9 @@ struct OptimizeArgs {
   std::string config;
   SettingFlags settings;
   std::string ground_truth;
+  std::string loops;
+  std::string priors;
+  double prior_max_gap_s = 0.5;
   bool no_render = false;
   bool no_convention_check = false;
   bool force = false;
@@ -102,6 +108,36 @@ std::vector<std::string> writeOptimizedPoses(const fs::path& out, const io::Data
     written.push_back(prefix + "_kitti.txt, " + prefix + "_tum.txt (" + dataset.inputFrame() + " frame)");
   }
   return written;
+}
+
+// The loop pairs and position priors of --loops and --priors, read before
+// any work so that a bad file fails at once.
+pyramid::ClosureInputs readClosureInputs(const OptimizeArgs& args, const io::Dataset& dataset) {
+  pyramid::ClosureInputs inputs;
+  if (!args.loops.empty()) {
+    for (const io::LoopRecord& record : io::readLoopFile(args.loops, dataset.size())) {
+      inputs.loops.push_back({record.from, record.to, record.relative});
+    }
+    spdlog::info("{}: {} loop closure pairs", args.loops, inputs.loops.size());
+  }
+  if (!args.priors.empty()) {
+    const std::vector<io::TimedPosition> timed = io::readPositionPriorFile(args.priors);
+    closure::FramePriors attached;
+    try {
+      attached = closure::attachPriors(timed, dataset.trajectory(), args.prior_max_gap_s);
+    } catch (const Error& e) {
+      throw Error(args.priors + ": " + e.what());
+    }
+    inputs.priors = attached.factors;
+    spdlog::info("{}: {} position priors, {} attached to frames", args.priors, timed.size(),
+                 attached.factors.size());
+    if (attached.outside > 0) {
+      spdlog::warn("{}: {} priors lie more than {:g} s from every scan and are not used", args.priors,
+                   attached.outside, args.prior_max_gap_s);
+    }
+    if (inputs.priors.empty()) throw Error(args.priors + ": no prior falls within the scans' time span");
+  }
+  return inputs;
 }
 
 // Defaults, then the YAML file, then the flags given on the command line.
@@ -175,6 +211,7 @@ void run(const OptimizeArgs& args) {
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
+  const pyramid::ClosureInputs closures = readClosureInputs(args, dataset);
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
   StagingFolder staging(args.output, args.force);
@@ -188,7 +225,8 @@ void run(const OptimizeArgs& args) {
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
   spdlog::info("threads: {}", settings.threads);
 
-  const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings);
+  const pyramid::HbaResult result =
+      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings, closures);
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, result, dataset, settings, conventions);
@@ -219,6 +257,21 @@ void registerOptimizeCommand(CLI::App& app) {
       ->add_option("--gt", args->ground_truth,
                    "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
       ->check(CLI::ExistingFile);
+  command
+      ->add_option("--loops", args->loops,
+                   "Loop-closure pairs to verify and close: lines 'i j' or 'i j tx ty tz qx qy qz qw' "
+                   "(docs/closure.md)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--priors", args->priors,
+                   "Position priors (GNSS in a local metric frame): lines 't x y z sigma' or "
+                   "'t x y z sx sy sz' (docs/closure.md)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--prior-max-gap", args->prior_max_gap_s,
+                   "A prior further than this (s) from every scan's stamp is not used")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-convention-check", args->no_convention_check,
                     "Do not check that the map is crispest with the poses as given (vs inverted, vs none)");

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "bottom_up.hpp"
+#include "closure_stage.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/core/stopwatch.hpp"
@@ -24,12 +25,25 @@
 namespace hba::pyramid {
 namespace {
 
-void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s) {
+void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s,
+              const ClosureInputs& closures) {
   if (initial.size() != scans.size()) {
     throw Error("pose count (" + std::to_string(initial.size()) + ") differs from scan count (" +
                 std::to_string(scans.size()) + ")");
   }
   if (initial.empty()) throw Error("no scans to optimize");
+  for (const closure::LoopPair& loop : closures.loops) {
+    if (loop.from >= initial.size() || loop.to >= initial.size() || loop.from == loop.to) {
+      throw Error("loop closure " + std::to_string(loop.from) + " -> " + std::to_string(loop.to) +
+                  " does not name two frames of the " + std::to_string(initial.size()) + " given");
+    }
+  }
+  for (const graph::PositionPriorFactor& prior : closures.priors) {
+    if (prior.node >= initial.size()) {
+      throw Error("a position prior names frame " + std::to_string(prior.node) + " of " +
+                  std::to_string(initial.size()));
+    }
+  }
   if (s.threads < 0) throw Error("thread count must be >= 0 (0 = as many as allowed)");
   checkSettings(s);  // the ranges of the setting table
 }
@@ -105,7 +119,8 @@ const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans,
 // One bottom-up pass and one top-down pass from `poses`.
 
 std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& poses,
-                          const HbaSettings& settings, int layers, int iteration, HbaReport& report) {
+                          const HbaSettings& settings, const ClosureOutcome& closed, int layers,
+                          int iteration, HbaReport& report) {
   StageTimes times;
   Layer layer = scanLayer(poses);
 
@@ -160,24 +175,29 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
       factors.insert(factors.end(), window.factors.begin(), window.factors.end());
     }
   }
+  // The closure stage's loops and priors stay in: the windows know nothing
+  // of the loops, and the priors set the frame.
+  graph::FactorGraph graph(factors);
+  for (const auto& loop : closed.loops) graph.add(loop);
+  for (const auto& prior : closed.priors) graph.add(prior);
   const auto graph_start = Clock::now();
   graph::PoseGraphSettings graph_settings = settings.graph;
   graph_settings.threads = settings.threads;  // resolved by runHierarchicalBa
-  graph::PoseGraphResult solved = graph::optimizePoseGraph(assigned, factors, graph_settings);
-  iteration_report.factors = factors.size();
+  graph::PoseGraphResult solved = graph::optimizeFactorGraph(assigned, graph, graph_settings);
+  iteration_report.factors = graph.size();
   iteration_report.graph_cost_before = solved.initial_cost;
   iteration_report.graph_cost_after = solved.final_cost;
   iteration_report.seconds_graph = secondsSince(graph_start);
   report.seconds_graph += iteration_report.seconds_graph;
   spdlog::info("  pose graph: {} poses, {} factors, cost {:.4g} -> {:.4g}, {:.2f} s", poses.size(),
-               factors.size(), solved.initial_cost, solved.final_cost, iteration_report.seconds_graph);
+               graph.size(), solved.initial_cost, solved.final_cost, iteration_report.seconds_graph);
   report.iterations.push_back(iteration_report);
   return solved.poses;
 }
 
 // The whole method, on poses near the origin.
 HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
-                        const HbaSettings& settings) {
+                        const HbaSettings& settings, const ClosureInputs& closures) {
   const auto start = Clock::now();
   HbaResult result;
   HbaReport& report = result.report;
@@ -199,9 +219,13 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     report.seconds_total = secondsSince(start);
     return result;
   }
+  const ClosureOutcome closed = runClosureStage(scans.source(), initial, closures, settings);
+  report.closure = closed.report;
+  result.poses = closed.start;
   for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
-    std::vector<Pose> updated = iterate(scans, result.poses, settings, report.layers, iteration, report);
+    std::vector<Pose> updated =
+        iterate(scans, result.poses, settings, closed, report.layers, iteration, report);
     const Update u = largestUpdate(result.poses, updated);
     report.iterations.back().max_translation_update = u.translation;
     report.iterations.back().max_rotation_update = u.rotation_deg;
@@ -213,7 +237,9 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     }
   }
 
-  result.poses = refineAndCheck(scans.source(), initial, result.poses, settings, report);
+  // The refinement's motion prior and self-check take the closed start as
+  // the input: its steps are the input's, its loops closed.
+  result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report);
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;
   report.largest_rotation_update = total.rotation_deg;
@@ -243,8 +269,8 @@ int resolvedThreadCount(const HbaSettings& settings) {
 }
 
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                            const HbaSettings& settings) {
-  validate(scans, initial, settings);
+                            const HbaSettings& settings, const ClosureInputs& closures) {
+  validate(scans, initial, settings, closures);
   // Every parallel part runs on this many threads: TBB's within the arena,
   // Ceres's through the pose graph's settings.
   HbaSettings resolved = settings;
@@ -255,8 +281,11 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
+  ClosureInputs near_origin = closures;
+  for (auto& prior : near_origin.priors) prior.position -= origin;
   HbaResult result;
-  arena.execute([&] { result = runNearOrigin(layer_one, translated(initial, -origin), resolved); });
+  arena.execute(
+      [&] { result = runNearOrigin(layer_one, translated(initial, -origin), resolved, near_origin); });
   result.report.threads = resolved.threads;
   result.poses = translated(result.poses, origin);
   return result;

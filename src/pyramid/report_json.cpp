@@ -33,6 +33,21 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"max_rotation_update_deg", it.max_rotation_update},
                           {"seconds_pose_graph", it.seconds_graph}});
   }
+  const ClosureReport& cl = r.closure;
+  nlohmann::json loops = nlohmann::json::array();
+  for (const LoopReport& l : cl.loops) {
+    loops.push_back({{"from", l.from},
+                     {"to", l.to},
+                     {"source", l.source},
+                     {"verified", l.verified},
+                     {"used", l.used},
+                     {"reason", l.reason},
+                     {"shared_planes", l.shared_planes},
+                     {"overlap", l.overlap},
+                     {"plane_rms_m", l.rms_m},
+                     {"correction_m", l.correction_m},
+                     {"correction_deg", l.correction_deg}});
+  }
   const RefinementReport& f = r.refinement;
   const ConsistencyReport& c = r.consistency;
   nlohmann::json regions = nlohmann::json::array();
@@ -45,6 +60,21 @@ nlohmann::json reportToJson(const HbaReport& r) {
       {"frames", r.frames},
       {"largest_update",
        {{"translation_m", r.largest_translation_update}, {"rotation_deg", r.largest_rotation_update}}},
+      {"closure",
+       {{"ran", cl.ran},
+        {"revisits_searched", cl.revisits_searched},
+        {"loops_given", cl.loops_given},
+        {"revisit_candidates", cl.revisit_candidates},
+        {"verified", cl.verified},
+        {"rejected_by_planes", cl.rejected_by_planes},
+        {"dropped_as_inconsistent", cl.dropped_as_inconsistent},
+        {"loops_used", cl.loops_used},
+        {"priors_given", cl.priors_given},
+        {"priors_dropped", cl.priors_dropped},
+        {"priors_used", cl.priors_used},
+        {"largest_move_m", cl.largest_move_m},
+        {"loops", loops},
+        {"seconds", cl.seconds}}},
       {"refinement",
        {{"ran", f.ran},
         {"blocks", f.blocks},

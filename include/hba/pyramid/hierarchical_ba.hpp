@@ -8,6 +8,7 @@
 
 #include "hba/core/pose.hpp"
 #include "hba/io/scan_source.hpp"
+#include "hba/pyramid/closure_inputs.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
@@ -95,12 +96,46 @@ struct ConsistencyReport {
   std::vector<double> region_final_rms;
 };
 
+// One loop closure candidate and what became of it.
+struct LoopReport {
+  std::size_t from = 0;
+  std::size_t to = 0;
+  std::string source;     // "file" or "revisit"
+  bool verified = false;  // the plane BA supports it
+  bool used = false;      // verified and consistent with the rest: in the pose graphs
+  std::string reason;     // why not verified, or why dropped
+  std::size_t shared_planes = 0;
+  double overlap = 0.0;
+  double rms_m = 0.0;
+  double correction_m = 0.0;  // of the guess, by the verification
+  double correction_deg = 0.0;
+};
+
+// The closure stage before the hierarchy (docs/closure.md).
+struct ClosureReport {
+  bool ran = false;
+  bool revisits_searched = false;
+  std::size_t loops_given = 0;         // from the caller (a loop file)
+  std::size_t revisit_candidates = 0;  // found by the poses (also counted when not searched)
+  std::size_t verified = 0;
+  std::size_t rejected_by_planes = 0;
+  std::size_t dropped_as_inconsistent = 0;  // verified, but the other loops and priors disagree
+  std::size_t loops_used = 0;
+  std::size_t priors_given = 0;
+  std::size_t priors_dropped = 0;  // disagree with the rest beyond their sigma
+  std::size_t priors_used = 0;
+  double largest_move_m = 0.0;  // of a pose, by the closure graph
+  std::vector<LoopReport> loops;
+  double seconds = 0.0;
+};
+
 struct HbaReport {
   int layers = 0;
   int threads = 0;  // that every parallel part ran on, the pose graph included
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
+  ClosureReport closure;
   RefinementReport refinement;
   ConsistencyReport consistency;
   // Wall time by stage. Reading and downsampling run together in parallel,
@@ -132,8 +167,11 @@ struct HbaResult {
 // memory); they are downsampled to settings.scan_voxel as they are loaded,
 // and only read. Throws hba::Error if the pose count differs from the scan
 // count or the settings are inconsistent, and what `scans` throws.
+// `closures` (loops to verify, position priors) are closed before the
+// hierarchy runs and kept in its pose graph; with priors that fix the frame
+// no pose is held.
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                            const HbaSettings& settings);
+                            const HbaSettings& settings, const ClosureInputs& closures = {});
 
 // The threads a run of `settings` uses: settings.threads, or (0) as many as
 // this process allows (hba -j, a tbb::global_control, or the machine's cores).

@@ -1,0 +1,170 @@
+#include "closure_stage.hpp"
+
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "hba/closure/closure_graph.hpp"
+#include "hba/closure/loop_check.hpp"
+#include "hba/closure/revisits.hpp"
+#include "hba/core/stopwatch.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+struct Candidate {
+  closure::LoopPair pair;
+  const char* source = "file";
+  double search_radius_m = 0.0;
+  double search_yaw_deg = 0.0;
+};
+
+// A pair from the caller without a relative pose is placed by the poses,
+// which may have drifted as much as a revisit's: it gets the same search.
+Candidate fromCaller(const closure::LoopPair& pair, const std::vector<double>& path,
+                     const closure::RevisitSettings& revisit) {
+  Candidate c;
+  c.pair = pair;
+  if (!pair.relative) {
+    const double driven = std::abs(path[pair.to] - path[pair.from]);
+    c.search_radius_m = std::min(revisit.drift * driven, revisit.max_search_m);
+    c.search_yaw_deg = std::min(revisit.drift_deg_per_m * driven, revisit.max_search_deg);
+  }
+  return c;
+}
+
+std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
+  std::vector<double> s(poses.size(), 0.0);
+  for (std::size_t k = 1; k < poses.size(); ++k) s[k] = s[k - 1] + (poses[k].t - poses[k - 1].t).norm();
+  return s;
+}
+
+LoopReport describe(const Candidate& c, const closure::LoopCheck& check) {
+  LoopReport r;
+  r.from = c.pair.from;
+  r.to = c.pair.to;
+  r.source = c.source;
+  r.verified = check.accepted;
+  r.reason = check.reason;
+  r.shared_planes = check.shared_planes;
+  r.overlap = check.overlap;
+  r.rms_m = check.rms_m;
+  r.correction_m = check.correction_m;
+  r.correction_deg = check.correction_deg;
+  return r;
+}
+
+double largestMove(const std::vector<Pose>& a, const std::vector<Pose>& b) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) worst = std::max(worst, (a[k].t - b[k].t).norm());
+  return worst;
+}
+
+}  // namespace
+
+ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
+                               const ClosureInputs& closures, const HbaSettings& settings) {
+  const auto start = Clock::now();
+  ClosureOutcome out;
+  out.start = initial;
+  ClosureReport& report = out.report;
+  report.loops_given = closures.loops.size();
+  report.priors_given = closures.priors.size();
+  report.revisits_searched = settings.revisits;
+
+  const std::vector<double> path = cumulativePath(initial);
+  std::vector<Candidate> candidates;
+  for (const closure::LoopPair& pair : closures.loops) {
+    candidates.push_back(fromCaller(pair, path, settings.revisit));
+  }
+  const std::vector<closure::RevisitCandidate> revisits = closure::findRevisits(initial, settings.revisit);
+  report.revisit_candidates = revisits.size();
+  if (settings.revisits) {
+    for (const closure::RevisitCandidate& r : revisits) {
+      Candidate c;
+      c.pair.from = r.from;
+      c.pair.to = r.to;
+      c.source = "revisit";
+      c.search_radius_m = r.search_radius_m;
+      c.search_yaw_deg = r.search_yaw_deg;
+      candidates.push_back(c);
+    }
+  } else if (!revisits.empty()) {
+    spdlog::info("the poses come back to {} earlier places (by a drift bound of {:g} %); --revisits would "
+                 "verify and close them",
+                 revisits.size(), 100.0 * settings.revisit.drift);
+  }
+  if (candidates.empty() && closures.priors.empty()) return out;
+  report.ran = true;
+
+  // Each candidate's verification is independent: their order of finishing
+  // changes nothing.
+  std::vector<closure::LoopCheck> checks(candidates.size());
+  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+    closure::LoopCheckSettings check;
+    check.search_radius_m = candidates[i].search_radius_m;
+    check.search_yaw_deg = candidates[i].search_yaw_deg;
+    check.information = settings.information;
+    checks[i] = closure::verifyLoop(clouds, initial, candidates[i].pair, check);
+  });
+
+  std::vector<graph::LoopClosureFactor> verified;
+  std::vector<std::size_t> verified_index;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    report.loops.push_back(describe(candidates[i], checks[i]));
+    if (!checks[i].accepted) {
+      ++report.rejected_by_planes;
+      continue;
+    }
+    ++report.verified;
+    graph::LoopClosureFactor f;
+    f.from = candidates[i].pair.from;
+    f.to = candidates[i].pair.to;
+    f.measurement = checks[i].relative;
+    f.information = checks[i].information;
+    verified.push_back(f);
+    verified_index.push_back(i);
+  }
+
+  closure::ClosureGraphSettings graph_settings;
+  graph_settings.threads = settings.threads;
+  const closure::ClosureGraphResult solved =
+      closure::solveClosureGraph(initial, verified, closures.priors, graph_settings);
+  for (std::size_t k = 0; k < verified.size(); ++k) {
+    LoopReport& r = report.loops[verified_index[k]];
+    if (solved.loop_kept[k]) {
+      r.used = true;
+      out.loops.push_back(verified[k]);
+    } else {
+      r.reason = "contradicted by the other loops and priors";
+      ++report.dropped_as_inconsistent;
+    }
+  }
+  for (std::size_t k = 0; k < closures.priors.size(); ++k) {
+    if (solved.prior_kept[k]) out.priors.push_back(closures.priors[k]);
+  }
+  report.loops_used = out.loops.size();
+  report.priors_used = out.priors.size();
+  report.priors_dropped = closures.priors.size() - out.priors.size();
+  out.start = solved.poses;
+  report.largest_move_m = largestMove(initial, out.start);
+  report.seconds = secondsSince(start);
+
+  spdlog::info("closures: {} candidates ({} from the caller, {} revisits), {} verified, {} used; {} priors "
+               "used of {}; poses moved up to {:.3f} m, {:.2f} s",
+               candidates.size(), report.loops_given, settings.revisits ? revisits.size() : 0, report.verified,
+               report.loops_used, report.priors_used, report.priors_given, report.largest_move_m,
+               report.seconds);
+  if (report.rejected_by_planes > 0) {
+    spdlog::info("  {} loop candidates not supported by the planes (report.json: closure.loops)",
+                 report.rejected_by_planes);
+  }
+  if (report.dropped_as_inconsistent > 0 || report.priors_dropped > 0) {
+    spdlog::warn("  dropped as contradicted by the rest: {} loops, {} priors", report.dropped_as_inconsistent,
+                 report.priors_dropped);
+  }
+  return out;
+}
+
+}  // namespace hba::pyramid
