@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hba/closure/sessions.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/relative_pose_error.hpp"
 #include "hba/graph/pose_graph.hpp"
@@ -114,7 +115,8 @@ graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::si
 ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
                                      const std::vector<graph::LoopClosureFactor>& loops,
                                      const std::vector<graph::PositionPriorFactor>& priors,
-                                     const ClosureGraphSettings& settings) {
+                                     const ClosureGraphSettings& settings,
+                                     const std::vector<std::size_t>& session_starts) {
   const OdometryNoise& n = settings.odometry;
   if (!(n.translation_m > 0.0) || !(n.rotation_deg > 0.0) || !(n.translation_per_m >= 0.0) ||
       !(n.rotation_deg_per_m >= 0.0)) {
@@ -126,8 +128,11 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   result.prior_kept.assign(priors.size(), true);
   if (input.size() < 2 || (loops.empty() && priors.empty())) return result;
 
+  const std::vector<std::size_t> session = sessionOfFrames(input.size(), session_starts);
   std::vector<graph::RelativePoseFactor> steps;
-  for (std::size_t k = 0; k + 1 < input.size(); ++k) steps.push_back(odometryFactor(input, k, n));
+  for (std::size_t k = 0; k + 1 < input.size(); ++k) {
+    if (session[k] == session[k + 1]) steps.push_back(odometryFactor(input, k, n));
+  }
   graph::PoseGraphSettings solver;
   solver.threads = settings.threads;
   solver.max_iterations = 200;

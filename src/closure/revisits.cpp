@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "hba/closure/sessions.hpp"
 #include "hba/core/error.hpp"
 
 namespace hba::closure {
@@ -35,19 +36,24 @@ std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
 
 }  // namespace
 
-std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings) {
+std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings,
+                                           const std::vector<std::size_t>& session_starts) {
   validate(settings);
   const std::vector<double> s = cumulativePath(poses);
+  const std::vector<std::size_t> session = sessionOfFrames(poses.size(), session_starts);
   std::vector<RevisitCandidate> found;
-  double next_sample = settings.min_separation_m;
+  double next_sample = 0.0;
   for (std::size_t j = 0; j < poses.size(); ++j) {
     if (s[j] < next_sample) continue;
     // The earlier frame that is nearest relative to what drift allows.
     RevisitCandidate best;
     double best_ratio = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < j && s[j] - s[i] >= settings.min_separation_m; ++i) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const bool other_session = session[i] != session[j];
+      if (!other_session && s[j] - s[i] < settings.min_separation_m) continue;
       const double path = s[j] - s[i];
-      const double slack = std::min(settings.drift * path, settings.max_search_m);
+      const double slack =
+          other_session ? settings.max_search_m : std::min(settings.drift * path, settings.max_search_m);
       const double distance = (poses[j].t - poses[i].t).norm();
       const double ratio = distance / (settings.reach_m + slack);
       if (ratio <= 1.0 && ratio < best_ratio) {
@@ -57,7 +63,10 @@ std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const
         best.path_m = path;
         best.distance_m = distance;
         best.search_radius_m = slack;
-        best.search_yaw_deg = std::min(settings.drift_deg_per_m * path, settings.max_search_deg);
+        best.search_yaw_deg = other_session
+                                  ? settings.max_search_deg
+                                  : std::min(settings.drift_deg_per_m * path, settings.max_search_deg);
+        best.cross_session = other_session;
       }
     }
     if (std::isfinite(best_ratio)) {

@@ -1,5 +1,6 @@
 #include "hba/io/scan_source.hpp"
 
+#include <algorithm>
 #include <string>
 
 #include "hba/core/error.hpp"
@@ -25,6 +26,19 @@ PointCloud DatasetScanSource::load(std::size_t i) const {
 PointCloud MemoryScanSource::load(std::size_t i) const {
   if (i >= scans_.size()) outOfRange(i, scans_.size(), "scans in memory");
   return scans_[i];
+}
+
+ConcatenatedScanSource::ConcatenatedScanSource(std::vector<const ScanSource*> parts)
+    : parts_(std::move(parts)), starts_{0} {
+  for (const ScanSource* part : parts_) starts_.push_back(starts_.back() + part->size());
+}
+
+PointCloud ConcatenatedScanSource::load(std::size_t i) const {
+  if (i >= size()) outOfRange(i, size(), "sessions");
+  // The last start not after i; empty parts share a start with the next.
+  const auto after = std::upper_bound(starts_.begin(), starts_.end(), i);
+  const std::size_t part = static_cast<std::size_t>(after - starts_.begin()) - 1;
+  return parts_[part]->load(i - starts_[part]);
 }
 
 }  // namespace hba::io

@@ -78,24 +78,30 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   for (const closure::LoopPair& pair : closures.loops) {
     candidates.push_back(fromCaller(pair, path, settings.revisit));
   }
-  const std::vector<closure::RevisitCandidate> revisits = closure::findRevisits(initial, settings.revisit);
+  const std::vector<closure::RevisitCandidate> revisits =
+      closure::findRevisits(initial, settings.revisit, closures.session_starts);
   report.revisit_candidates = revisits.size();
-  if (settings.revisits) {
-    for (const closure::RevisitCandidate& r : revisits) {
+  std::size_t searched = 0;
+  for (const closure::RevisitCandidate& r : revisits) {
+    // Sessions are joined by their revisits: searched whether or not asked.
+    if (settings.revisits || r.cross_session) {
       Candidate c;
       c.pair.from = r.from;
       c.pair.to = r.to;
-      c.source = "revisit";
+      c.source = r.cross_session ? "sessions" : "revisit";
       c.search_radius_m = r.search_radius_m;
       c.search_yaw_deg = r.search_yaw_deg;
       candidates.push_back(c);
+      ++searched;
     }
-  } else if (!revisits.empty()) {
-    spdlog::info("the poses come back to {} earlier places (by a drift bound of {:g} %); --revisits would "
-                 "verify and close them",
-                 revisits.size(), 100.0 * settings.revisit.drift);
   }
-  if (candidates.empty() && closures.priors.empty()) return out;
+  if (!settings.revisits && searched < revisits.size()) {
+    spdlog::info(
+        "the poses come back to {} earlier places (by a drift bound of {:g} %); --revisits would "
+        "verify and close them",
+        revisits.size() - searched, 100.0 * settings.revisit.drift);
+  }
+  if (candidates.empty() && closures.priors.empty() && closures.session_starts.empty()) return out;
   report.ran = true;
 
   // Each candidate's verification is independent: their order of finishing
@@ -130,7 +136,7 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   closure::ClosureGraphSettings graph_settings;
   graph_settings.threads = settings.threads;
   const closure::ClosureGraphResult solved =
-      closure::solveClosureGraph(initial, verified, closures.priors, graph_settings);
+      closure::solveClosureGraph(initial, verified, closures.priors, graph_settings, closures.session_starts);
   for (std::size_t k = 0; k < verified.size(); ++k) {
     LoopReport& r = report.loops[verified_index[k]];
     if (solved.loop_kept[k]) {
@@ -151,11 +157,11 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   report.largest_move_m = largestMove(initial, out.start);
   report.seconds = secondsSince(start);
 
-  spdlog::info("closures: {} candidates ({} from the caller, {} revisits), {} verified, {} used; {} priors "
-               "used of {}; poses moved up to {:.3f} m, {:.2f} s",
-               candidates.size(), report.loops_given, settings.revisits ? revisits.size() : 0, report.verified,
-               report.loops_used, report.priors_used, report.priors_given, report.largest_move_m,
-               report.seconds);
+  spdlog::info(
+      "closures: {} candidates ({} from the caller, {} revisits), {} verified, {} used; {} priors "
+      "used of {}; poses moved up to {:.3f} m, {:.2f} s",
+      candidates.size(), report.loops_given, searched, report.verified, report.loops_used, report.priors_used,
+      report.priors_given, report.largest_move_m, report.seconds);
   if (report.rejected_by_planes > 0) {
     spdlog::info("  {} loop candidates not supported by the planes (report.json: closure.loops)",
                  report.rejected_by_planes);

@@ -92,3 +92,34 @@ TEST_F(ClosureGraph, NothingToCloseReturnsTheInput) {
 
 }  // namespace
 }  // namespace hba::closure
+
+namespace hba::closure {
+namespace {
+
+TEST(ClosureGraphSessions, ASessionIsMovedOnlyByWhatTiesItToTheOthers) {
+  // Session A: 200 frames round a circle; session B: the same circle again,
+  // its input placed 20 m and 10 degrees off. One true loop between them.
+  const std::vector<Pose> lap = test::circle(200, 30.0);
+  std::vector<Pose> truth = lap;
+  truth.insert(truth.end(), lap.begin(), lap.end());
+  const Pose misplaced(Mat3(Eigen::AngleAxisd(0.17, Vec3::UnitZ())), Vec3(20.0, 0.0, 0.0));
+  std::vector<Pose> input = lap;
+  for (const Pose& p : lap) input.push_back(misplaced * p);
+
+  const ClosureGraphResult alone = solveClosureGraph(input, {}, {}, ClosureGraphSettings{}, {200});
+  EXPECT_EQ(alone.rounds, 0);  // nothing ties them: nothing to solve
+  graph::LoopClosureFactor loop;
+  loop.from = 50;
+  loop.to = 250;
+  loop.measurement = relative(truth[50], truth[250]);
+  loop.information = Mat6::Identity() * 1e4;
+  const ClosureGraphResult joined = solveClosureGraph(input, {loop}, {}, ClosureGraphSettings{}, {200});
+  // A keeps its poses (it holds the gauge); B comes onto it as a whole:
+  // no step of the input links frame 199 to frame 200.
+  EXPECT_LT(test::largestError(std::vector<Pose>(joined.poses.begin(), joined.poses.begin() + 200), lap),
+            1e-6);
+  EXPECT_LT(test::largestError(joined.poses, truth), 1e-3);
+}
+
+}  // namespace
+}  // namespace hba::closure

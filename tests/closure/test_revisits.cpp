@@ -60,3 +60,36 @@ TEST(Revisits, RejectsSettingsThatAreNotPositive) {
 
 }  // namespace
 }  // namespace hba::closure
+
+namespace hba::closure {
+namespace {
+
+// Session A drives +x from 0 to 150 m; session B drives the same street from
+// 60 m on, its frame 8 m and 5 degrees off (an initial alignment's error).
+std::vector<Pose> twoSessions(std::size_t& b_start) {
+  std::vector<Pose> poses;
+  for (int k = 0; k < 300; ++k) poses.emplace_back(Quat::Identity(), Vec3(0.5 * k, 0.0, 0.0));
+  b_start = poses.size();
+  const Pose offset(Mat3(Eigen::AngleAxisd(5.0 * M_PI / 180.0, Vec3::UnitZ())), Vec3(3.0, 7.0, 0.0));
+  for (int k = 0; k < 200; ++k)
+    poses.push_back(offset * Pose(Quat::Identity(), Vec3(60.0 + 0.5 * k, 0.0, 0.0)));
+  return poses;
+}
+
+TEST(Revisits, SessionsMeetWhereverTheyOverlapWithTheWidestSearch) {
+  std::size_t b_start = 0;
+  const std::vector<Pose> poses = twoSessions(b_start);
+  const auto found = findRevisits(poses, RevisitSettings{}, {b_start});
+  ASSERT_GE(found.size(), 5u);
+  for (const RevisitCandidate& c : found) {
+    EXPECT_TRUE(c.cross_session);
+    EXPECT_LT(c.from, b_start);
+    EXPECT_GE(c.to, b_start);
+    EXPECT_EQ(c.search_radius_m, 30.0);
+    EXPECT_EQ(c.search_yaw_deg, 30.0);
+    EXPECT_LE(c.distance_m, 40.0);
+  }
+}
+
+}  // namespace
+}  // namespace hba::closure

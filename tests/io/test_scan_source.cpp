@@ -108,5 +108,18 @@ TEST(MemoryScanSource, GivesTheCloudsItHolds) {
   EXPECT_EQ(MemoryScanSource(std::vector<PointCloud>{}).size(), 0u);
 }
 
+TEST(ConcatenatedScanSource, GivesEachPartsScansInTurn) {
+  const std::vector<PointCloud> a = {test::makeCloud(3, false), test::makeCloud(5, true)};
+  const std::vector<PointCloud> b = {test::makeCloud(7, false)};
+  const MemoryScanSource first(a), empty(std::vector<PointCloud>{}), second(b);
+  const ConcatenatedScanSource whole({&first, &empty, &second});
+  ASSERT_EQ(whole.size(), 3u);
+  EXPECT_EQ(whole.starts(), (std::vector<std::size_t>{0, 2, 2, 3}));
+  test::expectSameCloud(a[0], whole.load(0));
+  test::expectSameCloud(a[1], whole.load(1));
+  test::expectSameCloud(b[0], whole.load(2));
+  test::expectErrorMentioning([&] { whole.load(3); }, {"sessions", "scan 3", "3 scans"});
+}
+
 }  // namespace
 }  // namespace hba::io

@@ -51,12 +51,16 @@ struct ClosureGraphResult {
   int rounds = 0;  // solves
 };
 
-// `input` is the trajectory to correct (its steps become the soft factors);
-// loops and priors index into it. Throws hba::Error for invalid factors.
+// `input` is the trajectory to correct (its steps become the soft factors,
+// except the step into a session's first frame: `session_starts`, see
+// sessions.hpp); loops and priors index into it. A session that no loop or
+// prior ties to the others keeps its input poses. Throws hba::Error for
+// invalid factors.
 ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
                                      const std::vector<graph::LoopClosureFactor>& loops,
                                      const std::vector<graph::PositionPriorFactor>& priors,
-                                     const ClosureGraphSettings& settings);
+                                     const ClosureGraphSettings& settings,
+                                     const std::vector<std::size_t>& session_starts = {});
 
 // The soft factor of the input's step from frame k to k + 1.
 graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::size_t k,

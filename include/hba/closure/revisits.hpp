@@ -34,9 +34,15 @@ struct RevisitCandidate {
   double distance_m = 0.0;
   double search_radius_m = 0.0;  // the translation the verification must search
   double search_yaw_deg = 0.0;
+  bool cross_session = false;  // the two frames belong to different sessions
 };
 
-// Ordered by `to`. Throws hba::Error for settings that are not positive.
-std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings);
+// Ordered by `to`. Frames of different sessions (`session_starts`, see
+// sessions.hpp) are revisits however little path lies between them, and
+// their search is the largest allowed: the sessions' own frames are only
+// as close as their initial alignment. Throws hba::Error for settings that
+// are not positive.
+std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings,
+                                           const std::vector<std::size_t>& session_starts = {});
 
 }  // namespace hba::closure

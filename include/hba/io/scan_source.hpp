@@ -46,4 +46,20 @@ class MemoryScanSource : public ScanSource {
   std::vector<PointCloud> scans_;
 };
 
+// Several sources one after the other (sessions of one place, optimized
+// together): scan i of the whole is scan i - (scans before) of its part.
+// Keeps references: the parts must outlive it.
+class ConcatenatedScanSource : public ScanSource {
+ public:
+  explicit ConcatenatedScanSource(std::vector<const ScanSource*> parts);
+  std::size_t size() const override { return starts_.back(); }
+  PointCloud load(std::size_t i) const override;
+  // The index of each part's first scan in the whole, and the total at the end.
+  const std::vector<std::size_t>& starts() const { return starts_; }
+
+ private:
+  std::vector<const ScanSource*> parts_;
+  std::vector<std::size_t> starts_;
+};
+
 }  // namespace hba::io

@@ -12,8 +12,14 @@ namespace hba::pyramid {
 struct ClosureInputs {
   std::vector<closure::LoopPair> loops;            // e.g. from io::readLoopFile
   std::vector<graph::PositionPriorFactor> priors;  // e.g. from closure::attachPriors
+  // Several sessions as one sequence: the frames where each later session
+  // starts (closure/sessions.hpp). Their input poses must already be in one
+  // frame, roughly (an initial alignment); revisits between sessions are
+  // then always searched, and no odometry step links a session to the one
+  // before.
+  std::vector<std::size_t> session_starts;
 
-  bool empty() const { return loops.empty() && priors.empty(); }
+  bool empty() const { return loops.empty() && priors.empty() && session_starts.empty(); }
 };
 
 }  // namespace hba::pyramid
