@@ -15,7 +15,7 @@ namespace hba::pyramid {
 
 struct ClosureOutcome {
   std::vector<Pose> start;  // the hierarchy's start: the input with loops closed and priors met
-  std::vector<graph::LoopClosureFactor> loops;  // verified and kept
+  std::vector<graph::LoopClosureFactor> loops;     // verified and kept
   std::vector<graph::PositionPriorFactor> priors;  // kept
   ClosureReport report;
 };
