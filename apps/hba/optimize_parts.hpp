@@ -1,0 +1,56 @@
+#pragma once
+// The parts of `hba optimize` shared by one sequence and several sessions:
+// its arguments, settings, input checks and outputs.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "dataset_args.hpp"
+#include "hba/io/dataset.hpp"
+#include "hba/io/scan_source.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
+#include "setting_flags.hpp"
+
+namespace hba::cli::optimize {
+
+struct Args {
+  DatasetArgs data;
+  std::vector<std::string> more_sessions;  // DIR is the first session
+  std::string align = "register";
+  std::string output;
+  std::string config;
+  SettingFlags settings;
+  std::string ground_truth;
+  std::string loops;
+  std::string priors;
+  double prior_max_gap_s = 0.5;
+  bool no_render = false;
+  bool no_convention_check = false;
+  bool force = false;
+  bool print_config = false;
+};
+
+double peakMemoryMiB();
+// Defaults, then the YAML file, then the flags given on the command line.
+pyramid::HbaSettings mergeSettings(const Args& args);
+// --loops (frame indices of `frames`) and --priors (by `dataset`'s stamps), read before any work.
+pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* dataset, std::size_t frames);
+// Refuses input in another convention, naming the flag that fixes it; what it found, for the report.
+nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, const io::Dataset& dataset);
+// The sensor poses in three formats (and in the input's frame when it was another); the files written.
+std::vector<std::string> writeOptimizedPoses(const std::filesystem::path& out, const io::Dataset& dataset,
+                                             const std::vector<Pose>& poses);
+// report.json's content for `dataset` (the caller may add to it), and writing it.
+nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
+                          const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
+void writeReport(const std::filesystem::path& out, const nlohmann::json& report);
+// before_after.png of `before` and `optimized` (ground truth drawn when given or found).
+void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
+                  const std::vector<Pose>& before, const std::vector<Pose>& optimized,
+                  const std::filesystem::path& out);
+
+// Several sessions (args.more_sessions): optimize_sessions.cpp.
+void runSessions(const Args& args, pyramid::HbaSettings settings);
+
+}  // namespace hba::cli::optimize

@@ -1,0 +1,149 @@
+// `hba optimize A B ... -o OUT`: several sessions of one place, each in its
+// own frame, optimized as one sequence into one map in A's frame.
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+
+#include "hba/closure/session_alignment.hpp"
+#include "hba/core/atomic_file.hpp"
+#include "hba/core/error.hpp"
+#include "hba/core/staging_folder.hpp"
+#include "hba/io/pose_file.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
+#include "optimize_parts.hpp"
+#include "output_dir.hpp"
+
+namespace hba::cli::optimize {
+namespace {
+namespace fs = std::filesystem;
+
+void refuseOverrides(const DatasetArgs& d) {
+  if (!d.scans.empty() || !d.poses.empty() || !d.format.empty() || !d.times.empty() || !d.extrinsic.empty() ||
+      !d.calibration.empty() || d.invert_poses || d.scans_in_world) {
+    throw Error(
+        "--scans, --poses, --format, --times and the convention flags name one dataset's files: with "
+        "several sessions, give each session as a folder that hba finds on its own");
+  }
+}
+
+// --align FILE: one "tx ty tz qx qy qz qw" line per later session.
+std::vector<Pose> readAlignmentFile(const fs::path& path, std::size_t later_sessions) {
+  std::ifstream in(path);
+  if (!in) failAt(path, "cannot be read");
+  std::vector<Pose> transforms;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    transforms.push_back(parsePoseArgument(line, path.string()));
+  }
+  if (transforms.size() != later_sessions) {
+    failAt(path, "holds " + std::to_string(transforms.size()) + " transforms for " +
+                     std::to_string(later_sessions) +
+                     " later sessions (one 'tx ty tz qx qy qz qw' line each)");
+  }
+  return transforms;
+}
+
+std::string sessionName(std::size_t k) { return "session-" + std::to_string(k); }
+
+}  // namespace
+
+void runSessions(const Args& args, pyramid::HbaSettings settings) {
+  refuseOverrides(args.data);
+  std::vector<std::string> dirs{args.data.dir};
+  dirs.insert(dirs.end(), args.more_sessions.begin(), args.more_sessions.end());
+  std::vector<io::Dataset> datasets;
+  for (const std::string& dir : dirs) {
+    DatasetArgs one = args.data;
+    one.dir = dir;
+    datasets.push_back(one.open());
+    refuseOutputInsideInput(args.output, datasets.back());
+  }
+  std::vector<std::unique_ptr<io::DatasetScanSource>> sources;
+  std::vector<const io::ScanSource*> parts;
+  for (const io::Dataset& d : datasets) {
+    sources.push_back(std::make_unique<io::DatasetScanSource>(d));
+    parts.push_back(sources.back().get());
+  }
+  const io::ConcatenatedScanSource scans(parts);
+  pyramid::ClosureInputs closures = readClosureInputs(args, nullptr, scans.size());
+  for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
+
+  StagingFolder staging(args.output, args.force);
+  const fs::path& out = staging.path();
+  nlohmann::json conventions = nlohmann::json::array();
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
+    conventions.push_back(
+        checkConventions(args, voxel::DownsampledScanSource(*sources[k], settings.scan_voxel), datasets[k]));
+  }
+
+  // Each later session placed in the first one's frame.
+  std::vector<Pose> placed(datasets.size());
+  nlohmann::json alignment_report = nlohmann::json::array();
+  if (args.align == "register") {
+    closure::SessionAlignmentSettings align_settings;
+    for (std::size_t k = 1; k < datasets.size(); ++k) {
+      const voxel::DownsampledScanSource reference(*sources[0], settings.scan_voxel);
+      const voxel::DownsampledScanSource session(*sources[k], settings.scan_voxel);
+      const closure::SessionAlignment a = closure::alignSession(
+          reference, datasets[0].trajectory().poses, session, datasets[k].trajectory().poses, align_settings);
+      if (!a.found) {
+        throw Error(dirs[k] + ": could not place this session in " + dirs[0] + "'s frame (" + a.reason +
+                    "); give the transform with --align FILE, or --align identity if they share a frame");
+      }
+      placed[k] = a.world_from_session;
+      spdlog::info("{}: placed in {}'s frame by {} of {} matched places", dirs[k], dirs[0], a.agreeing,
+                   a.verified);
+      alignment_report.push_back(
+          {{"session", k}, {"tried", a.tried}, {"verified", a.verified}, {"agreeing", a.agreeing}});
+    }
+  } else if (args.align != "identity") {
+    const std::vector<Pose> given = readAlignmentFile(args.align, datasets.size() - 1);
+    std::copy(given.begin(), given.end(), placed.begin() + 1);
+  }
+
+  std::vector<Pose> initial;
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
+    for (const Pose& p : datasets[k].trajectory().poses) initial.push_back(placed[k] * p);
+  }
+  spdlog::info("{} sessions, {} scans in all", datasets.size(), scans.size());
+  const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
+
+  nlohmann::json sessions = nlohmann::json::array();
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
+    const std::size_t first = scans.starts()[k], end = scans.starts()[k + 1];
+    const std::vector<Pose> poses(result.poses.begin() + static_cast<std::ptrdiff_t>(first),
+                                  result.poses.begin() + static_cast<std::ptrdiff_t>(end));
+    const fs::path folder = out / sessionName(k);
+    fs::create_directories(folder);
+    writeOptimizedPoses(folder, datasets[k], poses);
+    // Where the session's own frame ended up: its first pose, optimized, over its input.
+    const Pose world_from_session = poses.front() * datasets[k].trajectory().poses.front().inverse();
+    writeFileAtomically(
+        folder / "session_frame.txt",
+        [&](std::ostream& os) {
+          os.precision(17);
+          os << "# world_from_session (the first session's frame): tx ty tz qx qy qz qw\n"
+             << world_from_session.t.x() << ' ' << world_from_session.t.y() << ' ' << world_from_session.t.z()
+             << ' ' << world_from_session.q.x() << ' ' << world_from_session.q.y() << ' '
+             << world_from_session.q.z() << ' ' << world_from_session.q.w() << '\n';
+        },
+        false);
+    sessions.push_back({{"name", sessionName(k)},
+                        {"input", fs::absolute(datasets[k].root()).string()},
+                        {"first_frame", first},
+                        {"frames", end - first}});
+  }
+  nlohmann::json report = reportJson(result, datasets[0], settings, conventions);
+  report["sessions"] = sessions;
+  report["alignment"] = {
+      {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
+      {"registered", alignment_report}};
+  writeReport(out, report);
+  if (!args.no_render) writePicture(args, datasets[0], scans, initial, result.poses, out);
+  staging.commit();
+  spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{})", result.report.seconds_total,
+               staging.destination().string(), datasets.size(), args.no_render ? "" : ", before_after.png");
+}
+
+}  // namespace hba::cli::optimize
