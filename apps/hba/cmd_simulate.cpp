@@ -90,11 +90,9 @@ sim::SessionsConfig sessionsFrom(const SimulateArgs& args) {
   sessions.count = args.sessions;
   sessions.shift = args.session_shift;
   sessions.reverse = args.session_reverse;
-  // Session 0 drives --frames; every later session --session-frames (default the same).
-  if (args.session_frames) {
-    sessions.frames.assign(args.sessions, *args.session_frames);
-    sessions.frames.front() = args.frames;
-  }
+  // --frames sizes the path (the loop is the one a single run of --frames
+  // drives); --session-frames, if given, is every session's own length.
+  if (args.session_frames) sessions.frames.assign(args.sessions, *args.session_frames);
   sim::validate(sessions);
   return sessions;
 }
@@ -209,7 +207,7 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_flag("--session-reverse", args->session_reverse,
                     "Sessions 1, 3, 5 ... drive the path in the other direction");
   command->add_option("--session-frames", args->session_frames,
-                      "Frames of every session after the first (default: --frames)");
+                      "Frames of every session (default: --frames, which also sizes the procedural loop)");
   command->callback([args] { run(*args); });
 }
 

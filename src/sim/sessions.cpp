@@ -55,7 +55,8 @@ void validate(const SessionsConfig& config) {
   }
   for (std::size_t k = 0; k < config.frames.size(); ++k) {
     if (config.frames[k] == 0) {
-      throw Error("simulate: session " + std::to_string(k) + " has 0 frames (--session-frames must be positive)");
+      throw Error("simulate: session " + std::to_string(k) +
+                  " has 0 frames (--session-frames must be positive)");
     }
   }
   if (!std::isfinite(config.time_gap) || config.time_gap < 0.0) {
@@ -89,7 +90,8 @@ SessionSet prepareSessions(const SimulationConfig& config, const SessionsConfig&
     session.seed = sessionSeed(config.seed, k);
     session.reversed = sessions.reverse && k % 2 == 1;
     session.start_along = static_cast<double>(k) * sessions.shift;
-    const PathStretch stretch = path.stretch(session.start_along, framesOf(config, sessions, k), session.reversed);
+    const PathStretch stretch =
+        path.stretch(session.start_along, framesOf(config, sessions, k), session.reversed);
     if (stretch.path.positions.size() < 2) {
       throw Error("simulate: session " + std::to_string(k) +
                   " has fewer than 2 frames left on the trajectory file (lower --session-shift)");

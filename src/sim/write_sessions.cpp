@@ -20,17 +20,20 @@ namespace {
 void writeSessionFrame(const fs::path& path, const Pose& pose) {
   const std::array<double, 7> values{pose.t.x(), pose.t.y(), pose.t.z(), pose.q.x(),
                                      pose.q.y(), pose.q.z(), pose.q.w()};
-  writeFileAtomically(path, [&](std::ostream& out) {
-    out << "# world_from_session: tx ty tz qx qy qz qw (gt_world = this * gt)\n";
-    std::array<char, 32> buffer{};
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (i > 0) out << ' ';
-      const double value = values[i] == 0.0 ? 0.0 : values[i];  // never "-0"
-      const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-      out.write(buffer.data(), result.ptr - buffer.data());
-    }
-    out << '\n';
-  }, false);
+  writeFileAtomically(
+      path,
+      [&](std::ostream& out) {
+        out << "# world_from_session: tx ty tz qx qy qz qw (gt_world = this * gt)\n";
+        std::array<char, 32> buffer{};
+        for (std::size_t i = 0; i < values.size(); ++i) {
+          if (i > 0) out << ' ';
+          const double value = values[i] == 0.0 ? 0.0 : values[i];  // never "-0"
+          const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+          out.write(buffer.data(), result.ptr - buffer.data());
+        }
+        out << '\n';
+      },
+      false);
 }
 
 void writeSessionYaml(const SessionSet& set, const Session& session, const fs::path& path) {

@@ -53,8 +53,8 @@ TEST(SimSessions, EachSessionStartsAtTheIdentityOfItsOwnFrame) {
       EXPECT_EQ(session.initial[0].q.coeffs(), Quat::Identity().coeffs());
       // The common frame is the session's frame moved by its world_from_session.
       for (std::size_t k = 0; k < session.truth.size(); ++k) {
-        EXPECT_TRUE(posesNear(session.truth_common.poses[k], session.common_from_session * session.truth.poses[k],
-                              1e-9));
+        EXPECT_TRUE(posesNear(session.truth_common.poses[k],
+                              session.common_from_session * session.truth.poses[k], 1e-9));
       }
     }
     const Session& first = twoSessions(reverse).list[0];
@@ -69,7 +69,8 @@ TEST(SimSessions, SecondSessionStartsWhereTheShiftAlongTheFirstLeads) {
   EXPECT_TRUE(posesNear(second.common_from_session, first.truth.poses[kShiftFrames], 1e-6));
   // And both then drive the same road: frame k of session 1 is frame k + 40 of session 0.
   for (std::size_t k = 0; k + kShiftFrames < first.truth.size(); k += 10) {
-    EXPECT_TRUE(posesNear(second.truth_common.poses[k], first.truth_common.poses[k + kShiftFrames], 1e-6)) << k;
+    EXPECT_TRUE(posesNear(second.truth_common.poses[k], first.truth_common.poses[k + kShiftFrames], 1e-6))
+        << k;
   }
   // The 100 m lap is a rounded rectangle 32.2 x 21.5 m (corner radius 4.3 m)
   // started mid bottom edge: 20 m along is 1.4 m up its right edge, heading

@@ -47,8 +47,8 @@ TEST(SimSessionsOutput, WritesOneCompleteDatasetPerSession) {
   writeSessions(set, dir / "out", WriteOptions{});
   for (const char* session : {"session-0", "session-1"}) {
     const fs::path folder = dir / "out" / session;
-    for (const char* name : {"pose.json", "gt.txt", "gt_world.txt", "session_frame.txt", "times.txt", "sim.yaml",
-                             "pcd/000000.pcd", "pcd/000011.pcd"}) {
+    for (const char* name : {"pose.json", "gt.txt", "gt_world.txt", "session_frame.txt", "times.txt",
+                             "sim.yaml", "pcd/000000.pcd", "pcd/000011.pcd"}) {
       EXPECT_TRUE(fs::is_regular_file(folder / name)) << folder / name;
     }
     const Trajectory gt = io::readPoses(folder / "gt.txt", io::PoseFormat::Tum);
@@ -70,7 +70,8 @@ TEST(SimSessionsOutput, WritesOneCompleteDatasetPerSession) {
     EXPECT_NE(yaml.find("gt_world.txt"), std::string::npos) << yaml;
   }
   // Session 0's frame is the common frame.
-  EXPECT_TRUE(posesNear(readSessionFrame(dir / "out" / "session-0" / "session_frame.txt"), Pose::identity(), 0.0));
+  EXPECT_TRUE(
+      posesNear(readSessionFrame(dir / "out" / "session-0" / "session_frame.txt"), Pose::identity(), 0.0));
   // No staging folder or lock left behind.
   std::size_t entries = 0;
   for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir.path())) ++entries;

@@ -40,18 +40,18 @@ std::uint64_t sessionSeed(std::uint64_t seed, std::size_t session);
 
 struct Session {
   std::size_t index = 0;
-  std::uint64_t seed = 0;     // its drift and sensor-noise seed
-  bool reversed = false;      // drives the path against session 0's direction
-  double start_along = 0.0;   // m along the path from session 0's start
-  Trajectory truth_simulator; // true poses in the simulator's frame (for scanning)
-  Pose common_from_session;   // the session's frame in the common frame
-  Trajectory truth;           // in the session's frame: truth.poses[0] is the identity
-  Trajectory truth_common;    // in the common frame (session 0's own frame)
-  std::vector<Pose> initial;  // drifted, in the session's frame: initial[0] is the identity
+  std::uint64_t seed = 0;      // its drift and sensor-noise seed
+  bool reversed = false;       // drives the path against session 0's direction
+  double start_along = 0.0;    // m along the path from session 0's start
+  Trajectory truth_simulator;  // true poses in the simulator's frame (for scanning)
+  Pose common_from_session;    // the session's frame in the common frame
+  Trajectory truth;            // in the session's frame: truth.poses[0] is the identity
+  Trajectory truth_common;     // in the common frame (session 0's own frame)
+  std::vector<Pose> initial;   // drifted, in the session's frame: initial[0] is the identity
 };
 
 struct SessionSet {
-  SimulationConfig config;  // the base: world, path (trajectory.frames is session 0's), sensor, drift
+  SimulationConfig config;  // the base: world, path (trajectory.frames sizes a loop), sensor, drift
   SessionsConfig sessions;
   Terrain terrain{0, 0.0};
   World world;  // built around the span of the path every session drives
