@@ -120,9 +120,12 @@ TEST(SimSessions, SessionsHaveTheirOwnDriftNoiseAndStamps) {
   const SessionSet& set = twoSessions(false);
   const Session& first = set.list[0];
   const Session& second = set.list[1];
-  EXPECT_EQ(first.seed, 5u);  // session 0 keeps the seed: its drift is a single run's
+  EXPECT_EQ(first.seed, 5u);  // session 0 keeps the seed
   EXPECT_NE(second.seed, first.seed);
-  // The same relative truth (a straight stretch of the same road) drifts differently.
+  // The same true pose scanned by both: other noise and dropout, other points.
+  ASSERT_TRUE(posesNear(second.truth_simulator.poses[0], first.truth_simulator.poses[kShiftFrames], 1e-9));
+  EXPECT_NE(simulateSessionFrame(set, 0, kShiftFrames).points, simulateSessionFrame(set, 1, 0).points);
+  // Their own drift streams: the errors after 30 m differ.
   const Vec3 error_first = first.initial[60].t - first.truth.poses[60].t;
   const Vec3 error_second = second.initial[60].t - second.truth.poses[60].t;
   EXPECT_GT((error_first - error_second).norm(), 0.01);
