@@ -1,12 +1,14 @@
 // `hba simulate`: writes a synthetic LiDAR sequence with ground truth.
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <memory>
 
 #include "commands.hpp"
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
+#include "hba/sim/sessions.hpp"
 #include "hba/sim/simulation.hpp"
 #include "number_checks.hpp"
 
@@ -33,6 +35,11 @@ struct SimulateArgs {
   double downsample = 0.0;
   bool force = false;
   std::size_t progress_every = 100;
+  // Several sessions in one world (sim/sessions.hpp); 1 writes one dataset as always.
+  std::size_t sessions = 1;
+  double session_shift = sim::SessionsConfig{}.shift;
+  bool session_reverse = false;
+  std::optional<std::size_t> session_frames;
 };
 
 sim::SimulationConfig configFrom(const SimulateArgs& args) {
@@ -66,15 +73,7 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
   return config;
 }
 
-void run(const SimulateArgs& args) {
-  const auto start = Clock::now();
-  const sim::Simulation simulation = sim::prepareSimulation(configFrom(args));
-  spdlog::info(
-      "world: {} triangles, {} spheres; path {:.0f} m over {} frames; sensor {} "
-      "({} rays/frame)",
-      simulation.world.triangles().size(), simulation.world.spheres().size(),
-      pathLength(simulation.truth.poses), simulation.truth.size(),
-      hba::toString(simulation.config.sensor.model), simulation.config.sensor.raysPerFrame());
+sim::WriteOptions writeOptionsFrom(const SimulateArgs& args, Clock::time_point start) {
   sim::WriteOptions options;
   options.force = args.force;
   options.poses_only = args.poses_only;
@@ -83,7 +82,57 @@ void run(const SimulateArgs& args) {
     const double seconds = secondsSince(start);
     spdlog::info("simulated {}/{} frames ({:.1f} s)", done, total, seconds);
   };
-  sim::writeSimulation(simulation, args.output, options);
+  return options;
+}
+
+sim::SessionsConfig sessionsFrom(const SimulateArgs& args) {
+  sim::SessionsConfig sessions;
+  sessions.count = args.sessions;
+  sessions.shift = args.session_shift;
+  sessions.reverse = args.session_reverse;
+  // --frames sizes the path (the loop is the one a single run of --frames
+  // drives); --session-frames, if given, is every session's own length.
+  if (args.session_frames) sessions.frames.assign(args.sessions, *args.session_frames);
+  sim::validate(sessions);
+  return sessions;
+}
+
+void runSessions(const SimulateArgs& args, const sim::SessionsConfig& sessions) {
+  const auto start = Clock::now();
+  const sim::SessionSet set = sim::prepareSessions(configFrom(args), sessions);
+  spdlog::info("world: {} triangles, {} spheres; {} sessions {} m apart along the path{}",
+               set.world.triangles().size(), set.world.spheres().size(), set.list.size(), sessions.shift,
+               sessions.reverse ? ", odd sessions reversed" : "");
+  std::size_t frames = 0;
+  for (const sim::Session& session : set.list) {
+    const Pose& frame = session.common_from_session;
+    const double heading = std::atan2(frame.R()(1, 0), frame.R()(0, 0)) * 180.0 / M_PI;
+    spdlog::info("{}: {} frames, path {:.0f} m, starts {:.1f} m from session 0's start, heading {:+.1f} deg",
+                 sim::sessionFolderName(session.index), session.truth.size(), pathLength(session.truth.poses),
+                 frame.t.norm(), heading);
+    frames += session.truth.size();
+  }
+  sim::writeSessions(set, args.output, writeOptionsFrom(args, start));
+  const double seconds = secondsSince(start);
+  spdlog::info("wrote {} ({} sessions, {} frames in {:.1f} s)", args.output, set.list.size(), frames,
+               seconds);
+}
+
+void run(const SimulateArgs& args) {
+  const sim::SessionsConfig sessions = sessionsFrom(args);
+  if (sessions.count > 1) {
+    runSessions(args, sessions);
+    return;
+  }
+  const auto start = Clock::now();
+  const sim::Simulation simulation = sim::prepareSimulation(configFrom(args));
+  spdlog::info(
+      "world: {} triangles, {} spheres; path {:.0f} m over {} frames; sensor {} "
+      "({} rays/frame)",
+      simulation.world.triangles().size(), simulation.world.spheres().size(),
+      pathLength(simulation.truth.poses), simulation.truth.size(),
+      hba::toString(simulation.config.sensor.model), simulation.config.sensor.raysPerFrame());
+  sim::writeSimulation(simulation, args.output, writeOptionsFrom(args, start));
   const double seconds = secondsSince(start);
   spdlog::info("wrote {} ({} frames in {:.1f} s, {:.1f} frames/s)", args.output, simulation.truth.size(),
                seconds, simulation.truth.size() / seconds);
@@ -147,6 +196,18 @@ void registerSimulateCommand(CLI::App& app) {
   command->add_flag("--force", args->force, "Replace a non-empty output folder");
   command->add_option("--progress-every", args->progress_every, "Log progress every N frames")
       ->capture_default_str();
+  command
+      ->add_option("--sessions", args->sessions,
+                   "Sessions in one world, written to DIR/session-0 ... (1: one dataset in DIR)")
+      ->capture_default_str();
+  command
+      ->add_option("--session-shift", args->session_shift,
+                   "Metres along the path between one session's start and the next's")
+      ->capture_default_str();
+  command->add_flag("--session-reverse", args->session_reverse,
+                    "Sessions 1, 3, 5 ... drive the path in the other direction");
+  command->add_option("--session-frames", args->session_frames,
+                      "Frames of every session (default: --frames, which also sizes the procedural loop)");
   command->callback([args] { run(*args); });
 }
 

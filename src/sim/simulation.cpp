@@ -7,7 +7,7 @@
 
 namespace hba::sim {
 
-Simulation prepareSimulation(const SimulationConfig& config) {
+void validate(const SimulationConfig& config) {
   validate(config.sensor);
   validate(config.drift);
   if (!(config.downsample_voxel >= 0.0)) {
@@ -16,6 +16,10 @@ Simulation prepareSimulation(const SimulationConfig& config) {
   if (!(config.world.max_slope >= 0.0) || config.world.max_slope > 0.2) {
     throw Error("simulate: the terrain slope must be in [0, 0.2]");
   }
+}
+
+Simulation prepareSimulation(const SimulationConfig& config) {
+  validate(config);
   Simulation simulation;
   simulation.config = config;
   simulation.terrain = Terrain(config.seed, config.world.max_slope);

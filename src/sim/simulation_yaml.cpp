@@ -4,12 +4,12 @@
 
 #include "hba/core/atomic_file.hpp"
 #include "hba/sim/simulation.hpp"
+#include "simulation_yaml.hpp"
 
 namespace hba::sim {
 namespace {
 
-void emitTrajectory(YAML::Emitter& out, const Simulation& s) {
-  const TrajectoryConfig& t = s.config.trajectory;
+void emitTrajectory(YAML::Emitter& out, const TrajectoryConfig& t, const std::vector<Pose>& truth) {
   out << YAML::Key << "trajectory" << YAML::Value << YAML::BeginMap;
   if (t.file.empty()) {
     out << YAML::Key << "shape" << YAML::Value << hba::toString(t.shape);
@@ -17,10 +17,10 @@ void emitTrajectory(YAML::Emitter& out, const Simulation& s) {
   } else {
     out << YAML::Key << "file" << YAML::Value << t.file.string();
   }
-  out << YAML::Key << "frames" << YAML::Value << s.truth.size();
+  out << YAML::Key << "frames" << YAML::Value << truth.size();
   out << YAML::Key << "frame_rate_hz" << YAML::Value << t.frame_rate_hz;
   out << YAML::Key << "sensor_height_m" << YAML::Value << t.sensor_height;
-  out << YAML::Key << "length_m" << YAML::Value << pathLength(s.truth.poses);
+  out << YAML::Key << "length_m" << YAML::Value << pathLength(truth);
   out << YAML::EndMap;
 }
 
@@ -44,10 +44,10 @@ void emitSensor(YAML::Emitter& out, const SensorConfig& c) {
   out << YAML::EndMap;
 }
 
-void emitWorld(YAML::Emitter& out, const Simulation& s) {
-  const WorldConfig& w = s.config.world;
+void emitWorld(YAML::Emitter& out, const SimulationConfig& config, const World& world) {
+  const WorldConfig& w = config.world;
   out << YAML::Key << "world" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "scene" << YAML::Value << hba::toString(s.config.scene);
+  out << YAML::Key << "scene" << YAML::Value << hba::toString(config.scene);
   out << YAML::Key << "max_slope" << YAML::Value << w.max_slope;
   out << YAML::Key << "ground_cell_m" << YAML::Value << w.ground_cell;
   out << YAML::Key << "margin_m" << YAML::Value << w.margin;
@@ -61,8 +61,8 @@ void emitWorld(YAML::Emitter& out, const Simulation& s) {
   out << YAML::Key << "trees" << YAML::Value << w.trees;
   out << YAML::Key << "bushes" << YAML::Value << w.bushes;
   out << YAML::EndMap;
-  out << YAML::Key << "triangles" << YAML::Value << s.world.triangles().size();
-  out << YAML::Key << "spheres" << YAML::Value << s.world.spheres().size();
+  out << YAML::Key << "triangles" << YAML::Value << world.triangles().size();
+  out << YAML::Key << "spheres" << YAML::Value << world.spheres().size();
   out << YAML::EndMap;
 }
 
@@ -85,27 +85,44 @@ void emitDrift(YAML::Emitter& out, const DriftConfig& d) {
 
 }  // namespace
 
-void writeSimulationYaml(const Simulation& s, const std::filesystem::path& path) {
-  YAML::Emitter out;
-  out << YAML::BeginMap;
+void emitYamlHeader(YAML::Emitter& out, std::uint64_t seed) {
   out << YAML::Key << "generator" << YAML::Value << "hba simulate";
   out << YAML::Key << "version" << YAML::Value << HBA_SIM_VERSION;
-  out << YAML::Key << "seed" << YAML::Value << s.config.seed;
-  out << YAML::Key << "files" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "seed" << YAML::Value << seed;
+}
+
+void emitDatasetFiles(YAML::Emitter& out) {
   out << YAML::Key << "scans" << YAML::Value << "pcd/ (binary PCD x y z intensity, sensor frame)";
   out << YAML::Key << "initial_poses" << YAML::Value << "pose.json (hba: tx ty tz qw qx qy qz)";
   out << YAML::Key << "ground_truth" << YAML::Value << "gt.txt (tum: t tx ty tz qx qy qz qw)";
   out << YAML::Key << "times" << YAML::Value << "times.txt (one stamp a line, s)";
-  out << YAML::EndMap;
+}
+
+void emitYamlBody(YAML::Emitter& out, const SimulationConfig& config, const std::vector<Pose>& truth,
+                  const World& world) {
   out << YAML::Key << "sensor_frame" << YAML::Value << "x forward, y left, z up";
-  emitTrajectory(out, s);
-  emitSensor(out, s.config.sensor);
-  out << YAML::Key << "downsample_voxel_m" << YAML::Value << s.config.downsample_voxel;
-  emitWorld(out, s);
-  emitDrift(out, s.config.drift);
-  out << YAML::EndMap;
+  emitTrajectory(out, config.trajectory, truth);
+  emitSensor(out, config.sensor);
+  out << YAML::Key << "downsample_voxel_m" << YAML::Value << config.downsample_voxel;
+  emitWorld(out, config, world);
+  emitDrift(out, config.drift);
+}
+
+void writeYamlFile(const std::filesystem::path& path, const YAML::Emitter& out) {
   writeFileAtomically(
       path, [&](std::ostream& stream) { stream << out.c_str() << '\n'; }, false);
+}
+
+void writeSimulationYaml(const Simulation& s, const std::filesystem::path& path) {
+  YAML::Emitter out;
+  out << YAML::BeginMap;
+  emitYamlHeader(out, s.config.seed);
+  out << YAML::Key << "files" << YAML::Value << YAML::BeginMap;
+  emitDatasetFiles(out);
+  out << YAML::EndMap;
+  emitYamlBody(out, s.config, s.truth.poses, s.world);
+  out << YAML::EndMap;
+  writeYamlFile(path, out);
 }
 
 }  // namespace hba::sim

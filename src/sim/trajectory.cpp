@@ -7,6 +7,7 @@
 #include "closed_curve.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "procedural_path.hpp"
 
 namespace hba::sim {
 namespace {
@@ -88,23 +89,31 @@ double lapLength(PathShape shape, double distance) {
 }
 
 PlanarPath proceduralPath(const TrajectoryConfig& config) {
+  return walkCurve(pathCurve(config), 0.0, config.speed / config.frame_rate_hz, config.frames, false);
+}
+
+}  // namespace
+
+ClosedCurve pathCurve(const TrajectoryConfig& config) {
   const double step = config.speed / config.frame_rate_hz;
   const double distance = step * static_cast<double>(config.frames);
-  const ClosedCurve curve = curveFor(config.shape, lapLength(config.shape, distance));
+  return curveFor(config.shape, lapLength(config.shape, distance));
+}
+
+PlanarPath walkCurve(const ClosedCurve& curve, double start, double step, std::size_t frames, bool reverse) {
+  const double direction = reverse ? -1.0 : 1.0;
   PlanarPath path;
-  for (std::size_t k = 0; k < config.frames; ++k) {
-    path.positions.push_back(curve.at(step * static_cast<double>(k)));
+  for (std::size_t k = 0; k < frames; ++k) {
+    path.positions.push_back(curve.at(start + direction * step * static_cast<double>(k)));
   }
-  // Heading along the tangent (central difference on the curve itself).
-  for (std::size_t k = 0; k < config.frames; ++k) {
-    const double s = step * static_cast<double>(k);
-    const Vec2 tangent = curve.at(s + 0.25) - curve.at(s - 0.25);
+  // Heading along the direction of travel (central difference on the curve itself).
+  for (std::size_t k = 0; k < frames; ++k) {
+    const double s = start + direction * step * static_cast<double>(k);
+    const Vec2 tangent = direction * (curve.at(s + 0.25) - curve.at(s - 0.25));
     path.headings.push_back(std::atan2(tangent.y(), tangent.x()));
   }
   return path;
 }
-
-}  // namespace
 
 PlanarPath planarPathFromFile(const std::filesystem::path& file, std::size_t max_poses) {
   const io::PoseFormat format = io::detectPoseFormat(file);

@@ -1,6 +1,6 @@
 // `hba simulate` run as a user would: the dataset it writes is readable by
-// `hba info`, the thread count never changes a byte, and --poses-only writes
-// the pose files of a full run.
+// `hba info`, the thread count never changes a byte, --poses-only writes
+// the pose files of a full run, and --sessions writes several in one world.
 #include <gtest/gtest.h>
 
 #include "test_support.hpp"
@@ -65,6 +65,44 @@ TEST(CliSimulate, RefusesToOverwriteAndRejectsBadFlags) {
   const auto bad_noise = runCommand(simulate("") + " --noise -1 -o " + (dir / "z").string());
   EXPECT_NE(bad_noise.exit_code, 0);
   EXPECT_FALSE(fs::exists(dir / "x") || fs::exists(dir / "y") || fs::exists(dir / "z"));
+}
+
+TEST(CliSimulate, OneSessionWritesExactlyTheSingleDataset) {
+  hba::test::TempDir dir;
+  ASSERT_EQ(runCommand(simulate("") + " -o " + (dir / "plain").string()).exit_code, 0);
+  const auto one = runCommand(simulate("") + " --sessions 1 --session-shift 9 -o " + (dir / "one").string());
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_TRUE(hba::test::fileContents(dir / "plain") == hba::test::fileContents(dir / "one"));
+}
+
+TEST(CliSimulate, SessionsWriteAFolderEachWithTheSameBytesForAnyThreadCount) {
+  hba::test::TempDir dir;
+  const std::string flags = " --sessions 3 --session-shift 2 --session-reverse --session-frames 10 -o ";
+  const auto made = runCommand(simulate("-j 1") + flags + (dir / "a").string());
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  EXPECT_NE(made.output.find("session-1: 10 frames"), std::string::npos) << made.output;
+  ASSERT_EQ(runCommand(simulate("-j 2") + flags + (dir / "b").string()).exit_code, 0);
+  const auto a = hba::test::fileContents(dir / "a");
+  // 3 x 10 scans; pose.json, gt.txt, gt_world.txt, session_frame.txt, times.txt, sim.yaml each.
+  EXPECT_EQ(a.size(), 30u + 3u * 6u);
+  EXPECT_EQ(a.count("session-0/pcd/000010.pcd"), 0u);
+  EXPECT_EQ(a.count("session-2/pcd/000009.pcd"), 1u);
+  EXPECT_TRUE(a == hba::test::fileContents(dir / "b"));
+  // Each session is a dataset `hba info` reads.
+  const auto info = runCommand(cliPath().string() + " info " + (dir / "a" / "session-1").string());
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+}
+
+TEST(CliSimulate, RejectsBadSessionSettingsByName) {
+  hba::test::TempDir dir;
+  const auto none = runCommand(simulate("") + " --sessions 0 -o " + (dir / "x").string());
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_NE(none.output.find("--sessions"), std::string::npos) << none.output;
+  const auto backwards =
+      runCommand(simulate("") + " --sessions 2 --session-shift=-5 -o " + (dir / "y").string());
+  EXPECT_NE(backwards.exit_code, 0);
+  EXPECT_NE(backwards.output.find("--session-shift"), std::string::npos) << backwards.output;
+  EXPECT_FALSE(fs::exists(dir / "x") || fs::exists(dir / "y"));
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 namespace hba::sim {
 
 // Independent random streams of one simulation.
-enum class Stream : std::uint64_t { World = 1, Terrain, Sensor, Drift, Trajectory, Jitter };
+enum class Stream : std::uint64_t { World = 1, Terrain, Sensor, Drift, Trajectory, Jitter, Session };
 
 // SplitMix64 finalizer: a strong 64-bit mix of its input.
 constexpr std::uint64_t mix64(std::uint64_t x) {

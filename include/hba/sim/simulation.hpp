@@ -44,6 +44,8 @@ struct Simulation {
   World world;
 };
 
+// Throws hba::Error on invalid settings (the trajectory's are checked when it is made).
+void validate(const SimulationConfig& config);
 // Throws hba::Error on invalid settings.
 Simulation prepareSimulation(const SimulationConfig& config);
 // Scan of one frame (downsampled if configured). Thread-safe.
