@@ -165,4 +165,21 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   return result;
 }
 
+std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
+                                 const std::vector<graph::PositionPriorFactor>& priors,
+                                 const OdometryNoise& step_noise, int threads,
+                                 const std::vector<std::size_t>& session_starts) {
+  if (priors.empty() || poses.size() < 2) return poses;
+  const std::vector<std::size_t> session = sessionOfFrames(poses.size(), session_starts);
+  graph::FactorGraph graph;
+  for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
+    if (session[k] == session[k + 1]) graph.add(odometryFactor(poses, k, step_noise));
+  }
+  for (const auto& prior : priors) graph.add(prior);
+  graph::PoseGraphSettings solver;
+  solver.threads = threads;
+  solver.max_iterations = 200;
+  return graph::optimizeFactorGraph(poses, graph, solver).poses;
+}
+
 }  // namespace hba::closure

@@ -12,6 +12,7 @@
 
 #include "bottom_up.hpp"
 #include "closure_stage.hpp"
+#include "hba/closure/closure_graph.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/core/stopwatch.hpp"
@@ -240,6 +241,15 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   // The refinement's motion prior and self-check take the closed start as
   // the input: its steps are the input's, its loops closed.
   result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report);
+  if (!closed.priors.empty()) {
+    // The refinement holds its first frame: back onto the priors, bending
+    // only over long stretches.
+    const std::vector<Pose> anchored = closure::anchorToPriors(
+        result.poses, closed.priors, closure::finalStepNoise(), settings.threads, closures.session_starts);
+    report.closure.anchoring_move_m = largestUpdate(result.poses, anchored).translation;
+    spdlog::info("re-anchored on the priors: poses moved up to {:.3f} m", report.closure.anchoring_move_m);
+    result.poses = anchored;
+  }
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;
   report.largest_rotation_update = total.rotation_deg;

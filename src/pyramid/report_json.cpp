@@ -73,6 +73,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
         {"priors_dropped", cl.priors_dropped},
         {"priors_used", cl.priors_used},
         {"largest_move_m", cl.largest_move_m},
+        {"anchoring_move_m", cl.anchoring_move_m},
         {"loops", loops},
         {"seconds", cl.seconds}}},
       {"refinement",

@@ -62,6 +62,19 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
                                      const ClosureGraphSettings& settings,
                                      const std::vector<std::size_t>& session_starts = {});
 
+// How stiffly the final poses' own steps hold when priors re-anchor them:
+// millimetres and hundredths of a degree a step, so the map stays as crisp
+// as the BA left it while its shape bends over hundreds of metres.
+inline OdometryNoise finalStepNoise() { return {0.002, 0.001, 0.01, 0.002}; }
+
+// The optimized poses moved onto the priors (the BAs after the closure stage
+// do not see them): a pose graph of the poses' own steps, held by
+// `step_noise`, and the priors. Session starts as in solveClosureGraph.
+std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
+                                 const std::vector<graph::PositionPriorFactor>& priors,
+                                 const OdometryNoise& step_noise, int threads,
+                                 const std::vector<std::size_t>& session_starts = {});
+
 // The soft factor of the input's step from frame k to k + 1.
 graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::size_t k,
                                          const OdometryNoise& noise);

@@ -125,6 +125,8 @@ struct ClosureReport {
   std::size_t priors_dropped = 0;  // disagree with the rest beyond their sigma
   std::size_t priors_used = 0;
   double largest_move_m = 0.0;  // of a pose, by the closure graph
+  // With priors: how far the final re-anchoring on them moved a pose.
+  double anchoring_move_m = 0.0;
   std::vector<LoopReport> loops;
   double seconds = 0.0;
 };
