@@ -47,18 +47,19 @@ void BM_VerifyLoop(benchmark::State& state) {
   std::size_t planes = 0;
   bool accepted = true;
   for (auto _ : state) {
-    const closure::LoopCheck check = closure::verifyLoop(*drive.scans, drive.simulation.initial, pair, settings);
+    const closure::LoopCheck check =
+        closure::verifyLoop(*drive.scans, drive.simulation.initial, pair, settings);
     planes = check.shared_planes;
     accepted = accepted && check.accepted;
   }
   state.counters["shared_planes"] = static_cast<double>(planes);
   state.counters["accepted"] = accepted ? 1.0 : 0.0;
-  state.SetLabel(toString(model) +
-                 (search ? " search" : " exact"));
+  state.SetLabel(toString(model) + (search ? " search" : " exact"));
 }
 
 BENCHMARK(BM_VerifyLoop)
-    ->ArgsProduct({{static_cast<int>(sim::SensorModel::Vlp16), static_cast<int>(sim::SensorModel::Hdl32)}, {0, 1}})
+    ->ArgsProduct({{static_cast<int>(sim::SensorModel::Vlp16), static_cast<int>(sim::SensorModel::Hdl32)},
+                   {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
