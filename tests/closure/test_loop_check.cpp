@@ -177,5 +177,20 @@ TEST_F(LoopCheckOnDrive, SameResultTwiceAndOnAnyThreadCount) {
   }
 }
 
+// The same defaults hold for a forward-looking solid-state sensor (70 degree
+// cone): fewer planes, but the search and the BA still find the truth.
+TEST(LoopCheckLivox, RevisitIsFoundFromAGuessMetresOff) {
+  const sim::Simulation simulation = sim::prepareSimulation(test::revisitingDrive(sim::SensorModel::Livox));
+  const LazySimulatedScans scans(simulation, 0.1);
+  const std::size_t from = 10;
+  const std::size_t to = from + kLap;
+  const Pose truth = relative(simulation.truth.poses[from], simulation.truth.poses[to]);
+  const LoopCheck result =
+      verifyLoop(scans, simulation.initial, {from, to, offsetBy(truth, 0.0, 4.0, 9.0)}, withSearch());
+  ASSERT_TRUE(result.accepted) << result.reason;
+  EXPECT_LT(translationError(result.relative, truth), kTranslationTolerance);
+  EXPECT_LT(rotationErrorDeg(result.relative, truth), kRotationToleranceDeg);
+}
+
 }  // namespace
 }  // namespace hba::closure
