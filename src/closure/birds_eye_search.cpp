@@ -1,0 +1,232 @@
+#include "birds_eye_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+namespace hba::closure {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+// Range at which one heading step moves a point by one cell: most structure
+// a scan neighbourhood sees is nearer than this.
+constexpr double kHeadingLeverM = 20.0;
+
+using Vec2 = Eigen::Vector2d;
+
+struct Cell {
+  long ix = 0;
+  long iy = 0;
+};
+
+long cellIndex(double v, double cell) { return static_cast<long>(std::floor(v / cell)); }
+
+std::int64_t cellKey(long ix, long iy) {
+  return (static_cast<std::int64_t>(ix) << 32) ^ static_cast<std::int64_t>(static_cast<std::uint32_t>(iy));
+}
+
+struct ColumnStats {
+  long ix = 0;
+  long iy = 0;
+  double z_min = 0.0;
+  double z_max = 0.0;
+  Vec3 sum = Vec3::Zero();
+  std::size_t count = 0;
+};
+
+// Columns (cells of the xy grid) whose points span at least `height`, in a
+// fixed order (by key), each with the centroid of its points.
+std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, double height) {
+  std::unordered_map<std::int64_t, ColumnStats> columns;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3 p = cloud.world(i);
+    const long ix = cellIndex(p.x(), cell);
+    const long iy = cellIndex(p.y(), cell);
+    auto [it, fresh] = columns.try_emplace(cellKey(ix, iy));
+    ColumnStats& c = it->second;
+    if (fresh) {
+      c.ix = ix;
+      c.iy = iy;
+      c.z_min = c.z_max = p.z();
+    }
+    c.z_min = std::min(c.z_min, p.z());
+    c.z_max = std::max(c.z_max, p.z());
+    c.sum += p;
+    ++c.count;
+  }
+  std::vector<ColumnStats> kept;
+  for (const auto& [key, c] : columns) {
+    if (c.z_max - c.z_min >= height) kept.push_back(c);
+  }
+  std::sort(kept.begin(), kept.end(), [](const ColumnStats& a, const ColumnStats& b) {
+    return cellKey(a.ix, a.iy) < cellKey(b.ix, b.iy);
+  });
+  return kept;
+}
+
+// The `from` map's structure columns as a dense occupancy grid.
+class OccupancyGrid {
+ public:
+  OccupancyGrid(const std::vector<ColumnStats>& columns, double cell, int dilation) : cell_(cell) {
+    if (columns.empty()) return;
+    min_x_ = max_x_ = columns.front().ix;
+    min_y_ = max_y_ = columns.front().iy;
+    for (const ColumnStats& c : columns) {
+      min_x_ = std::min(min_x_, c.ix);
+      max_x_ = std::max(max_x_, c.ix);
+      min_y_ = std::min(min_y_, c.iy);
+      max_y_ = std::max(max_y_, c.iy);
+    }
+    min_x_ -= dilation;
+    min_y_ -= dilation;
+    max_x_ += dilation;
+    max_y_ += dilation;
+    width_ = max_x_ - min_x_ + 1;
+    occupied_.assign(static_cast<std::size_t>(width_ * (max_y_ - min_y_ + 1)), 0);
+    for (const ColumnStats& c : columns) {
+      for (long dx = -dilation; dx <= dilation; ++dx) {
+        for (long dy = -dilation; dy <= dilation; ++dy) {
+          occupied_[index(c.ix + dx, c.iy + dy)] = 1;
+        }
+      }
+    }
+  }
+
+  bool occupied(const Vec2& p) const {
+    if (occupied_.empty()) return false;
+    const long ix = cellIndex(p.x(), cell_);
+    const long iy = cellIndex(p.y(), cell_);
+    if (ix < min_x_ || ix > max_x_ || iy < min_y_ || iy > max_y_) return false;
+    return occupied_[index(ix, iy)] != 0;
+  }
+
+ private:
+  std::size_t index(long ix, long iy) const {
+    return static_cast<std::size_t>((iy - min_y_) * width_ + (ix - min_x_));
+  }
+
+  double cell_;
+  long min_x_ = 0, max_x_ = -1, min_y_ = 0, max_y_ = -1, width_ = 0;
+  std::vector<std::uint8_t> occupied_;
+};
+
+// A planar correction of the guess: heading about the guess's position, then a shift.
+struct Offset {
+  double dx = 0.0;
+  double dy = 0.0;
+  double yaw = 0.0;  // rad
+};
+
+struct Scored {
+  Offset offset;
+  double score = 0.0;
+};
+
+// Values centre + k * step covering [centre - half, centre + half], always centre itself.
+std::vector<double> steps(double centre, double half, double step) {
+  std::vector<double> values;
+  if (!(half > 0.0) || !(step > 0.0)) return {centre};
+  const long n = static_cast<long>(std::ceil(half / step - 1e-9));
+  for (long k = -n; k <= n; ++k) values.push_back(centre + static_cast<double>(k) * step);
+  return values;
+}
+
+// Every offset of the level, scored.
+std::vector<Scored> scoreLevel(const OccupancyGrid& grid, const std::vector<Vec2>& queries, const Vec2& pivot,
+                               const std::vector<double>& xs, const std::vector<double>& ys,
+                               const std::vector<double>& yaws) {
+  std::vector<Scored> scored;
+  std::vector<Vec2> turned(queries.size());
+  for (const double yaw : yaws) {
+    const Eigen::Rotation2Dd rotation(yaw);
+    for (std::size_t k = 0; k < queries.size(); ++k) turned[k] = rotation * (queries[k] - pivot) + pivot;
+    for (const double dx : xs) {
+      for (const double dy : ys) {
+        const Vec2 shift(dx, dy);
+        std::size_t hits = 0;
+        for (const Vec2& q : turned) hits += grid.occupied(q + shift) ? 1 : 0;
+        scored.push_back({{dx, dy, yaw}, queries.empty() ? 0.0 : static_cast<double>(hits) / queries.size()});
+      }
+    }
+  }
+  return scored;
+}
+
+// The first best (a fixed order, so ties are deterministic).
+std::size_t bestOf(const std::vector<Scored>& scored) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < scored.size(); ++k) {
+    if (scored[k].score > scored[best].score) best = k;
+  }
+  return best;
+}
+
+std::vector<Vec2> queryPoints(const std::vector<ColumnStats>& columns, const Pose& guess) {
+  std::vector<Vec2> queries;
+  queries.reserve(columns.size());
+  for (const ColumnStats& c : columns) {
+    const Vec3 p = guess * (c.sum / static_cast<double>(c.count));
+    queries.emplace_back(p.x(), p.y());
+  }
+  return queries;
+}
+
+Pose corrected(const Pose& guess, const Offset& offset) {
+  const Mat3 Rz = Eigen::AngleAxisd(offset.yaw, Vec3::UnitZ()).toRotationMatrix();
+  const Vec3 pivot = guess.t;
+  const Pose correction(Rz, pivot + Vec3(offset.dx, offset.dy, 0.0) - Rz * pivot);
+  return correction * guess;
+}
+
+}  // namespace
+
+BirdsEyeMatch searchBirdsEye(const PointCloud& from_map, const PointCloud& to_map, const Pose& guess,
+                             const BirdsEyeSearchSettings& settings) {
+  BirdsEyeMatch match;
+  match.relative = guess;
+  const Vec2 pivot = guess.t.head<2>();
+
+  // Coarse: the whole range, on a grid dilated by a cell (the true offset
+  // lies up to half a step from the nearest one tried).
+  const double coarse_cell = settings.cell_m;
+  const double coarse_yaw_step = std::atan(coarse_cell / kHeadingLeverM);
+  const auto to_coarse = structureColumns(to_map, coarse_cell, settings.structure_height_m);
+  match.structure_cells = to_coarse.size();
+  if (to_coarse.empty()) return match;
+  const OccupancyGrid coarse_grid(structureColumns(from_map, coarse_cell, settings.structure_height_m),
+                                  coarse_cell, 1);
+  const std::vector<Scored> coarse = scoreLevel(
+      coarse_grid, queryPoints(to_coarse, guess), pivot, steps(0.0, settings.radius_m, coarse_cell),
+      steps(0.0, settings.radius_m, coarse_cell), steps(0.0, settings.yaw_deg * kDegree, coarse_yaw_step));
+  const Scored best = coarse[bestOf(coarse)];
+  match.score = best.score;
+  for (const Scored& s : coarse) {
+    const bool far = std::hypot(s.offset.dx - best.offset.dx, s.offset.dy - best.offset.dy) >
+                         settings.ambiguous_distance_m ||
+                     std::abs(s.offset.yaw - best.offset.yaw) > settings.ambiguous_yaw_deg * kDegree;
+    if (far) match.second_score = std::max(match.second_score, s.score);
+  }
+
+  // Fine: half the cell, around the coarse best, undilated.
+  const double fine_cell = 0.5 * coarse_cell;
+  const auto to_fine = structureColumns(to_map, fine_cell, settings.structure_height_m);
+  const OccupancyGrid fine_grid(structureColumns(from_map, fine_cell, settings.structure_height_m), fine_cell,
+                                0);
+  const std::vector<double> yaws = settings.yaw_deg > 0.0
+                                       ? steps(best.offset.yaw, coarse_yaw_step, 0.25 * coarse_yaw_step)
+                                       : std::vector<double>{0.0};
+  const std::vector<double> xs = settings.radius_m > 0.0
+                                     ? steps(best.offset.dx, coarse_cell, 0.25 * coarse_cell)
+                                     : std::vector<double>{0.0};
+  const std::vector<double> ys = settings.radius_m > 0.0
+                                     ? steps(best.offset.dy, coarse_cell, 0.25 * coarse_cell)
+                                     : std::vector<double>{0.0};
+  const std::vector<Scored> fine = scoreLevel(fine_grid, queryPoints(to_fine, guess), pivot, xs, ys, yaws);
+  match.relative = corrected(guess, fine[bestOf(fine)].offset);
+  return match;
+}
+
+}  // namespace hba::closure
