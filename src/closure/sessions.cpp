@@ -11,7 +11,8 @@ std::vector<std::size_t> sessionOfFrames(std::size_t frames, std::vector<std::si
   std::sort(starts.begin(), starts.end());
   starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
   if (!starts.empty() && starts.back() >= frames) {
-    throw Error("a session starts at frame " + std::to_string(starts.back()) + " of " + std::to_string(frames));
+    throw Error("a session starts at frame " + std::to_string(starts.back()) + " of " +
+                std::to_string(frames));
   }
   std::vector<std::size_t> session(frames, 0);
   std::size_t current = 0, next = 0;
