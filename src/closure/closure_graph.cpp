@@ -1,5 +1,6 @@
 #include "hba/closure/closure_graph.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -95,6 +96,44 @@ bool readmit(const Verdicts& v, const ClosureGraphSettings& s, std::vector<bool>
   return any;
 }
 
+// A rigid move of the input onto the priors, a start the solver can reach
+// them from (the priors' frame may be UTM and turned). Refit twice on the
+// priors within three times the median distance, so outliers do not steer
+// it; only a shift when the priors lie along a line.
+Pose rigidMoveOntoPriors(const std::vector<Pose>& input,
+                         const std::vector<graph::PositionPriorFactor>& priors) {
+  std::vector<std::size_t> used(priors.size());
+  for (std::size_t i = 0; i < priors.size(); ++i) used[i] = i;
+  Pose move;
+  for (int round = 0; round < 3 && !used.empty(); ++round) {
+    Eigen::Matrix3Xd from(3, used.size()), to(3, used.size());
+    for (std::size_t k = 0; k < used.size(); ++k) {
+      from.col(static_cast<Eigen::Index>(k)) = input[priors[used[k]].node].t;
+      to.col(static_cast<Eigen::Index>(k)) = priors[used[k]].position;
+    }
+    const Vec3 centre = from.rowwise().mean();
+    const Eigen::JacobiSVD<Eigen::Matrix3Xd> spread(from.colwise() - centre);
+    if (used.size() >= 3 && spread.singularValues()(1) > 1.0) {
+      move = Pose::fromMatrix(Eigen::umeyama(from, to, false));
+    } else {
+      move = Pose(Quat::Identity(), to.rowwise().mean() - centre);
+    }
+    std::vector<double> distance;
+    for (std::size_t i = 0; i < priors.size(); ++i) {
+      distance.push_back(((move * input[priors[i].node]).t - priors[i].position).norm());
+    }
+    std::vector<double> sorted = distance;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                     sorted.end());
+    const double limit = 3.0 * sorted[sorted.size() / 2] + 1e-9;
+    used.clear();
+    for (std::size_t i = 0; i < priors.size(); ++i) {
+      if (distance[i] <= limit) used.push_back(i);
+    }
+  }
+  return move;
+}
+
 }  // namespace
 
 graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::size_t k,
@@ -137,6 +176,11 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   solver.threads = settings.threads;
   solver.max_iterations = 200;
 
+  std::vector<Pose> start = input;
+  if (!priors.empty()) {
+    const Pose move = rigidMoveOntoPriors(input, priors);
+    for (Pose& p : start) p = move * p;
+  }
   std::vector<int> loop_returns(loops.size(), 0), prior_returns(priors.size(), 0);
   const auto solve = [&] {
     graph::FactorGraph graph(steps);
@@ -146,9 +190,9 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
     for (std::size_t i = 0; i < priors.size(); ++i) {
       if (result.prior_kept[i]) graph.add(priors[i]);
     }
-    // Every round starts from the input: a solution bent by a dropped
-    // factor is no better a start than the input.
-    result.poses = graph::optimizeFactorGraph(input, graph, solver).poses;
+    // Every round starts from the input (on the priors): a solution bent by
+    // a dropped factor is no better a start.
+    result.poses = graph::optimizeFactorGraph(start, graph, solver).poses;
     ++result.rounds;
     return judge(result.poses, loops, priors, settings);
   };
@@ -170,6 +214,10 @@ std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
                                  const OdometryNoise& step_noise, int threads,
                                  const std::vector<std::size_t>& session_starts) {
   if (priors.empty() || poses.size() < 2) return poses;
+  // Moved rigidly first: what remains is the bending.
+  std::vector<Pose> start = poses;
+  const Pose move = rigidMoveOntoPriors(poses, priors);
+  for (Pose& p : start) p = move * p;
   const std::vector<std::size_t> session = sessionOfFrames(poses.size(), session_starts);
   graph::FactorGraph graph;
   for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
@@ -179,7 +227,7 @@ std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
   graph::PoseGraphSettings solver;
   solver.threads = threads;
   solver.max_iterations = 200;
-  return graph::optimizeFactorGraph(poses, graph, solver).poses;
+  return graph::optimizeFactorGraph(start, graph, solver).poses;
 }
 
 }  // namespace hba::closure

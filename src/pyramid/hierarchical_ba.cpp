@@ -198,7 +198,8 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
 
 // The whole method, on poses near the origin.
 HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
-                        const HbaSettings& settings, const ClosureInputs& closures) {
+                        const HbaSettings& settings, const ClosureOutcome& closed,
+                        const std::vector<std::size_t>& session_starts) {
   const auto start = Clock::now();
   HbaResult result;
   HbaReport& report = result.report;
@@ -220,7 +221,6 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     report.seconds_total = secondsSince(start);
     return result;
   }
-  const ClosureOutcome closed = runClosureStage(scans.source(), initial, closures, settings);
   report.closure = closed.report;
   result.poses = closed.start;
   for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
@@ -245,7 +245,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     // The refinement holds its first frame: back onto the priors, bending
     // only over long stretches.
     const std::vector<Pose> anchored = closure::anchorToPriors(
-        result.poses, closed.priors, closure::finalStepNoise(), settings.threads, closures.session_starts);
+        result.poses, closed.priors, closure::finalStepNoise(), settings.threads, session_starts);
     report.closure.anchoring_move_m = largestUpdate(result.poses, anchored).translation;
     spdlog::info("re-anchored on the priors: poses moved up to {:.3f} m", report.closure.anchoring_move_m);
     result.poses = anchored;
@@ -263,7 +263,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     spdlog::warn("{}", report.warnings.back());
     result.poses = initial;
   }
-  report.seconds_total = secondsSince(start);
+  report.seconds_total = secondsSince(start) + closed.report.seconds;
   return result;
 }
 
@@ -291,13 +291,23 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
   const Vec3 origin = initial.front().t;
-  ClosureInputs near_origin = closures;
-  for (auto& prior : near_origin.priors) prior.position -= origin;
+  const std::vector<Pose> near_initial = translated(initial, -origin);
+  ClosureInputs near_closures = closures;
+  for (auto& prior : near_closures.priors) prior.position -= origin;
   HbaResult result;
-  arena.execute(
-      [&] { result = runNearOrigin(layer_one, translated(initial, -origin), resolved, near_origin); });
+  Vec3 shift = Vec3::Zero();
+  arena.execute([&] {
+    ClosureOutcome closed = runClosureStage(layer_one.source(), near_initial, near_closures, resolved);
+    // Priors may put the start far from the input (UTM coordinates): the
+    // hierarchy works near the start's first pose instead.
+    shift = closed.start.front().t;
+    closed.start = translated(closed.start, -shift);
+    for (auto& prior : closed.priors) prior.position -= shift;
+    result =
+        runNearOrigin(layer_one, translated(near_initial, -shift), resolved, closed, closures.session_starts);
+  });
   result.report.threads = resolved.threads;
-  result.poses = translated(result.poses, origin);
+  result.poses = translated(result.poses, origin + shift);
   return result;
 }
 

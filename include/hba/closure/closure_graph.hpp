@@ -19,7 +19,12 @@ namespace hba::closure {
 
 // How far the input's step between consecutive frames may be wrong (one
 // sigma per axis): a floor plus a share of the step's length. Sets how a
-// loop's correction spreads along the path: evenly by distance.
+// loop's correction spreads along the path: evenly by distance. Generous,
+// because odometry drift is a bias more than noise: a loop must close
+// whatever the drift, and the loops and priors are judged against each
+// other, not against the input's steps. (Dense priors may therefore bend
+// the start locally by their noise; the BAs after it hold the local shape
+// to the planes.)
 struct OdometryNoise {
   double translation_m = 0.02;
   double translation_per_m = 0.02;
@@ -62,10 +67,10 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
                                      const ClosureGraphSettings& settings,
                                      const std::vector<std::size_t>& session_starts = {});
 
-// How stiffly the final poses' own steps hold when priors re-anchor them:
-// millimetres and hundredths of a degree a step, so the map stays as crisp
-// as the BA left it while its shape bends over hundreds of metres.
-inline OdometryNoise finalStepNoise() { return {0.002, 0.001, 0.01, 0.002}; }
+// How stiffly the final poses' own steps hold when priors re-anchor them: a
+// fifth of the input's noise, so the map stays as crisp as the BA left it
+// while its shape may still bend over kilometres.
+inline OdometryNoise finalStepNoise() { return {0.0004, 0.001, 0.002, 0.002}; }
 
 // The optimized poses moved onto the priors (the BAs after the closure stage
 // do not see them): a pose graph of the poses' own steps, held by
