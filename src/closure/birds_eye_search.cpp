@@ -181,6 +181,56 @@ Pose corrected(const Pose& guess, const Offset& offset) {
   return correction * guess;
 }
 
+bool farApart(const Offset& a, const Offset& b, const BirdsEyeSearchSettings& settings) {
+  return std::hypot(a.dx - b.dx, a.dy - b.dy) > settings.ambiguous_distance_m ||
+         std::abs(a.yaw - b.yaw) > settings.ambiguous_yaw_deg * kDegree;
+}
+
+// The best offsets that lie far apart from each other, best first, at most `count`.
+std::vector<Offset> peaks(std::vector<Scored> scored, std::size_t count,
+                          const BirdsEyeSearchSettings& settings) {
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const Scored& a, const Scored& b) { return a.score > b.score; });
+  std::vector<Offset> found;
+  for (const Scored& s : scored) {
+    if (found.size() == count) break;
+    bool far = true;
+    for (const Offset& f : found) far = far && farApart(s.offset, f, settings);
+    if (far) found.push_back(s.offset);
+  }
+  return found;
+}
+
+// A coarse level over many offsets, scored only where a level four times
+// coarser peaks: the same best wherever that level's peaks hold it, at a
+// fraction of the cost (a session's frame may be a full turn off).
+std::vector<Scored> scoreAroundPeaks(const PointCloud& from_map, const PointCloud& to_map, const Pose& guess,
+                                     const OccupancyGrid& grid, const std::vector<Vec2>& queries,
+                                     const Vec2& pivot, const BirdsEyeSearchSettings& settings) {
+  const double cell = settings.cell_m;
+  const double rough_cell = 4.0 * cell;
+  const double rough_yaw_step = std::atan(rough_cell / kHeadingLeverM);
+  const double yaw_step = std::atan(cell / kHeadingLeverM);
+  const auto to_rough = structureColumns(to_map, rough_cell, settings.structure_height_m);
+  const OccupancyGrid rough_grid(structureColumns(from_map, rough_cell, settings.structure_height_m),
+                                 rough_cell, 1);
+  const std::vector<Scored> rough = scoreLevel(
+      rough_grid, queryPoints(to_rough, guess), pivot, steps(0.0, settings.radius_m, rough_cell),
+      steps(0.0, settings.radius_m, rough_cell), steps(0.0, settings.yaw_deg * kDegree, rough_yaw_step));
+  std::vector<Scored> scored;
+  for (const Offset& peak : peaks(rough, 8, settings)) {
+    const std::vector<Scored> near = scoreLevel(
+        grid, queries, pivot, steps(peak.dx, rough_cell, cell), steps(peak.dy, rough_cell, cell),
+        settings.yaw_deg > 0.0 ? steps(peak.yaw, rough_yaw_step, yaw_step) : std::vector<double>{0.0});
+    scored.insert(scored.end(), near.begin(), near.end());
+  }
+  return scored;
+}
+
+// Above this many offsets the coarse level is scored around a rougher
+// level's peaks only.
+constexpr std::size_t kFullSearchOffsets = 40000;
+
 }  // namespace
 
 BirdsEyeMatch searchBirdsEye(const PointCloud& from_map, const PointCloud& to_map, const Pose& guess,
@@ -198,16 +248,17 @@ BirdsEyeMatch searchBirdsEye(const PointCloud& from_map, const PointCloud& to_ma
   if (to_coarse.empty()) return match;
   const OccupancyGrid coarse_grid(structureColumns(from_map, coarse_cell, settings.structure_height_m),
                                   coarse_cell, 1);
-  const std::vector<Scored> coarse = scoreLevel(
-      coarse_grid, queryPoints(to_coarse, guess), pivot, steps(0.0, settings.radius_m, coarse_cell),
-      steps(0.0, settings.radius_m, coarse_cell), steps(0.0, settings.yaw_deg * kDegree, coarse_yaw_step));
+  const std::vector<double> coarse_xs = steps(0.0, settings.radius_m, coarse_cell);
+  const std::vector<double> coarse_yaws = steps(0.0, settings.yaw_deg * kDegree, coarse_yaw_step);
+  const std::vector<Vec2> coarse_queries = queryPoints(to_coarse, guess);
+  const std::vector<Scored> coarse =
+      coarse_xs.size() * coarse_xs.size() * coarse_yaws.size() > kFullSearchOffsets
+          ? scoreAroundPeaks(from_map, to_map, guess, coarse_grid, coarse_queries, pivot, settings)
+          : scoreLevel(coarse_grid, coarse_queries, pivot, coarse_xs, coarse_xs, coarse_yaws);
   const Scored best = coarse[bestOf(coarse)];
   match.score = best.score;
   for (const Scored& s : coarse) {
-    const bool far = std::hypot(s.offset.dx - best.offset.dx, s.offset.dy - best.offset.dy) >
-                         settings.ambiguous_distance_m ||
-                     std::abs(s.offset.yaw - best.offset.yaw) > settings.ambiguous_yaw_deg * kDegree;
-    if (far) match.second_score = std::max(match.second_score, s.score);
+    if (farApart(s.offset, best.offset, settings)) match.second_score = std::max(match.second_score, s.score);
   }
 
   // Fine: half the cell, around the coarse best, undilated.

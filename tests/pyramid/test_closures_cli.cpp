@@ -27,11 +27,12 @@ void run(const std::string& command) {
 nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(test::readText(path)); }
 
 // ATE translation RMSE (m) of `est` against `gt`, aligned as `align` says.
-double ate(const fs::path& gt, const fs::path& est, const fs::path& scratch, const std::string& align = "se3") {
+double ate(const fs::path& gt, const fs::path& est, const fs::path& scratch,
+           const std::string& align = "se3") {
   const fs::path json = scratch / "ate.json";
   const test::CommandResult result =
-      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() + " --align " + align +
-                       " --force --json " + json.string());
+      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() + " --align " +
+                       align + " --force --json " + json.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
 }
@@ -39,9 +40,9 @@ double ate(const fs::path& gt, const fs::path& est, const fs::path& scratch, con
 // RPE translation RMSE (m) over 10 frames.
 double rpe(const fs::path& gt, const fs::path& est, const fs::path& scratch) {
   const fs::path json = scratch / "rpe.json";
-  const test::CommandResult result = test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " +
-                                                      est.string() + " --delta 10 --force --json " +
-                                                      json.string());
+  const test::CommandResult result =
+      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() +
+                       " --delta 10 --force --json " + json.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return readJson(json).at("rpe").at("translation_m").at("rmse").get<double>();
 }
@@ -101,7 +102,8 @@ TEST_F(ClosuresSimulated, AnOpenLoopRevisitMetresOffIsFoundAndClosed) {
 // the wrong ones are rejected and counted, and the poses are those of the
 // right pairs alone.
 TEST_F(ClosuresSimulated, WrongLoopPairsAreRejectedAndCounted) {
-  run(hba() + " -q simulate --frames 400 --seed 3 --scene open --drift-translation 0.02 --drift-rotation 0.04 -o " +
+  run(hba() +
+      " -q simulate --frames 400 --seed 3 --scene open --drift-translation 0.02 --drift-rotation 0.04 -o " +
       data().string());
   const Trajectory gt = io::readPoses(data() / "gt.txt");
   const auto right = trueRevisits(gt, 250, 15);
