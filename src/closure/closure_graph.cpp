@@ -180,6 +180,19 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   if (!priors.empty()) {
     const Pose move = rigidMoveOntoPriors(input, priors);
     for (Pose& p : start) p = move * p;
+    // A stretch of bad GNSS (multipath) agrees with itself: judged after
+    // the steps have bent to it, it would look right. A Cauchy loss on the
+    // priors, narrowed from far to near (graduated), lets the steps decide
+    // first; the gates below then drop what stays far.
+    graph::FactorGraph graph(steps);
+    for (const auto& loop : loops) graph.add(loop);
+    for (const auto& prior : priors) graph.add(prior);
+    solver.prior_robust_loss = graph::RobustLoss::Cauchy;
+    for (const double scale : {64.0, 16.0, 4.0}) {
+      solver.prior_robust_loss_scale = scale;
+      start = graph::optimizeFactorGraph(start, graph, solver).poses;
+      ++result.rounds;
+    }
   }
   std::vector<int> loop_returns(loops.size(), 0), prior_returns(priors.size(), 0);
   const auto solve = [&] {
@@ -190,8 +203,8 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
     for (std::size_t i = 0; i < priors.size(); ++i) {
       if (result.prior_kept[i]) graph.add(priors[i]);
     }
-    // Every round starts from the input (on the priors): a solution bent by
-    // a dropped factor is no better a start.
+    // Every round starts from the same start (the input, on the priors): a
+    // solution bent by a dropped factor is no better one.
     result.poses = graph::optimizeFactorGraph(start, graph, solver).poses;
     ++result.rounds;
     return judge(result.poses, loops, priors, settings);
@@ -209,25 +222,13 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   return result;
 }
 
-std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
-                                 const std::vector<graph::PositionPriorFactor>& priors,
-                                 const OdometryNoise& step_noise, int threads,
-                                 const std::vector<std::size_t>& session_starts) {
-  if (priors.empty() || poses.size() < 2) return poses;
-  // Moved rigidly first: what remains is the bending.
-  std::vector<Pose> start = poses;
-  const Pose move = rigidMoveOntoPriors(poses, priors);
-  for (Pose& p : start) p = move * p;
-  const std::vector<std::size_t> session = sessionOfFrames(poses.size(), session_starts);
-  graph::FactorGraph graph;
-  for (std::size_t k = 0; k + 1 < poses.size(); ++k) {
-    if (session[k] == session[k + 1]) graph.add(odometryFactor(poses, k, step_noise));
-  }
-  for (const auto& prior : priors) graph.add(prior);
-  graph::PoseGraphSettings solver;
-  solver.threads = threads;
-  solver.max_iterations = 200;
-  return graph::optimizeFactorGraph(start, graph, solver).poses;
+ClosureGraphResult anchorToPriors(const std::vector<Pose>& poses,
+                                  const std::vector<graph::PositionPriorFactor>& priors,
+                                  const ClosureGraphSettings& settings,
+                                  const std::vector<std::size_t>& session_starts) {
+  ClosureGraphSettings stiff = settings;
+  stiff.odometry = finalStepNoise();
+  return solveClosureGraph(poses, {}, priors, stiff, session_starts);
 }
 
 }  // namespace hba::closure

@@ -19,7 +19,7 @@ class CostFunction;
 namespace hba::graph {
 
 // Which PoseGraphSettings robust loss a factor gets.
-enum class LossGroup { Window, Loop, None };
+enum class LossGroup { Window, Loop, Prior, None };
 
 class FactorModel {
  public:

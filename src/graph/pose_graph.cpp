@@ -43,6 +43,9 @@ void validate(const std::vector<Pose>& initial, const FactorGraph& factors,
   if (settings.loop_robust_loss != RobustLoss::None && !(settings.loop_robust_loss_scale > 0.0)) {
     throw Error("pose graph: loop_robust_loss_scale must be positive");
   }
+  if (settings.prior_robust_loss != RobustLoss::None && !(settings.prior_robust_loss_scale > 0.0)) {
+    throw Error("pose graph: prior_robust_loss_scale must be positive");
+  }
   if (!(settings.min_prior_spread > 0.0) || !std::isfinite(settings.min_prior_spread)) {
     throw Error("pose graph: min_prior_spread must be positive and finite");
   }
@@ -105,9 +108,12 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
       makeLoss(settings.robust_loss, settings.robust_loss_scale);
   const std::unique_ptr<ceres::LossFunction> loop_loss =
       makeLoss(settings.loop_robust_loss, settings.loop_robust_loss_scale);
+  const std::unique_ptr<ceres::LossFunction> prior_loss =
+      makeLoss(settings.prior_robust_loss, settings.prior_robust_loss_scale);
   auto lossOf = [&](LossGroup group) -> ceres::LossFunction* {
     if (group == LossGroup::Window) return window_loss.get();
     if (group == LossGroup::Loop) return loop_loss.get();
+    if (group == LossGroup::Prior) return prior_loss.get();
     return nullptr;
   };
 

@@ -45,7 +45,7 @@ class PosePriorModel final : public FactorModel {
   FactorKind kind() const override { return FactorKind::PosePrior; }
   const char* name() const override { return "pose prior"; }
   std::vector<std::size_t> nodes() const override { return {f_.node}; }
-  LossGroup lossGroup() const override { return LossGroup::None; }
+  LossGroup lossGroup() const override { return LossGroup::Prior; }
   GaugePin gaugePin() const override {
     GaugePin pin;
     if (constrainsEveryDirection<6>(f_.information)) pin.kind = PinKind::Pose;

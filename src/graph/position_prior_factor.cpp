@@ -40,7 +40,7 @@ class PositionPriorModel final : public FactorModel {
   FactorKind kind() const override { return FactorKind::PositionPrior; }
   const char* name() const override { return "position prior"; }
   std::vector<std::size_t> nodes() const override { return {f_.node}; }
-  LossGroup lossGroup() const override { return LossGroup::None; }
+  LossGroup lossGroup() const override { return LossGroup::Prior; }
   GaugePin gaugePin() const override {
     GaugePin pin;
     if (constrainsEveryDirection<3>(f_.information)) pin = {PinKind::Position, f_.position};

@@ -244,11 +244,17 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   if (!closed.priors.empty()) {
     // The refinement holds its first frame: back onto the priors, bending
     // only over long stretches.
-    const std::vector<Pose> anchored = closure::anchorToPriors(
-        result.poses, closed.priors, closure::finalStepNoise(), settings.threads, session_starts);
-    report.closure.anchoring_move_m = largestUpdate(result.poses, anchored).translation;
-    spdlog::info("re-anchored on the priors: poses moved up to {:.3f} m", report.closure.anchoring_move_m);
-    result.poses = anchored;
+    closure::ClosureGraphSettings anchoring;
+    anchoring.threads = settings.threads;
+    const closure::ClosureGraphResult anchored =
+        closure::anchorToPriors(result.poses, closed.priors, anchoring, session_starts);
+    report.closure.anchoring_move_m = largestUpdate(result.poses, anchored.poses).translation;
+    report.closure.anchoring_priors_dropped =
+        static_cast<std::size_t>(std::count(anchored.prior_kept.begin(), anchored.prior_kept.end(), false));
+    spdlog::info("re-anchored on {} priors: poses moved up to {:.3f} m",
+                 closed.priors.size() - report.closure.anchoring_priors_dropped,
+                 report.closure.anchoring_move_m);
+    result.poses = anchored.poses;
   }
   const Update total = largestUpdate(initial, result.poses);
   report.largest_translation_update = total.translation;

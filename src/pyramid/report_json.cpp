@@ -74,6 +74,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
         {"priors_used", cl.priors_used},
         {"largest_move_m", cl.largest_move_m},
         {"anchoring_move_m", cl.anchoring_move_m},
+        {"anchoring_priors_dropped", cl.anchoring_priors_dropped},
         {"loops", loops},
         {"seconds", cl.seconds}}},
       {"refinement",

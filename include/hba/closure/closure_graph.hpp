@@ -73,12 +73,13 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
 inline OdometryNoise finalStepNoise() { return {0.0004, 0.001, 0.002, 0.002}; }
 
 // The optimized poses moved onto the priors (the BAs after the closure stage
-// do not see them): a pose graph of the poses' own steps, held by
-// `step_noise`, and the priors. Session starts as in solveClosureGraph.
-std::vector<Pose> anchorToPriors(const std::vector<Pose>& poses,
-                                 const std::vector<graph::PositionPriorFactor>& priors,
-                                 const OdometryNoise& step_noise, int threads,
-                                 const std::vector<std::size_t>& session_starts = {});
+// do not see them): the closure graph of the poses' own steps, held by
+// finalStepNoise(), and the priors; priors that the stiff shape
+// contradicts are dropped as there.
+ClosureGraphResult anchorToPriors(const std::vector<Pose>& poses,
+                                  const std::vector<graph::PositionPriorFactor>& priors,
+                                  const ClosureGraphSettings& settings,
+                                  const std::vector<std::size_t>& session_starts = {});
 
 // The soft factor of the input's step from frame k to k + 1.
 graph::RelativePoseFactor odometryFactor(const std::vector<Pose>& input, std::size_t k,

@@ -26,9 +26,12 @@ struct PoseGraphSettings {
   RobustLoss robust_loss = RobustLoss::None;
   double robust_loss_scale = 1.0;
   // The same for loop-closure factors, set apart because a wrong place match
-  // is far likelier than a wrong window. Priors have no robust loss.
+  // is far likelier than a wrong window.
   RobustLoss loop_robust_loss = RobustLoss::None;
   double loop_robust_loss_scale = 1.0;
+  // And for pose and position priors (GNSS has stretches of multipath).
+  RobustLoss prior_robust_loss = RobustLoss::None;
+  double prior_robust_loss_scale = 1.0;
   // Gauge, per connected component of the relative and loop factors: none of
   // its nodes is held when its priors fix all six degrees of freedom (a
   // positive definite pose prior, or positive definite position priors whose

@@ -127,6 +127,7 @@ struct ClosureReport {
   double largest_move_m = 0.0;  // of a pose, by the closure graph
   // With priors: how far the final re-anchoring on them moved a pose.
   double anchoring_move_m = 0.0;
+  std::size_t anchoring_priors_dropped = 0;  // kept by the closure graph, contradicted by the final shape
   std::vector<LoopReport> loops;
   double seconds = 0.0;
 };
