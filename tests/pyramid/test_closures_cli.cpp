@@ -222,5 +222,29 @@ TEST_F(ClosuresSimulated, TwoSessionsInTheirOwnFramesMeetInOneMap) {
   EXPECT_LT((Vec3(tx, ty, tz) - true_frame.t).norm(), 0.05);
 }
 
+// Bad closure input fails at once, naming the file and the problem, and
+// writes nothing.
+TEST_F(ClosuresSimulated, BadClosureInputFailsBeforeAnyWork) {
+  run(hba() + " -q simulate --frames 30 --seed 2 -o " + data().string());
+  const auto fails = [&](const std::string& flags, const std::vector<std::string>& words) {
+    const test::CommandResult r = test::runCommand(hba() + " optimize " + data().string() + " -o " +
+                                                   (dir / "out").string() + " " + flags);
+    EXPECT_NE(r.exit_code, 0) << flags;
+    for (const std::string& w : words)
+      EXPECT_NE(r.output.find(w), std::string::npos) << flags << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out")) << flags;
+  };
+  test::writeText(dir / "loops.txt", "3 12\n4 30\n");
+  fails("--loops " + (dir / "loops.txt").string(), {"loops.txt", "line 2", "beyond the sequence"});
+  test::writeText(dir / "gnss.txt", "0.5 1 2 3 0\n");
+  fails("--priors " + (dir / "gnss.txt").string(), {"gnss.txt", "line 1", "sigma must be positive"});
+  test::writeText(dir / "late.txt", "900 1 2 3 0.5\n");
+  fails("--priors " + (dir / "late.txt").string(), {"late.txt", "no prior falls within"});
+  fails(data().string() + " --poses " + (data() / "pose.json").string(), {"several sessions"});
+  test::writeText(dir / "align.txt", "1 2 3 0 0 0 1\n1 2 3 0 0 0 1\n");
+  fails(data().string() + " --align " + (dir / "align.txt").string(), {"align.txt", "2 transforms for 1"});
+  fails(data().string() + " --priors " + (dir / "late.txt").string(), {"--priors", "one session"});
+}
+
 }  // namespace
 }  // namespace hba
