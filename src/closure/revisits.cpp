@@ -28,13 +28,13 @@ void validate(const RevisitSettings& s) {
   non_negative(s.max_search_deg, "max_search_deg");
 }
 
+}  // namespace
+
 std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
   std::vector<double> s(poses.size(), 0.0);
   for (std::size_t k = 1; k < poses.size(); ++k) s[k] = s[k - 1] + (poses[k].t - poses[k - 1].t).norm();
   return s;
 }
-
-}  // namespace
 
 std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings,
                                            const std::vector<std::size_t>& session_starts) {

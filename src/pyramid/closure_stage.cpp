@@ -34,12 +34,6 @@ Candidate fromCaller(const closure::LoopPair& pair, const std::vector<double>& p
   return c;
 }
 
-std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
-  std::vector<double> s(poses.size(), 0.0);
-  for (std::size_t k = 1; k < poses.size(); ++k) s[k] = s[k - 1] + (poses[k].t - poses[k - 1].t).norm();
-  return s;
-}
-
 LoopReport describe(const Candidate& c, const closure::LoopCheck& check) {
   LoopReport r;
   r.from = c.pair.from;
@@ -73,7 +67,7 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   report.priors_given = closures.priors.size();
   report.revisits_searched = settings.revisits;
 
-  const std::vector<double> path = cumulativePath(initial);
+  const std::vector<double> path = closure::cumulativePath(initial);
   std::vector<Candidate> candidates;
   for (const closure::LoopPair& pair : closures.loops) {
     candidates.push_back(fromCaller(pair, path, settings.revisit));

@@ -37,6 +37,9 @@ struct RevisitCandidate {
   bool cross_session = false;  // the two frames belong to different sessions
 };
 
+// The path driven up to each frame (m), from 0 at the first.
+std::vector<double> cumulativePath(const std::vector<Pose>& poses);
+
 // Ordered by `to`. Frames of different sessions (`session_starts`, see
 // sessions.hpp) are revisits however little path lies between them, and
 // their search is the largest allowed: the sessions' own frames are only
