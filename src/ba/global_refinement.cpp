@@ -19,7 +19,8 @@ namespace {
 // little; the first round's figures go to `result`, the time and
 // iterations add up over calls.
 void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
-                 const RefinementSettings& settings, const MotionPrior& prior, RefinementResult& result) {
+                 const RefinementSettings& settings, const MotionPrior& prior,
+                 const PositionPriors& positions, RefinementResult& result) {
   result.poses = initial;
   // At most this many rounds: the ETA is an upper bound.
   Progress progress("refinement", static_cast<std::size_t>(settings.association_rounds), "rounds");
@@ -32,7 +33,8 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;
-    const LmSummary summary = solveSparseLevenbergMarquardt(problem, result.poses, settings.lm, prior);
+    const LmSummary summary =
+        solveSparseLevenbergMarquardt(problem, result.poses, settings.lm, prior, positions);
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
@@ -71,7 +73,7 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m,
-                                const std::vector<Pose>& reference) {
+                                const std::vector<Pose>& reference, const PositionPriors& positions) {
   if (scans.size() != initial.size()) {
     throw Error("refinement: " + std::to_string(scans.size()) + " scans but " +
                 std::to_string(initial.size()) + " poses");
@@ -83,11 +85,17 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, con
     throw Error("refinement: " + std::to_string(reference.size()) + " reference poses for " +
                 std::to_string(initial.size()) + " frames");
   }
+  for (const PositionTerm& term : positions.terms()) {
+    if (term.frame >= initial.size()) {
+      throw Error("refinement: a position prior on frame " + std::to_string(term.frame) + " of " +
+                  std::to_string(initial.size()));
+    }
+  }
   const std::vector<Pose>& anchor = reference.empty() ? initial : reference;
   MotionPrior prior = neighbourPrior(anchor, path_m, settings.motion_prior);
   std::vector<std::size_t> held;
   for (int attempt = 0;; ++attempt) {
-    solveRounds(scans, initial, settings, prior, result);
+    solveRounds(scans, initial, settings, prior, positions, result);
     if (!settings.motion_prior.enabled || initial.size() < 2) break;
     const std::vector<std::size_t> slid =
         stepsBeyondThePrior(anchor, result.poses, path_m, settings.slide_prior, settings.slide_sigmas);

@@ -90,8 +90,8 @@ struct FrameSums {
 // gradient products), per plane the weights.
 class FactoredSystem {
  public:
-  FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior, const ObservationIndex& index,
-                 const std::vector<Pose>& poses)
+  FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior, const PositionPriors& positions,
+                 const ObservationIndex& index, const std::vector<Pose>& poses)
       : index_(index), frames_(poses.size()) {
     const FrameTransforms transforms(poses);
     const std::size_t planes = problem.numPlanes();
@@ -148,6 +148,14 @@ class FactoredSystem {
       diagonal_[term.from] += 2.0 * J.d_from.transpose() * term.weight * J.d_from;
       diagonal_[term.to] += 2.0 * J.d_to.transpose() * term.weight * J.d_to;
       prior_.push_back({term.from, term.to, 2.0 * J.d_from.transpose() * term.weight * J.d_to});
+    }
+    // Position priors touch one frame each: the diagonal blocks only.
+    for (const PositionTerm& term : positions.terms()) {
+      const Vec3 e = PositionPriors::error(term, poses[term.frame]);
+      const Eigen::Matrix<double, 3, 6> J = PositionPriors::jacobian(term, poses[term.frame]);
+      cost_ += e.dot(term.weight * e);
+      gradient_.segment<6>(6 * term.frame) += 2.0 * J.transpose() * term.weight * e;
+      diagonal_[term.frame] += 2.0 * J.transpose() * term.weight * J;
     }
   }
 
@@ -250,11 +258,11 @@ Eigen::VectorXd dampingScale(const FactoredSystem& system) {
   return d.cwiseMax(floor);
 }
 
-// Solves (H + mu D) x = -g for every frame but frame 0 by factoring it;
-// zero if the damped matrix is not positive definite.
+// Solves (H + mu D) x = -g for every frame (but frame 0 when it is held)
+// by factoring it; zero if the damped matrix is not positive definite.
 Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd& gradient,
-                                 const Eigen::VectorXd& scale, double mu) {
-  const Eigen::Index n = H.rows() - 6;
+                                 const Eigen::VectorXd& scale, double mu, bool hold_first) {
+  const Eigen::Index n = H.rows() - (hold_first ? 6 : 0);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(H.rows());
   if (n <= 0) return x;
   Eigen::MatrixXd A = H.bottomRightCorner(n, n);
@@ -264,14 +272,16 @@ Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd
   return x;
 }
 
-// Solves (H + mu D) x = -g for every frame but frame 0 by preconditioned
+// Solves (H + mu D) x = -g for every frame (but frame 0 when it is held) by preconditioned
 // conjugate gradients; stops early at negative curvature (far from the
 // optimum the exact Hessian can be indefinite) with the last good iterate.
 Eigen::VectorXd solveDamped(const FactoredSystem& system, const Eigen::VectorXd& scale, double mu,
                             const SparseLmSettings& settings) {
   const Eigen::Index n = system.gradient().size();
   const std::size_t frames = system.frames();
-  auto gauge = [](Eigen::VectorXd& v) { v.head<6>().setZero(); };
+  auto gauge = [&](Eigen::VectorXd& v) {
+    if (settings.hold_first) v.head<6>().setZero();
+  };
   auto apply = [&](const Eigen::VectorXd& v) {
     Eigen::VectorXd out = system.multiply(v) + mu * scale.cwiseProduct(v);
     gauge(out);
@@ -335,13 +345,31 @@ Mat6 positiveInverse(const Mat6& block) {
 }
 
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                        const SparseLmSettings& settings, const MotionPrior& prior) {
-  auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
+                                        const SparseLmSettings& settings, const MotionPrior& prior,
+                                        const PositionPriors& positions) {
+  auto objective = [&](const std::vector<Pose>& at) {
+    return problem.cost(at) + prior.cost(at) + positions.cost(at);
+  };
   const ObservationIndex index(problem, poses.size());
 
+  // Where the priors fix the frame, their best rigid move of the whole is
+  // taken exactly before each linearization (see bestRigidMove).
+  const bool rigid_moves = !settings.hold_first && !positions.empty();
+  auto moveRigidly = [&](std::vector<Pose>& at, double& at_cost) {
+    if (!rigid_moves) return;
+    const Pose move = positions.bestRigidMove(at);
+    std::vector<Pose> moved = at;
+    for (Pose& pose : moved) pose = move * pose;
+    const double moved_cost = objective(moved);
+    if (moved_cost < at_cost) {
+      at = std::move(moved);
+      at_cost = moved_cost;
+    }
+  };
   LmSummary summary;
   double cost = objective(poses);
   summary.initial_cost = cost;
+  moveRigidly(poses, cost);
   double mu = settings.initial_damping;
   double nu = 2.0;
   std::unique_ptr<FactoredSystem> system;
@@ -349,17 +377,17 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
   Eigen::MatrixXd H;  // of `system`, when dense
   while (poses.size() > 1 && summary.iterations < settings.max_iterations && cost > 0.0) {
     if (!system) {
-      system = std::make_unique<FactoredSystem>(problem, prior, index, poses);
+      system = std::make_unique<FactoredSystem>(problem, prior, positions, index, poses);
       if (dense) H = system->dense();
     }
     Eigen::VectorXd g = system->gradient();
-    g.head<6>().setZero();
+    if (settings.hold_first) g.head<6>().setZero();
     if (!(g.lpNorm<Eigen::Infinity>() > 0.0)) break;  // stationary
     ++summary.iterations;
 
     const Eigen::VectorXd scale = dampingScale(*system);
-    Eigen::VectorXd step =
-        dense ? solveDampedDense(H, g, scale, mu) : solveDamped(*system, scale, mu, settings);
+    Eigen::VectorXd step = dense ? solveDampedDense(H, g, scale, mu, settings.hold_first)
+                                 : solveDamped(*system, scale, mu, settings);
     double largest = 0.0;  // of the step, relative to the caps
     for (std::size_t i = 0; i < poses.size(); ++i) {
       largest = std::max({largest, step.segment<3>(6 * i).norm() / settings.max_step_m,
@@ -378,6 +406,7 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
         poses = std::move(trial);
         const double previous = cost;
         cost = trial_cost;
+        moveRigidly(poses, cost);
         system.reset();
         ++summary.accepted_steps;
         accepted = true;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
+#include "hba/graph/factors.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/settings.hpp"
@@ -24,9 +25,10 @@ std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t mi
 // them; the relative poses inside a group are kept. `input` gives the
 // motion prior's reference (the odometry's steps between groups). Returns
 // `current` unchanged, with a warning, if the groups' map would get
-// blurrier. Fills report.refinement.groups.
+// blurrier. Fills report.refinement.groups. `priors` hold the groups near
+// their positions.
 std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
                                const std::vector<Pose>& current, const HbaSettings& settings,
-                               HbaReport& report);
+                               HbaReport& report, const std::vector<graph::PositionPriorFactor>& priors = {});
 
 }  // namespace hba::pyramid

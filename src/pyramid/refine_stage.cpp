@@ -18,6 +18,7 @@
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "keyframe_store.hpp"
+#include "refinement_priors.hpp"
 #include "spilled_scan_source.hpp"
 
 namespace hba::pyramid {
@@ -157,7 +158,7 @@ double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& resu
 
 std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 HbaReport& report) {
+                                 HbaReport& report, const std::vector<graph::PositionPriorFactor>& priors) {
   const auto start = Clock::now();
   const ba::RefinementSettings rs = settings.refinementBa();
   const std::vector<double> steps = stepLengths(initial);
@@ -218,7 +219,16 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     if (settings.refine && report.layers > 1) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                             steps.begin() + static_cast<long>(block.end - 1));
-      const ba::RefinementResult refined = ba::refineGlobally(pointers, poses, rs, block_steps, input);
+      const ba::PositionPriors positions =
+          blockPriors(priors, block.first, block.end, rs.motion_prior.point_sigma);
+      ba::RefinementSettings block_rs = rs;
+      // Later blocks stay held at their first frame, which the block before
+      // placed: no seam where they overlap.
+      block_rs.lm.hold_first = blocks > 1 || !positions.defineTheFrame(kPriorSpreadForGauge);
+      spdlog::debug("refinement: frames {}-{}, {} position priors, first frame {}", block.first,
+                    block.end - 1, positions.terms().size(), block_rs.lm.hold_first ? "held" : "free");
+      const ba::RefinementResult refined =
+          ba::refineGlobally(pointers, poses, block_rs, block_steps, input, positions);
       r.ran = true;
       r.planes += refined.planes;
       r.observations += refined.observations;
@@ -266,7 +276,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     // Blocks of consecutive frames cannot see planes shared by passes far
     // apart in time, nor bends longer than a block: rigid groups of the
     // blocks' frames are placed as a whole, and the checks measured again.
-    std::vector<Pose> grouped = refineGroups(*source, initial, result, settings, report);
+    std::vector<Pose> grouped = refineGroups(*source, initial, result, settings, report, priors);
     GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
       std::vector<RegionFigures> grouped_regions;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
+#include "hba/graph/factors.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/settings.hpp"
@@ -13,9 +14,11 @@ namespace hba::pyramid {
 
 // Returns the final poses from the input poses and the hierarchy's (built
 // with report.layers layers); fills report.consistency and
-// report.refinement and adds warnings.
+// report.refinement and adds warnings. `priors` (the closure stage's kept
+// ones, in the poses' coordinates) hold the refinement's long-range shape.
 std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 HbaReport& report);
+                                 HbaReport& report,
+                                 const std::vector<graph::PositionPriorFactor>& priors = {});
 
 }  // namespace hba::pyramid

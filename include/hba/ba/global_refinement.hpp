@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hba/ba/motion_prior.hpp"
+#include "hba/ba/position_prior.hpp"
 #include "hba/ba/sparse_lm.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
@@ -74,9 +75,11 @@ struct RefinementResult {
 // straight distances). The prior holds neighbouring frames at their
 // relative pose in `reference` (the odometry; empty: `initial`), whose
 // local steps are usually better than those of a window that slid.
-// Scans are only read.
+// `positions` hold frames near absolute positions (with settings.lm.
+// hold_first off where they define the frame). Scans are only read.
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m = {},
-                                const std::vector<Pose>& reference = {});
+                                const std::vector<Pose>& reference = {},
+                                const PositionPriors& positions = {});
 
 }  // namespace hba::ba

@@ -6,13 +6,15 @@
 // system is solved by conjugate gradients with a block-Jacobi
 // preconditioner. Memory and time per iteration grow with the number of
 // observations, not with the square or cube of the frame count. Frame 0 is
-// held fixed (gauge). Deterministic for any thread count.
+// held fixed (gauge) unless position priors define the frame.
+// Deterministic for any thread count.
 #include <cstddef>
 #include <vector>
 
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/motion_prior.hpp"
 #include "hba/ba/plane_problem.hpp"
+#include "hba/ba/position_prior.hpp"
 #include "hba/core/pose.hpp"
 
 namespace hba::ba {
@@ -36,6 +38,9 @@ struct SparseLmSettings {
   // long-range modes conjugate gradients reach only slowly (the rigid
   // groups of a long sequence). 0: always conjugate gradients.
   std::size_t dense_max_frames = 0;
+  // Frame 0 held as the gauge. Off only where position priors fix the
+  // frame (PositionPriors::defineTheFrame): the plane cost does not.
+  bool hold_first = true;
 };
 
 // The preconditioner's inverse of one frame's damped 6x6 block: the exact
@@ -45,8 +50,9 @@ struct SparseLmSettings {
 // positive definite and finite.
 Mat6 positiveInverse(const Mat6& block);
 
-// Optimizes `poses` in place on the plane cost plus `prior`.
+// Optimizes `poses` in place on the plane cost plus `prior` plus `positions`.
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                        const SparseLmSettings& settings, const MotionPrior& prior = {});
+                                        const SparseLmSettings& settings, const MotionPrior& prior = {},
+                                        const PositionPriors& positions = {});
 
 }  // namespace hba::ba
