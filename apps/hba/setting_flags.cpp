@@ -43,7 +43,7 @@ void SettingFlags::addTo(CLI::App* command) {
     CLI::Option* option = nullptr;
     switch (typed.type) {
       case SettingType::Switch:
-        // A switch's flag turns it from its default: off (--no-refine) or on (--revisits).
+        // A switch's flag turns it from its default (--no-refine, --no-revisits: off).
         group->add_flag_callback(
             names, [&slot, on = !std::get<bool>(typed.default_value)] { slot = on; }, help);
         continue;

@@ -91,8 +91,8 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   }
   if (!settings.revisits && searched < revisits.size()) {
     spdlog::info(
-        "the poses come back to {} earlier places (by a drift bound of {:g} %); --revisits would "
-        "verify and close them",
+        "the poses come back to {} earlier places (by a drift bound of {:g} %), not searched "
+        "(--no-revisits)",
         revisits.size() - searched, 100.0 * settings.revisit.drift);
   }
   if (candidates.empty() && closures.priors.empty() && closures.session_starts.empty()) return out;

@@ -11,7 +11,6 @@
 #include "hba/core/progress.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
-#include "refinement_priors.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -62,7 +61,7 @@ std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t mi
 
 std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
                                const std::vector<Pose>& current, const HbaSettings& settings,
-                               HbaReport& report, const std::vector<graph::PositionPriorFactor>& priors) {
+                               HbaReport& report) {
   const auto start = Clock::now();
   GroupRefinementReport& g = report.refinement.groups;
   const std::size_t size = groupSize(current.size(), settings.group_max_count, settings.group_min_frames);
@@ -103,12 +102,7 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   ba::RefinementSettings rs = settings.refinementBa();
   // Few unknowns, whose weak long-range modes are the point: exact steps.
   rs.lm.dense_max_frames = groups.size();
-  std::vector<std::size_t> group_first;
-  for (const GroupSpan& group : groups) group_first.push_back(group.first);
-  const ba::PositionPriors positions = groupPriors(priors, group_first, current, rs.motion_prior.point_sigma);
-  rs.lm.hold_first = !positions.defineTheFrame(kPriorSpreadForGauge);
-  const ba::RefinementResult refined =
-      ba::refineGlobally(pointers, start_poses, rs, path, reference, positions);
+  const ba::RefinementResult refined = ba::refineGlobally(pointers, start_poses, rs, path, reference);
   report.seconds_voxelize += refined.seconds_associate;
   report.seconds_solve += refined.seconds_solve;
   if (refined.still_sliding > 0) {

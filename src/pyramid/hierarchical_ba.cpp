@@ -241,10 +241,11 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   // The refinement's motion prior and self-check take the closed start as
   // the input: its steps are the input's, its loops closed.
   result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report, closed.priors);
-  if (!closed.priors.empty() && !report.refinement.ran) {
-    // Without the refinement (which holds the priors itself) the hierarchy
-    // held its first frame: back onto the priors, bending only over long
-    // stretches.
+  const RefinementReport& refined = report.refinement;
+  if (!closed.priors.empty() && (!refined.ran || (refined.groups.ran && !refined.groups.rejected))) {
+    // The refinement's blocks hold the priors themselves; the hierarchy
+    // (held at its first frame) and the groups (which do not see them) do
+    // not: back onto the priors, bending only over long stretches.
     closure::ClosureGraphSettings anchoring;
     anchoring.threads = settings.threads;
     const closure::ClosureGraphResult anchored =

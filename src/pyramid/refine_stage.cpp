@@ -276,7 +276,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     // Blocks of consecutive frames cannot see planes shared by passes far
     // apart in time, nor bends longer than a block: rigid groups of the
     // blocks' frames are placed as a whole, and the checks measured again.
-    std::vector<Pose> grouped = refineGroups(*source, initial, result, settings, report, priors);
+    std::vector<Pose> grouped = refineGroups(*source, initial, result, settings, report);
     GroupRefinementReport& g = r.groups;
     if (g.ran && !g.rejected) {
       std::vector<RegionFigures> grouped_regions;

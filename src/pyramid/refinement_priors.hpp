@@ -1,6 +1,6 @@
 #pragma once
 // The closure stage's kept position priors, as terms of the refinement's
-// plane BA: over a block of consecutive frames, or over rigid groups.
+// plane BA over a block of consecutive frames.
 #include <cstddef>
 #include <vector>
 
@@ -18,12 +18,5 @@ inline constexpr double kPriorSpreadForGauge = 10.0;
 // scaled into plane-cost units (`point_sigma`, the motion prior's).
 ba::PositionPriors blockPriors(const std::vector<graph::PositionPriorFactor>& priors, std::size_t first,
                                std::size_t end, double point_sigma);
-
-// The priors on groups of frames starting at `group_first` (ascending; the
-// last group runs to the end), each frame's position carried as a point of
-// its group's first frame with the relative poses of `poses`.
-ba::PositionPriors groupPriors(const std::vector<graph::PositionPriorFactor>& priors,
-                               const std::vector<std::size_t>& group_first, const std::vector<Pose>& poses,
-                               double point_sigma);
 
 }  // namespace hba::pyramid

@@ -220,7 +220,7 @@ std::vector<Setting> makeTable() {
       "robust loss on the pose graph's window factors (a window that went wrong "
       "pulls less)"));
   t.push_back(onOff(
-      "revisits", "--revisits", false, [](HbaSettings& h) -> bool& { return h.revisits; },
+      "revisits", "--no-revisits", true, [](HbaSettings& h) -> bool& { return h.revisits; },
       "find places the poses come back to, verify them with the plane BA and close them"));
   t.push_back(real(
       "revisit_drift", "--revisit-drift", 0.05, between(0, 1),
