@@ -36,6 +36,11 @@ std::vector<double> cumulativePath(const std::vector<Pose>& poses) {
   return s;
 }
 
+DriftSearch driftSearch(double path_m, const RevisitSettings& settings) {
+  return {std::min(settings.drift * path_m, settings.max_search_m),
+          std::min(settings.drift_deg_per_m * path_m, settings.max_search_deg)};
+}
+
 std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const RevisitSettings& settings,
                                            const std::vector<std::size_t>& session_starts) {
   validate(settings);
@@ -52,8 +57,8 @@ std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const
       const bool other_session = session[i] != session[j];
       if (!other_session && s[j] - s[i] < settings.min_separation_m) continue;
       const double path = s[j] - s[i];
-      const double slack =
-          other_session ? settings.max_search_m : std::min(settings.drift * path, settings.max_search_m);
+      const DriftSearch drift = driftSearch(path, settings);
+      const double slack = other_session ? settings.max_search_m : drift.radius_m;
       const double distance = (poses[j].t - poses[i].t).norm();
       const double ratio = distance / (settings.reach_m + slack);
       if (ratio <= 1.0 && ratio < best_ratio) {
@@ -63,9 +68,7 @@ std::vector<RevisitCandidate> findRevisits(const std::vector<Pose>& poses, const
         best.path_m = path;
         best.distance_m = distance;
         best.search_radius_m = slack;
-        best.search_yaw_deg = other_session
-                                  ? settings.max_search_deg
-                                  : std::min(settings.drift_deg_per_m * path, settings.max_search_deg);
+        best.search_yaw_deg = other_session ? settings.max_search_deg : drift.yaw_deg;
         best.cross_session = other_session;
       }
     }

@@ -27,9 +27,10 @@ Candidate fromCaller(const closure::LoopPair& pair, const std::vector<double>& p
   Candidate c;
   c.pair = pair;
   if (!pair.relative) {
-    const double driven = std::abs(path[pair.to] - path[pair.from]);
-    c.search_radius_m = std::min(revisit.drift * driven, revisit.max_search_m);
-    c.search_yaw_deg = std::min(revisit.drift_deg_per_m * driven, revisit.max_search_deg);
+    const closure::DriftSearch search =
+        closure::driftSearch(std::abs(path[pair.to] - path[pair.from]), revisit);
+    c.search_radius_m = search.radius_m;
+    c.search_yaw_deg = search.yaw_deg;
   }
   return c;
 }

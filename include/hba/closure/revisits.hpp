@@ -37,6 +37,15 @@ struct RevisitCandidate {
   bool cross_session = false;  // the two frames belong to different sessions
 };
 
+// How far two visits `path_m` of driving apart may have drifted from each
+// other: the shift and heading the verification must search (drift times
+// path, capped at the largest search).
+struct DriftSearch {
+  double radius_m = 0.0;
+  double yaw_deg = 0.0;
+};
+DriftSearch driftSearch(double path_m, const RevisitSettings& settings);
+
 // The path driven up to each frame (m), from 0 at the first.
 std::vector<double> cumulativePath(const std::vector<Pose>& poses);
 
