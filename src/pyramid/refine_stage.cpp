@@ -225,8 +225,11 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
       // Later blocks stay held at their first frame, which the block before
       // placed: no seam where they overlap.
       block_rs.lm.hold_first = blocks > 1 || !positions.defineTheFrame(kPriorSpreadForGauge);
-      spdlog::debug("refinement: frames {}-{}, {} position priors, first frame {}", block.first,
-                    block.end - 1, positions.terms().size(), block_rs.lm.hold_first ? "held" : "free");
+      r.position_priors += positions.terms().size();
+      if (!positions.empty()) {
+        spdlog::info("refinement: frames {}-{} held by {} position priors, first frame {}", block.first,
+                     block.end - 1, positions.terms().size(), block_rs.lm.hold_first ? "held" : "free");
+      }
       const ba::RefinementResult refined =
           ba::refineGlobally(pointers, poses, block_rs, block_steps, input, positions);
       r.ran = true;

@@ -90,6 +90,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
         {"associations", f.rounds},
         {"held_pairs", f.held_pairs},
         {"still_sliding", f.still_sliding},
+        {"position_priors", f.position_priors},
         {"groups",
          {{"ran", f.groups.ran},
           {"groups", f.groups.groups},

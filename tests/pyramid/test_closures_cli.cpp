@@ -183,6 +183,10 @@ TEST_F(ClosuresSimulated, PositionPriorsSetTheFrameAndOutliersAreDropped) {
   const nlohmann::json report = readJson(dir / "priors" / "report.json").at("closure");
   EXPECT_EQ(report.at("priors_given").get<int>(), 48);
   EXPECT_EQ(report.at("priors_dropped").get<int>(), 3);
+  // One block: the refinement holds the 45 kept priors itself, nothing re-anchors after it.
+  const nlohmann::json refinement = readJson(dir / "priors" / "report.json").at("refinement");
+  EXPECT_EQ(refinement.at("position_priors").get<int>(), 45);
+  EXPECT_EQ(report.at("anchoring_move_m").get<double>(), 0.0);
   // In the priors' frame, without any alignment: within their noise.
   EXPECT_LT(ate(dir / "gt_utm.txt", dir / "priors" / "poses_tum.txt", dir.path(), "none"), 0.2);
   // Locally the map is the BA's: the priors' noise bends it by millimetres

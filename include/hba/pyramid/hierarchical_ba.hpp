@@ -74,9 +74,10 @@ struct RefinementReport {
   double rms_before = 0.0;  // m, on the refinement's planes
   double rms_after = 0.0;
   int iterations = 0;
-  int rounds = 0;                 // associations, summed over blocks
-  std::size_t held_pairs = 0;     // neighbouring pairs that slid and were held (summed over blocks)
-  std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held
+  int rounds = 0;                   // associations, summed over blocks
+  std::size_t held_pairs = 0;       // neighbouring pairs that slid and were held (summed over blocks)
+  std::size_t still_sliding = 0;    // of those, pairs beyond the limit even when held
+  std::size_t position_priors = 0;  // held by the blocks' LM, summed over blocks (overlaps count twice)
   double seconds = 0.0;
 };
 
