@@ -9,42 +9,27 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "cli_runs.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/pose_file.hpp"
-#include "test_support.hpp"
 
 namespace hba {
 namespace {
 namespace fs = std::filesystem;
 
-std::string hba() { return test::cliPath().string(); }
-
-void run(const std::string& command) {
-  const test::CommandResult result = test::runCommand(command);
-  ASSERT_EQ(result.exit_code, 0) << command << "\n" << result.output;
-}
-
-nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(test::readText(path)); }
+using test::readJson;
+std::string hba() { return test::hbaTool(); }
+void run(const std::string& command) { test::runOk(command); }
 
 // ATE translation RMSE (m) of `est` against `gt`, aligned as `align` says.
 double ate(const fs::path& gt, const fs::path& est, const fs::path& scratch,
            const std::string& align = "se3") {
-  const fs::path json = scratch / "ate.json";
-  const test::CommandResult result =
-      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() + " --align " +
-                       align + " --force --json " + json.string());
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
+  return test::evalRmse("ate", gt, est, scratch, "--align " + align);
 }
 
 // RPE translation RMSE (m) over 10 frames.
 double rpe(const fs::path& gt, const fs::path& est, const fs::path& scratch) {
-  const fs::path json = scratch / "rpe.json";
-  const test::CommandResult result =
-      test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " + est.string() +
-                       " --delta 10 --force --json " + json.string());
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  return readJson(json).at("rpe").at("translation_m").at("rmse").get<double>();
+  return test::evalRmse("rpe", gt, est, scratch, "--delta 10");
 }
 
 // True revisits of a simulated sequence: for frames from `from_frame` on,

@@ -6,28 +6,19 @@
 
 #include <sstream>
 
-#include "test_support.hpp"
+#include "cli_runs.hpp"
 
 namespace hba {
 namespace {
 namespace fs = std::filesystem;
 
-std::string hba() { return test::cliPath().string(); }
-
-void run(const std::string& command) {
-  const test::CommandResult result = test::runCommand(command);
-  ASSERT_EQ(result.exit_code, 0) << command << "\n" << result.output;
-}
-
-nlohmann::json readJson(const fs::path& path) { return nlohmann::json::parse(test::readText(path)); }
+using test::readJson;
+std::string hba() { return test::hbaTool(); }
+void run(const std::string& command) { test::runOk(command); }
 
 // ATE translation RMSE (m) of `est` against the simulator's ground truth.
 double ateRmse(const fs::path& gt, const fs::path& est, const fs::path& scratch) {
-  const fs::path json = scratch / "ate.json";
-  const test::CommandResult result = test::runCommand(hba() + " -q eval --gt " + gt.string() + " --est " +
-                                                      est.string() + " --force --json " + json.string());
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  return readJson(json).at("ate").at("translation_m").at("rmse").get<double>();
+  return test::evalRmse("ate", gt, est, scratch);
 }
 
 class OptimizeSimulated : public testing::Test {
