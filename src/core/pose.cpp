@@ -1,5 +1,10 @@
 #include "hba/core/pose.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include "hba/core/lie.hpp"
+
 namespace hba {
 
 Pose::Pose(const Quat& rotation, const Vec3& translation) : q(rotation.normalized()), t(translation) {}
@@ -44,6 +49,16 @@ double pathLength(const std::vector<Pose>& poses) {
   double length = 0.0;
   for (std::size_t i = 1; i < poses.size(); ++i) length += (poses[i].t - poses[i - 1].t).norm();
   return length;
+}
+
+PoseChange largestChange(const std::vector<Pose>& before, const std::vector<Pose>& after) {
+  PoseChange change;
+  for (std::size_t i = 0; i < before.size() && i < after.size(); ++i) {
+    change.translation_m = std::max(change.translation_m, (after[i].t - before[i].t).norm());
+    change.rotation_deg = std::max(change.rotation_deg,
+                                   so3Log(Quat(before[i].q.conjugate() * after[i].q)).norm() * 180.0 / M_PI);
+  }
+  return change;
 }
 
 }  // namespace hba

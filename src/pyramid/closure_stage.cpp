@@ -50,12 +50,6 @@ LoopReport describe(const Candidate& c, const closure::LoopCheck& check) {
   return r;
 }
 
-double largestMove(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) worst = std::max(worst, (a[k].t - b[k].t).norm());
-  return worst;
-}
-
 }  // namespace
 
 ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
@@ -149,7 +143,7 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   report.priors_used = out.priors.size();
   report.priors_dropped = closures.priors.size() - out.priors.size();
   out.start = solved.poses;
-  report.largest_move_m = largestMove(initial, out.start);
+  report.largest_move_m = largestChange(initial, out.start).translation_m;
   report.seconds = secondsSince(start);
 
   spdlog::info(

@@ -93,21 +93,6 @@ void addStageTimes(const StageTimes& times, HbaReport& report) {
   report.seconds_keyframes += times.keyframes;
 }
 
-struct Update {
-  double translation = 0.0;
-  double rotation_deg = 0.0;
-};
-
-Update largestUpdate(const std::vector<Pose>& before, const std::vector<Pose>& after) {
-  Update u;
-  for (std::size_t i = 0; i < before.size(); ++i) {
-    u.translation = std::max(u.translation, (after[i].t - before[i].t).norm());
-    u.rotation_deg =
-        std::max(u.rotation_deg, so3Log(Quat(before[i].q.conjugate() * after[i].q)).norm() * 180.0 / M_PI);
-  }
-  return u;
-}
-
 // The clouds `layer` reads: layer 1 the scans, an upper layer its stored
 // keyframes, timed in `stored` (all of their load is reading).
 const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans,
@@ -227,12 +212,12 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
     std::vector<Pose> updated =
         iterate(scans, result.poses, settings, closed, report.layers, iteration, report);
-    const Update u = largestUpdate(result.poses, updated);
-    report.iterations.back().max_translation_update = u.translation;
+    const PoseChange u = largestChange(result.poses, updated);
+    report.iterations.back().max_translation_update = u.translation_m;
     report.iterations.back().max_rotation_update = u.rotation_deg;
-    spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation, u.rotation_deg);
+    spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation_m, u.rotation_deg);
     result.poses = std::move(updated);
-    if (u.translation < settings.outer_tolerance_m && u.rotation_deg < settings.outer_tolerance_deg) {
+    if (u.translation_m < settings.outer_tolerance_m && u.rotation_deg < settings.outer_tolerance_deg) {
       report.poses_settled = true;
       break;
     }
@@ -250,7 +235,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     anchoring.threads = settings.threads;
     const closure::ClosureGraphResult anchored =
         closure::anchorToPriors(result.poses, closed.priors, anchoring, session_starts);
-    report.closure.anchoring_move_m = largestUpdate(result.poses, anchored.poses).translation;
+    report.closure.anchoring_move_m = largestChange(result.poses, anchored.poses).translation_m;
     report.closure.anchoring_priors_dropped =
         static_cast<std::size_t>(std::count(anchored.prior_kept.begin(), anchored.prior_kept.end(), false));
     spdlog::info("re-anchored on {} priors: poses moved up to {:.3f} m",
@@ -258,10 +243,10 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
                  report.closure.anchoring_move_m);
     result.poses = anchored.poses;
   }
-  const Update total = largestUpdate(initial, result.poses);
-  report.largest_translation_update = total.translation;
+  const PoseChange total = largestChange(initial, result.poses);
+  report.largest_translation_update = total.translation_m;
   report.largest_rotation_update = total.rotation_deg;
-  spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation,
+  spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation_m,
                total.rotation_deg);
 
   std::size_t planes = 0;

@@ -71,5 +71,16 @@ TEST(Pose, PathLength) {
   EXPECT_DOUBLE_EQ(pathLength({}), 0.0);
 }
 
+// The largest position and orientation changes may come from different poses.
+TEST(Pose, LargestChangeTakesEachMaximumOverAllPoses) {
+  std::vector<Pose> before(3), after(3);
+  after[0].t = Vec3(0.0, 0.3, 0.4);
+  after[2] = Pose(so3Exp(Vec3(0.0, 0.0, 10.0 * M_PI / 180.0)), Vec3(0.1, 0.0, 0.0));
+  const PoseChange change = largestChange(before, after);
+  EXPECT_NEAR(change.translation_m, 0.5, 1e-12);
+  EXPECT_NEAR(change.rotation_deg, 10.0, 1e-9);
+  EXPECT_EQ(largestChange(before, before).translation_m, 0.0);
+}
+
 }  // namespace
 }  // namespace hba

@@ -20,7 +20,9 @@ inline void runOk(const std::string& command) {
   ASSERT_EQ(result.exit_code, 0) << command << "\n" << result.output;
 }
 
-inline nlohmann::json readJson(const std::filesystem::path& path) { return nlohmann::json::parse(readText(path)); }
+inline nlohmann::json readJson(const std::filesystem::path& path) {
+  return nlohmann::json::parse(readText(path));
+}
 
 // RMSE (m) of `hba eval`'s translation error of `est` against `gt`:
 // `what` is "ate" or "rpe"; `flags` are more eval flags (--align, --delta).
@@ -28,8 +30,8 @@ inline double evalRmse(const std::string& what, const std::filesystem::path& gt,
                        const std::filesystem::path& est, const std::filesystem::path& scratch,
                        const std::string& flags = "") {
   const std::filesystem::path json = scratch / (what + ".json");
-  const CommandResult result = runCommand(hbaTool() + " -q eval --gt " + gt.string() + " --est " + est.string() +
-                                          " " + flags + " --force --json " + json.string());
+  const CommandResult result = runCommand(hbaTool() + " -q eval --gt " + gt.string() + " --est " +
+                                          est.string() + " " + flags + " --force --json " + json.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return readJson(json).at(what).at("translation_m").at("rmse").get<double>();
 }

@@ -42,4 +42,12 @@ std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset)
 // Sum of distances between consecutive positions, in metres.
 double pathLength(const std::vector<Pose>& poses);
 
+// The largest change of any pose between two equally long sequences: of
+// its position (m) and of its orientation (deg), each over all poses.
+struct PoseChange {
+  double translation_m = 0.0;
+  double rotation_deg = 0.0;
+};
+PoseChange largestChange(const std::vector<Pose>& before, const std::vector<Pose>& after);
+
 }  // namespace hba
