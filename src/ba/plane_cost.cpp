@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "hba/core/lie.hpp"
+#include "hba/core/symmetric_eigenvalues.hpp"
 
 // Derivation (docs/ba.md has the long form). A frame-i point q = r + t_i
 // with r = R_i p moves as dq = dt + dphi x r (+ 1/2 dphi x (dphi x r)).
@@ -105,7 +106,7 @@ Mat3 planeScatter(const PlaneObservation& plane, const FrameTransforms& frames) 
 
 double planeCost(const PlaneObservation& plane, const FrameTransforms& frames) {
   const Mat3 scatter = planeScatter(plane, frames);
-  const double l1 = Eigen::SelfAdjointEigenSolver<Mat3>(scatter, Eigen::EigenvaluesOnly).eigenvalues()(0);
+  const double l1 = symmetricEigenvalues(scatter)(0);
   return std::max(l1, 0.0);  // rounding can make a perfect plane slightly negative
 }
 

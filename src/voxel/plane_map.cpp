@@ -8,11 +8,11 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <Eigen/Eigenvalues>
 
 #include "cell_assignment.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/shifted_moments.hpp"
+#include "hba/core/symmetric_eigenvalues.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
@@ -64,7 +64,7 @@ Vec3 covarianceEigenvalues(const ShiftedMoments& moments, std::size_t count) {
   const double n = static_cast<double>(count);
   const Vec3 mean = moments.offsetSum() / n;
   const Mat3 cov = moments.outerSum() / n - mean * mean.transpose();
-  return Eigen::SelfAdjointEigenSolver<Mat3>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+  return symmetricEigenvalues(cov);
 }
 
 ShiftedMoments momentsOf(const WorldPoints& world, IdSpan ids) {
