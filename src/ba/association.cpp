@@ -70,9 +70,12 @@ std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, dou
   return order;
 }
 
-Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
-                      const voxel::PlaneSettings& planes, double reject_ratio) {
-  std::vector<voxel::PlaneFeature> features = voxel::extractPlanes(scans, poses, planes);
+namespace {
+
+// The plane problem of `features` found at `poses`, the worst planes dropped.
+Association associationOf(std::vector<voxel::PlaneFeature> features,
+                          const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                          double reject_ratio) {
   std::vector<PlaneObservation> observations = buildObservations(features, scans);
 
   // Outlier filter on the mean squared distance (not the sum), so that large
@@ -90,6 +93,22 @@ Association associate(const std::vector<const PointCloud*>& scans, const std::ve
   }
   out.problem = PlaneProblem(std::move(kept), poses.size());
   return out;
+}
+
+}  // namespace
+
+Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                      const voxel::PlaneSettings& planes, double reject_ratio) {
+  return associationOf(voxel::extractPlanes(scans, poses, planes), scans, poses, reject_ratio);
+}
+
+std::pair<Association, Association> associateAtTwoVoxels(const std::vector<const PointCloud*>& scans,
+                                                         const std::vector<Pose>& poses,
+                                                         const voxel::PlaneSettings& planes,
+                                                         double fine_voxel, double reject_ratio) {
+  auto [coarse, fine] = voxel::extractPlanesAtTwoVoxels(scans, poses, planes, fine_voxel);
+  return {associationOf(std::move(coarse), scans, poses, reject_ratio),
+          associationOf(std::move(fine), scans, poses, reject_ratio)};
 }
 
 }  // namespace hba::ba

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
@@ -78,6 +79,10 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
 
   Association last;
+  // The trust check's planes: at the input poses and the finest voxel, found
+  // with the first round's (the same points placed once).
+  Association fixed;
+  bool have_fixed = false;
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
   const double finest =
@@ -88,7 +93,13 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     round_settings.planes.voxel_size = std::max(finest, coarsest / std::pow(2.0, round));
     const bool at_finest = round >= halvings;
     const auto start = Clock::now();
-    last = associate(scans, result.poses, round_settings.planes, settings.reject_ratio);
+    if (round == 0 && settings.check_fixed_map && halvings > 0) {
+      std::tie(last, fixed) =
+          associateAtTwoVoxels(scans, result.poses, round_settings.planes, finest, settings.reject_ratio);
+      have_fixed = true;
+    } else {
+      last = associate(scans, result.poses, round_settings.planes, settings.reject_ratio);
+    }
     // Without planes there is nothing to weigh the prior against.
     const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
     const auto associated = Clock::now();
@@ -103,8 +114,10 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    round_settings.planes.voxel_size = finest;
-    Association fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
+    if (!have_fixed) {
+      round_settings.planes.voxel_size = finest;
+      fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
+    }
     result.fixed_map_cost_initial = fixed.problem.cost(initial);
     result.fixed_map_cost_final = fixed.problem.cost(result.poses);
     // Not trusted: a blurrier map on the input's own planes, or neighbouring

@@ -1,8 +1,10 @@
 #include "cell_assignment.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -139,48 +141,97 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
   return bounds;
 }
 
+// VoxelKey::of for one edge length. Dividing by a power of two is
+// multiplying by its exact inverse: the same keys without three divisions a
+// point (plane voxels are 4 m halved; scan voxels like 0.1 m keep the
+// division).
+class KeyOf {
+ public:
+  explicit KeyOf(double size) : size_(size), inverse_(1.0 / size) {
+    int exponent = 0;
+    power_of_two_ = std::frexp(size, &exponent) == 0.5;
+  }
+  VoxelKey operator()(const Vec3f& point) const {
+    const Vec3 p = point.cast<double>();
+    if (!power_of_two_) return VoxelKey::of(p, size_);
+    return VoxelKey{VoxelKey::cell(p.x() * inverse_), VoxelKey::cell(p.y() * inverse_),
+                    VoxelKey::cell(p.z() * inverse_)};
+  }
+
+ private:
+  double size_;
+  double inverse_;
+  bool power_of_two_ = false;
+};
+
+// Runs body(i) for every point; a large cloud (a refinement block of
+// millions) in parallel, as each point's key is independent of the others.
+template <typename Body>
+void forEachPoint(std::size_t points, const Body& body) {
+  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
+  if (points < kParallelFrom) {
+    for (std::size_t i = 0; i < points; ++i) body(i);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 1 << 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
+                      });
+  }
+}
+
 }  // namespace
 
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
-  // Dividing by a power of two is multiplying by its exact inverse: the same
-  // keys as VoxelKey::of, without three divisions a point (plane voxels are
-  // 4 m halved; scan voxels like 0.1 m keep the division).
-  int exponent = 0;
-  const bool power_of_two = std::frexp(size, &exponent) == 0.5;
-  const double inverse = 1.0 / size;
-  const auto keyOf = [&](std::size_t i) {
-    const Vec3 p = points[i].cast<double>();
-    if (!power_of_two) return VoxelKey::of(p, size);
-    return VoxelKey{VoxelKey::cell(p.x() * inverse), VoxelKey::cell(p.y() * inverse),
-                    VoxelKey::cell(p.z() * inverse)};
-  };
-  // Keys are independent of each other: a large cloud (a refinement block of
-  // millions) computes them in parallel; the numbering below stays serial.
-  const auto forEachPoint = [&](const auto& body) {
-    constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
-    if (points.size() < kParallelFrom) {
-      for (std::size_t i = 0; i < points.size(); ++i) body(i);
-    } else {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1 << 16),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
-                        });
-    }
-  };
+  const KeyOf keyOfPoint(size);
+  const auto keyOf = [&](std::size_t i) { return keyOfPoint(points[i]); };
+  // The numbering below stays serial: cells are numbered in first-hit order.
+  const auto forEach = [&](const auto& body) { forEachPoint(points.size(), body); };
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     std::vector<VoxelKey> keys(points.size());
-    forEachPoint([&](std::size_t i) { keys[i] = keyOf(i); });
+    forEach([&](std::size_t i) { keys[i] = keyOf(i); });
     return assignKeys(keys, points_per_cell);
   }
   std::vector<std::uint64_t> keys(points.size());
-  forEachPoint([&](std::size_t i) {
+  forEach([&](std::size_t i) {
     const VoxelKey key = keyOf(i);
     keys[i] = static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
               static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
               static_cast<std::uint64_t>(key.z - bounds.low.z);
   });
   return assignKeys(keys, points_per_cell);
+}
+
+std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std::vector<Vec3f>& points,
+                                           double coarse_size) {
+  const KeyOf keyOf(coarse_size);
+  std::vector<VoxelKey> coarse_key(fine.cells());
+  for (std::size_t c = 0; c < fine.cells(); ++c) coarse_key[c] = keyOf(points[fine.first_point_of_cell[c]]);
+  // Each point must share its fine cell's coarse cell (always so for
+  // power-of-two ratios; rounding at other edges could split a fine cell).
+  std::atomic<bool> nested{true};
+  forEachPoint(points.size(), [&](std::size_t i) {
+    if (!(keyOf(points[i]) == coarse_key[fine.cell_of_point[i]]))
+      nested.store(false, std::memory_order_relaxed);
+  });
+  if (!nested.load()) return std::nullopt;
+  // Fine cells come in first-hit order, so numbering their coarse cells as
+  // they come numbers those in first-hit order too, as assignCells would.
+  std::unordered_map<VoxelKey, std::uint32_t, VoxelKeyHash> number;
+  number.reserve(fine.cells());
+  std::vector<std::uint32_t> coarse_of_fine(fine.cells());
+  CellAssignment out;
+  for (std::size_t c = 0; c < fine.cells(); ++c) {
+    const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+    const auto [it, added] = number.emplace(coarse_key[c], next);
+    if (added) out.first_point_of_cell.push_back(fine.first_point_of_cell[c]);
+    coarse_of_fine[c] = it->second;
+  }
+  out.cell_of_point.resize(fine.cell_of_point.size());
+  for (std::size_t i = 0; i < out.cell_of_point.size(); ++i) {
+    out.cell_of_point[i] = coarse_of_fine[fine.cell_of_point[i]];
+  }
+  return out;
 }
 
 CellMembers membersOf(const CellAssignment& assignment) {

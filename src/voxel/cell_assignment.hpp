@@ -3,6 +3,7 @@
 // cells are first hit. Shared by downsampling and plane extraction, which
 // both group every point of a large cloud by cell.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "hba/core/types.hpp"
@@ -21,6 +22,14 @@ struct CellAssignment {
 // its first doubling (a guess only: the table grows as needed, and the
 // result does not depend on it).
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell = 4);
+
+// The cells of edge `coarse_size` (an edge of `fine`'s cells times a power
+// of two) that hold `fine`'s cells of the same `points`: exactly what
+// assignCells(points, coarse_size) gives, from one pass of key checks
+// instead of a pass of hashing. Empty where some point's coarse cell is not
+// its fine cell's (rounding at an edge that is no such multiple).
+std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std::vector<Vec3f>& points,
+                                           double coarse_size);
 
 // Point ids grouped by cell (counting sort: ids ascend within each cell).
 struct CellMembers {

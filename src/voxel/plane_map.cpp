@@ -189,17 +189,17 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings) {
   return l1 < settings.eigen_ratio * l3 && l1 < settings.line_ratio * l2;
 }
 
-std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
-                                        const std::vector<Pose>& poses, const PlaneSettings& settings) {
-  validate(scans, poses, settings);
-  const WorldPoints world = placeInWorld(scans, poses);
+namespace {
 
+// Plane voxels (metres) gather dozens to thousands of points each: a hash
+// table sized for one cell in four points would be mostly empty (hundreds of
+// MB for a refinement block).
+constexpr std::size_t kPointsPerPlaneVoxel = 64;
+
+// The planes of the root voxels `cells` (of settings.voxel_size) of `world`.
+std::vector<PlaneFeature> planesOfCells(const WorldPoints& world, const CellAssignment& cells,
+                                        const PlaneSettings& settings) {
   // Root voxels, their ids ascending (counting sort by cell).
-  // Plane voxels (metres) gather dozens to thousands of points each: a
-  // table sized for one cell in four points would be mostly empty (hundreds
-  // of MB for a refinement block).
-  constexpr std::size_t kPointsPerPlaneVoxel = 64;
-  const CellAssignment cells = assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
   CellMembers members = membersOf(cells);
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
@@ -234,6 +234,32 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
     for (auto& plane : found) planes.push_back(std::move(plane));
   }
   return planes;
+}
+
+}  // namespace
+
+std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
+                                        const std::vector<Pose>& poses, const PlaneSettings& settings) {
+  validate(scans, poses, settings);
+  const WorldPoints world = placeInWorld(scans, poses);
+  return planesOfCells(world, assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel),
+                       settings);
+}
+
+std::pair<std::vector<PlaneFeature>, std::vector<PlaneFeature>> extractPlanesAtTwoVoxels(
+    const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+    const PlaneSettings& settings, double fine_voxel) {
+  validate(scans, poses, settings);
+  if (!(fine_voxel > 0.0 && fine_voxel <= settings.voxel_size)) {
+    throw Error("plane extraction: the finer voxel must be in (0, voxel_size]");
+  }
+  PlaneSettings fine_settings = settings;
+  fine_settings.voxel_size = fine_voxel;
+  const WorldPoints world = placeInWorld(scans, poses);
+  const CellAssignment fine = assignCells(world.position, fine_voxel, kPointsPerPlaneVoxel);
+  std::optional<CellAssignment> coarse = coarsenCells(fine, world.position, settings.voxel_size);
+  if (!coarse) coarse = assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
+  return {planesOfCells(world, *coarse, settings), planesOfCells(world, fine, fine_settings)};
 }
 
 }  // namespace hba::voxel

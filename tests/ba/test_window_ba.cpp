@@ -7,6 +7,7 @@
 #include <tbb/global_control.h>
 #include <Eigen/Eigenvalues>
 
+#include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/motion_prior.hpp"
 #include "hba/ba/window_ba.hpp"
@@ -99,6 +100,27 @@ TEST(WindowBa, ResultThatPullsNeighboursApartIsNotTrusted) {
   for (std::size_t i = 0; i < checked.poses.size(); ++i) {
     EXPECT_EQ(checked.poses[i].t, window.initial[i].t) << "frame " << i;
   }
+}
+
+// Coarse to fine, the trust check's planes come with the first round's
+// (one placing of the points): they must be the finest association at the
+// input poses, as if found on their own.
+TEST(WindowBa, TrustCheckUsesTheFinestPlanesAtTheInput) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.02;
+  spec.seed = 6;
+  const auto window = makeSyntheticWindow(spec);
+  BaSettings settings = syntheticSettings();
+  settings.final_voxel_size = 2.0;  // rounds at 8, 4 and 2 m
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, settings);
+  ASSERT_GT(result.rounds, 1);
+  PlaneSettings finest = settings.planes;
+  finest.voxel_size = settings.final_voxel_size;
+  const PlaneProblem fixed =
+      associate(window.scanPointers(), window.initial, finest, settings.reject_ratio).problem;
+  ASSERT_GT(fixed.numPlanes(), 0u);
+  EXPECT_EQ(result.fixed_map_cost_initial, fixed.cost(window.initial));
+  EXPECT_EQ(result.fixed_map_cost_final, fixed.cost(result.poses));
 }
 
 TEST(WindowBa, IdenticalResultsWithOneAndTwoThreads) {

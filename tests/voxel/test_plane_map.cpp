@@ -128,6 +128,45 @@ TEST(PlaneMap, OutputIsIdenticalForAnyThreadCount) {
   }
 }
 
+void expectSameFeatures(const std::vector<PlaneFeature>& a, const std::vector<PlaneFeature>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    EXPECT_EQ(a[p].depth, b[p].depth);
+    ASSERT_EQ(a[p].points.size(), b[p].points.size());
+    for (std::size_t k = 0; k < a[p].points.size(); ++k) {
+      EXPECT_EQ(a[p].points[k].frame, b[p].points[k].frame);
+      EXPECT_EQ(a[p].points[k].index, b[p].points[k].index);
+    }
+  }
+}
+
+TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
+  std::mt19937 rng(8);
+  std::vector<PointCloud> scans(4);
+  for (auto& s : scans) {
+    for (int wall = 0; wall < 6; ++wall) addSquare(s, rng, wall % 3, 1.3f + 3.7f * wall, -9.f, 9.f, 3000);
+  }
+  std::vector<Pose> poses;
+  for (int f = 0; f < 4; ++f) {
+    // Far from the origin, turned off the axes, each frame a little apart.
+    poses.emplace_back(Quat(Eigen::AngleAxisd(0.3 + 0.001 * f, Vec3(0.3, 0.2, 1.0).normalized())),
+                       Vec3(0.01 * f - 350.0, 0.005 * f + 1200.0, -0.002 * f));
+  }
+  PlaneSettings coarse;
+  coarse.voxel_size = 4.0;
+  for (const double fine_voxel : {4.0, 2.0, 1.0, 1.5}) {  // 1.5: cells that do not nest
+    PlaneSettings fine = coarse;
+    fine.voxel_size = fine_voxel;
+    const auto [both_coarse, both_fine] =
+        extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, fine_voxel);
+    ASSERT_FALSE(both_fine.empty()) << fine_voxel;
+    expectSameFeatures(both_coarse, extractPlanes(pointers(scans), poses, coarse));
+    expectSameFeatures(both_fine, extractPlanes(pointers(scans), poses, fine));
+  }
+  EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 8.0), Error);
+  EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 0.0), Error);
+}
+
 TEST(PlaneMap, PlaneTestUsesEigenvalueRatios) {
   PlaneSettings s;  // theta 0.05, line ratio 0.25
   EXPECT_TRUE(passesPlaneTest(Vec3(0.01, 1.0, 1.0), s));

@@ -2,6 +2,7 @@
 // From voxel plane features to BA plane observations: per-frame point
 // clusters in sensor coordinates, and the outlier filter on plane residuals.
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "hba/ba/plane_cost.hpp"
@@ -31,5 +32,13 @@ struct Association {
 
 Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                       const voxel::PlaneSettings& planes, double reject_ratio);
+
+// associate() at root voxel `planes.voxel_size` and at `fine_voxel`, at the
+// same poses: the same two associations, from one placing and hashing of the
+// points (voxel::extractPlanesAtTwoVoxels).
+std::pair<Association, Association> associateAtTwoVoxels(const std::vector<const PointCloud*>& scans,
+                                                         const std::vector<Pose>& poses,
+                                                         const voxel::PlaneSettings& planes,
+                                                         double fine_voxel, double reject_ratio);
 
 }  // namespace hba::ba

@@ -4,6 +4,7 @@
 // voxel whose points pass the plane test is a plane feature; otherwise it is
 // split into 8 octants, recursively, down to a depth limit. See docs/ba.md.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "hba/core/point_cloud.hpp"
@@ -45,5 +46,15 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings);
 // Throws hba::Error if the sizes differ, a scan is null, or settings are invalid.
 std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
                                         const std::vector<Pose>& poses, const PlaneSettings& settings);
+
+// The planes at two root voxels, `settings.voxel_size` and `fine_voxel`, of
+// the same scans at the same poses: the same features, bit for bit, as two
+// extractPlanes calls, with the points placed and hashed into cells once
+// (the coarse cells are gathered from the fine ones where the ratio is a
+// power of two). Throws as extractPlanes, and if fine_voxel is not in
+// (0, voxel_size].
+std::pair<std::vector<PlaneFeature>, std::vector<PlaneFeature>> extractPlanesAtTwoVoxels(
+    const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+    const PlaneSettings& settings, double fine_voxel);
 
 }  // namespace hba::voxel
