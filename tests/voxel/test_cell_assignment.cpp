@@ -28,7 +28,8 @@ void expectSameAssignment(const CellAssignment& a, const CellAssignment& b) {
 
 TEST(CellAssignment, CoarseCellsGatheredFromFineOnesAreTheCoarseAssignment) {
   std::mt19937 rng(3);
-  for (const Vec3f& centre : {Vec3f(0.0f, 0.0f, 0.0f), Vec3f(-3.3f, 7.1f, -0.4f), Vec3f(512345.0f, -4321.0f, 88.0f)}) {
+  for (const Vec3f& centre :
+       {Vec3f(0.0f, 0.0f, 0.0f), Vec3f(-3.3f, 7.1f, -0.4f), Vec3f(512345.0f, -4321.0f, 88.0f)}) {
     const std::vector<Vec3f> points = scanLikePoints(rng, centre, 20.0f, 20000);
     for (const auto& [fine, coarse] : {std::pair{1.0, 2.0}, {1.0, 4.0}, {0.5, 4.0}, {0.25, 0.25}}) {
       const std::optional<CellAssignment> gathered = coarsenCells(assignCells(points, fine), points, coarse);
