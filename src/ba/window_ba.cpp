@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
-#include <tuple>
+#include <utility>
 
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
@@ -81,8 +82,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   Association last;
   // The trust check's planes: at the input poses and the finest voxel, found
   // with the first round's (the same points placed once).
-  Association fixed;
-  bool have_fixed = false;
+  std::optional<Association> fixed;
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
   const double finest =
@@ -94,9 +94,10 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     const bool at_finest = round >= halvings;
     const auto start = Clock::now();
     if (round == 0 && settings.check_fixed_map && halvings > 0) {
-      std::tie(last, fixed) =
+      auto [coarse, fine] =
           associateAtTwoVoxels(scans, result.poses, round_settings.planes, finest, settings.reject_ratio);
-      have_fixed = true;
+      last = std::move(coarse);
+      fixed = std::move(fine);
     } else {
       last = associate(scans, result.poses, round_settings.planes, settings.reject_ratio);
     }
@@ -114,12 +115,12 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    if (!have_fixed) {
+    if (!fixed) {
       round_settings.planes.voxel_size = finest;
       fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
     }
-    result.fixed_map_cost_initial = fixed.problem.cost(initial);
-    result.fixed_map_cost_final = fixed.problem.cost(result.poses);
+    result.fixed_map_cost_initial = fixed->problem.cost(initial);
+    result.fixed_map_cost_final = fixed->problem.cost(result.poses);
     // Not trusted: a blurrier map on the input's own planes, or neighbouring
     // frames pulled apart far beyond what the prior allows (planes that
     // merge unrelated surfaces can make a map look crisper while frames
@@ -131,7 +132,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     if (slid || result.fixed_map_cost_final > result.fixed_map_cost_initial) {
       result.trusted = false;
       result.poses = initial;
-      last = std::move(fixed);
+      last = std::move(*fixed);
     }
   }
   const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;

@@ -182,19 +182,18 @@ void forEachPoint(std::size_t points, const Body& body) {
 }  // namespace
 
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
-  const KeyOf keyOfPoint(size);
-  const auto keyOf = [&](std::size_t i) { return keyOfPoint(points[i]); };
-  // The numbering below stays serial: cells are numbered in first-hit order.
-  const auto forEach = [&](const auto& body) { forEachPoint(points.size(), body); };
+  const KeyOf keyOf(size);
+  // Keys in parallel; the numbering (assignKeys) stays serial: cells are
+  // numbered in first-hit order.
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     std::vector<VoxelKey> keys(points.size());
-    forEach([&](std::size_t i) { keys[i] = keyOf(i); });
+    forEachPoint(points.size(), [&](std::size_t i) { keys[i] = keyOf(points[i]); });
     return assignKeys(keys, points_per_cell);
   }
   std::vector<std::uint64_t> keys(points.size());
-  forEach([&](std::size_t i) {
-    const VoxelKey key = keyOf(i);
+  forEachPoint(points.size(), [&](std::size_t i) {
+    const VoxelKey key = keyOf(points[i]);
     keys[i] = static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
               static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
               static_cast<std::uint64_t>(key.z - bounds.low.z);

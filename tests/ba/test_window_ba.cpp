@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <random>
 
@@ -30,6 +31,14 @@ BaSettings syntheticSettings() {
   // refuse the correction.
   settings.slide_sigmas = 0.0;
   return settings;
+}
+
+// A window of 2 cm point noise.
+test::SyntheticWindow noisyWindow(std::uint32_t seed) {
+  SyntheticWindowSpec spec;
+  spec.noise_sigma = 0.02;
+  spec.seed = seed;
+  return makeSyntheticWindow(spec);
 }
 
 TEST(WindowBa, NoiseFreeWindowConvergesToTruth) {
@@ -86,10 +95,7 @@ TEST(WindowBa, NoisyWindowConvergesToNoiseLevel) {
 // more than three prior sigmas (here the correction of start errors no
 // odometry makes) is not trusted: the window keeps its input poses.
 TEST(WindowBa, ResultThatPullsNeighboursApartIsNotTrusted) {
-  SyntheticWindowSpec spec;
-  spec.noise_sigma = 0.02;
-  spec.seed = 4;
-  const auto window = makeSyntheticWindow(spec);
+  const auto window = noisyWindow(4);
   BaSettings settings = syntheticSettings();
   const BaResult free = optimizeWindow(window.scanPointers(), window.initial, settings);
   ASSERT_TRUE(free.trusted);
@@ -106,10 +112,7 @@ TEST(WindowBa, ResultThatPullsNeighboursApartIsNotTrusted) {
 // (one placing of the points): they must be the finest association at the
 // input poses, as if found on their own.
 TEST(WindowBa, TrustCheckUsesTheFinestPlanesAtTheInput) {
-  SyntheticWindowSpec spec;
-  spec.noise_sigma = 0.02;
-  spec.seed = 6;
-  const auto window = makeSyntheticWindow(spec);
+  const auto window = noisyWindow(6);
   BaSettings settings = syntheticSettings();
   settings.final_voxel_size = 2.0;  // rounds at 8, 4 and 2 m
   const BaResult result = optimizeWindow(window.scanPointers(), window.initial, settings);
