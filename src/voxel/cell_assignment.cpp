@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -216,15 +215,13 @@ std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std
   if (!nested.load()) return std::nullopt;
   // Fine cells come in first-hit order, so numbering their coarse cells as
   // they come numbers those in first-hit order too, as assignCells would.
-  std::unordered_map<VoxelKey, std::uint32_t, VoxelKeyHash> number;
-  number.reserve(fine.cells());
+  CellTable<VoxelKey> table(fine.cells());
   std::vector<std::uint32_t> coarse_of_fine(fine.cells());
   CellAssignment out;
   for (std::size_t c = 0; c < fine.cells(); ++c) {
     const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
-    const auto [it, added] = number.emplace(coarse_key[c], next);
-    if (added) out.first_point_of_cell.push_back(fine.first_point_of_cell[c]);
-    coarse_of_fine[c] = it->second;
+    coarse_of_fine[c] = table.find(coarse_key[c], next);
+    if (coarse_of_fine[c] == next) out.first_point_of_cell.push_back(fine.first_point_of_cell[c]);
   }
   out.cell_of_point.resize(fine.cell_of_point.size());
   for (std::size_t i = 0; i < out.cell_of_point.size(); ++i) {
