@@ -38,6 +38,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
+    result.cg_products += summary.cg_products;
     result.rounds = round + 1;
     if (round == 0) {
       result.planes = problem.numPlanes();

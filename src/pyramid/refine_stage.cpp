@@ -239,6 +239,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
       refine_before.add(refined.rms_before, static_cast<double>(refined.plane_points));
       refine_after.add(refined.rms_after, static_cast<double>(refined.plane_points));
       r.iterations += refined.iterations;
+      r.cg_products += refined.cg_products;
       r.rounds += refined.rounds;
       r.held_pairs += refined.held_pairs;
       if (refined.still_sliding > 0) {

@@ -87,6 +87,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
         {"plane_rms_before_m", f.rms_before},
         {"plane_rms_after_m", f.rms_after},
         {"lm_iterations", f.iterations},
+        {"cg_products", f.cg_products},
         {"associations", f.rounds},
         {"held_pairs", f.held_pairs},
         {"still_sliding", f.still_sliding},

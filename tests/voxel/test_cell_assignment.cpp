@@ -1,8 +1,12 @@
 #include "cell_assignment.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <map>
 #include <random>
+
+#include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
 namespace {
@@ -50,6 +54,43 @@ TEST(CellAssignment, CoarseningAtAnyRatioIsExactOrDeclined) {
   }
   // Cells that do not nest at all (0.3 m inside 0.5 m) are declined.
   EXPECT_FALSE(coarsenCells(assignCells(points, 0.3), points, 0.5).has_value());
+}
+
+// First-hit numbering by its definition, one point after another.
+CellAssignment numberedOneByOne(const std::vector<Vec3f>& points, double size) {
+  std::map<VoxelKey, std::uint32_t> cell_of_key;
+  CellAssignment out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const VoxelKey key = VoxelKey::of(points[i].cast<double>(), size);
+    const auto [it, added] = cell_of_key.emplace(key, static_cast<std::uint32_t>(cell_of_key.size()));
+    if (added) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
+    out.cell_of_point.push_back(it->second);
+  }
+  return out;
+}
+
+// Clouds of millions (refinement blocks) are numbered in ranges in
+// parallel and renumbered in order: the numbering of one pass, with cells
+// first hit in one range and hit again in later ones, and for any thread
+// count.
+TEST(CellAssignment, LargeCloudsNumberCellsInFirstHitOrder) {
+  std::mt19937 rng(8);
+  std::vector<Vec3f> points;
+  for (int part = 0; part < 6; ++part) {  // 6 x 400 000 points revisiting one area
+    const std::vector<Vec3f> more = scanLikePoints(rng, Vec3f(100.0f, -50.0f, 2.0f), 40.0f, 400000);
+    points.insert(points.end(), more.begin(), more.end());
+  }
+  for (const bool far : {false, true}) {
+    // One point 3000 km away: keys too wide to pack into one word.
+    if (far) points[1234567] = Vec3f(3.0e6f, 0.0f, 0.0f);
+    for (const double size : {1.0, 0.25}) {
+      const CellAssignment expected = numberedOneByOne(points, size);
+      for (const int threads : {1, 2}) {
+        const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        expectSameAssignment(assignCells(points, size, 64), expected);
+      }
+    }
+  }
 }
 
 }  // namespace

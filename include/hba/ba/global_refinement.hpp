@@ -64,6 +64,7 @@ struct RefinementResult {
   std::size_t observations = 0;  // (frame, plane) clusters
   std::size_t plane_points = 0;
   int iterations = 0;
+  int cg_products = 0;            // conjugate-gradient products H x, summed
   int rounds = 0;                 // of the last solve
   std::size_t held_pairs = 0;     // neighbouring pairs held after sliding
   std::size_t still_sliding = 0;  // of those, pairs beyond the limit even when held

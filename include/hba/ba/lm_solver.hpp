@@ -21,6 +21,7 @@ struct LmSummary {
   double final_cost = 0.0;
   int iterations = 0;
   int accepted_steps = 0;
+  int cg_products = 0;  // products H x of the conjugate gradients (sparse solver)
   // No linearization is returned: the caller linearizes once at the poses it
   // finally keeps, instead of the solver after every round.
 };

@@ -74,6 +74,7 @@ struct RefinementReport {
   double rms_before = 0.0;  // m, on the refinement's planes
   double rms_after = 0.0;
   int iterations = 0;
+  int cg_products = 0;              // conjugate-gradient products H x, summed over blocks
   int rounds = 0;                   // associations, summed over blocks
   std::size_t held_pairs = 0;       // neighbouring pairs that slid and were held (summed over blocks)
   std::size_t still_sliding = 0;    // of those, pairs beyond the limit even when held
