@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 
@@ -90,6 +92,27 @@ TEST(CellAssignment, LargeCloudsNumberCellsInFirstHitOrder) {
         expectSameAssignment(assignCells(points, size, 64), expected);
       }
     }
+  }
+}
+
+// Edges that are no power of two (0.1 m scan voxels) take each key from a
+// product with the inverse edge, divided only near a cell's boundary: the
+// keys of VoxelKey::of still, for points on and a few ulps either side of
+// boundaries, near zero, far out and not finite.
+TEST(CellAssignment, KeysMatchTheDivisionAtCellBoundaries) {
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<int> cell(-2000000, 2000000);
+  for (const double size : {0.1, 0.3, 0.05, 1.0 / 3.0, 0.7, 2.5}) {
+    std::vector<Vec3f> points;
+    for (int k = 0; k < 20000; ++k) {
+      const float boundary = static_cast<float>(cell(rng) % (k % 3 == 0 ? 50 : 2000000) * size);
+      float v = boundary;
+      for (int step = 0; step < k % 7; ++step) v = std::nextafter(v, k % 2 ? 1e30f : -1e30f);
+      points.emplace_back(v, boundary, -v);
+    }
+    points.emplace_back(std::numeric_limits<float>::quiet_NaN(), 0.0f, 1.0f);
+    points.emplace_back(std::numeric_limits<float>::infinity(), -1e30f, 1e-30f);
+    expectSameAssignment(assignCells(points, size), numberedOneByOne(points, size));
   }
 }
 
