@@ -93,79 +93,26 @@ class CellTable {
   std::size_t used_ = 0;
 };
 
-// Numbers the cells of keys[begin, end) in first-hit order into
-// `cell_of_point` (the same range) and returns each cell's first point.
-template <typename Key>
-std::vector<std::uint32_t> numberRange(const std::vector<Key>& keys, std::size_t begin, std::size_t end,
-                                       std::size_t points_per_cell,
-                                       std::vector<std::uint32_t>& cell_of_point) {
-  constexpr std::size_t kLookahead = 16;  // points between a prefetch and its use
-  CellTable<Key> table((end - begin) / std::max<std::size_t>(points_per_cell, 1));
-  std::vector<std::uint32_t> first_point;
-  for (std::size_t i = begin; i < end; ++i) {
-    // Scans come ring by ring: a point mostly shares the cell of the one
-    // before it, which then needs no lookup.
-    if (i > begin && keys[i] == keys[i - 1]) {
-      cell_of_point[i] = cell_of_point[i - 1];
-      continue;
-    }
-    if (i + kLookahead < end) table.prefetch(keys[i + kLookahead]);
-    const auto next = static_cast<std::uint32_t>(first_point.size());
-    const std::uint32_t cell = table.find(keys[i], next);
-    if (cell == next) first_point.push_back(static_cast<std::uint32_t>(i));
-    cell_of_point[i] = cell;
-  }
-  return first_point;
-}
-
-// Runs body(i) for every point; a large cloud (a refinement block of
-// millions) in parallel, as each point's key is independent of the others.
-constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
-template <typename Body>
-void forEachPoint(std::size_t points, const Body& body) {
-  if (points < kParallelFrom) {
-    for (std::size_t i = 0; i < points; ++i) body(i);
-  } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 1 << 16),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
-                      });
-  }
-}
-
-// Cells numbered in first-hit order. A large cloud is cut into fixed
-// ranges numbered in parallel, each on its own; their cells are then
-// renumbered range by range in order, which gives every cell the number
-// of its first hit in the whole cloud: the same result as one pass.
 template <typename Key>
 CellAssignment assignKeys(const std::vector<Key>& keys, std::size_t points_per_cell) {
+  constexpr std::size_t kLookahead = 16;  // points between a prefetch and its use
   const std::size_t n = keys.size();
+  CellTable<Key> table(n / std::max<std::size_t>(points_per_cell, 1));
   CellAssignment out;
   out.cell_of_point.resize(n);
-  if (n < kParallelFrom) {
-    out.first_point_of_cell = numberRange(keys, 0, n, points_per_cell, out.cell_of_point);
-    return out;
-  }
-  constexpr std::size_t kRange = std::size_t{1} << 19;
-  const std::size_t ranges = (n + kRange - 1) / kRange;
-  std::vector<std::vector<std::uint32_t>> first_point(ranges);
-  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t r) {
-    first_point[r] =
-        numberRange(keys, r * kRange, std::min(n, (r + 1) * kRange), points_per_cell, out.cell_of_point);
-  });
-  std::size_t local_cells = 0;
-  for (const auto& firsts : first_point) local_cells += firsts.size();
-  CellTable<Key> table(local_cells / ranges);
-  std::vector<std::vector<std::uint32_t>> global_of(ranges);
-  for (std::size_t r = 0; r < ranges; ++r) {
-    global_of[r].resize(first_point[r].size());
-    for (std::size_t c = 0; c < first_point[r].size(); ++c) {
-      const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
-      global_of[r][c] = table.find(keys[first_point[r][c]], next);
-      if (global_of[r][c] == next) out.first_point_of_cell.push_back(first_point[r][c]);
+  for (std::size_t i = 0; i < n; ++i) {
+    // Scans come ring by ring: a point mostly shares the cell of the one
+    // before it, which then needs no lookup.
+    if (i > 0 && keys[i] == keys[i - 1]) {
+      out.cell_of_point[i] = out.cell_of_point[i - 1];
+      continue;
     }
+    if (i + kLookahead < n) table.prefetch(keys[i + kLookahead]);
+    const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+    const std::uint32_t cell = table.find(keys[i], next);
+    if (cell == next) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
+    out.cell_of_point[i] = cell;
   }
-  forEachPoint(n, [&](std::size_t i) { out.cell_of_point[i] = global_of[i / kRange][out.cell_of_point[i]]; });
   return out;
 }
 
@@ -215,6 +162,21 @@ class KeyOf {
   double inverse_;
   bool power_of_two_ = false;
 };
+
+// Runs body(i) for every point; a large cloud (a refinement block of
+// millions) in parallel, as each point's key is independent of the others.
+template <typename Body>
+void forEachPoint(std::size_t points, const Body& body) {
+  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
+  if (points < kParallelFrom) {
+    for (std::size_t i = 0; i < points; ++i) body(i);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 1 << 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
+                      });
+  }
+}
 
 }  // namespace
 

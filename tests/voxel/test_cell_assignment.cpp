@@ -71,10 +71,9 @@ CellAssignment numberedOneByOne(const std::vector<Vec3f>& points, double size) {
   return out;
 }
 
-// Clouds of millions (refinement blocks) are numbered in ranges in
-// parallel and renumbered in order: the numbering of one pass, with cells
-// first hit in one range and hit again in later ones, and for any thread
-// count.
+// Clouds of millions (refinement blocks: keys taken in parallel) number
+// their cells in first-hit order, with packed and with full keys, for any
+// thread count.
 TEST(CellAssignment, LargeCloudsNumberCellsInFirstHitOrder) {
   std::mt19937 rng(8);
   std::vector<Vec3f> points;
