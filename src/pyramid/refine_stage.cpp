@@ -15,6 +15,7 @@
 #include "consistency.hpp"
 #include "group_refinement.hpp"
 #include "hba/ba/global_refinement.hpp"
+#include "hba/core/release_memory.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "keyframe_store.hpp"
@@ -189,6 +190,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
   BlockMaps kept_maps;  // for the groups' re-measure, when they run
   const bool groups_follow = settings.refine && settings.refine_groups && report.layers > 1;
   while (first + 1 < initial.size() || blocks == 0) {
+    releaseFreedMemory();  // what the hierarchy or the block before left
     const Block block = loadBlock(*source, first, settings.refine_max_points, settings.refine_scan_voxel);
     ++blocks;
     spans.push_back({block.first, block.end});
@@ -201,6 +203,10 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     const std::vector<Pose> current = slice(result, block.first, block.end);
 
     const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size()));
+    // The map's extraction freed hundreds of MB of small pieces (features,
+    // clusters): returned now, the refinement's own association does not
+    // stack its peak on them (1000 frames: 1295 -> 1243 MiB).
+    releaseFreedMemory();
     const double input_rms = fixed.rms(input);
     const double current_rms = fixed.rms(current);
     c.planes += fixed.planes();
