@@ -24,7 +24,10 @@ struct SparseLmSettings {
   double initial_damping = 1e-4;          // mu, relative to the Hessian diagonal
   // Inexact steps: the hierarchy has already removed the long-range error,
   // so loose steps suffice (docs/ba.md: tighter ones gave the same maps, in
-  // more time).
+  // more time). The cap also keeps the steps off bends hundreds of frames
+  // long, along which the plane cost is nearly flat and leans the wrong way:
+  // a solver that reached them (a two-level preconditioner) bent nclt by
+  // 3.5 m (docs/ba.md). Raise it only with a prior on the long-range shape.
   int cg_max_iterations = 50;           // per LM step
   double cg_relative_tolerance = 1e-2;  // residual norm, relative to the first
   // A step that moves any frame further than this is scaled down to it:
