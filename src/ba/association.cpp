@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hba/ba/plane_problem.hpp"
+#include "hba/core/release_memory.hpp"
 #include "hba/core/shifted_moments.hpp"
 
 namespace hba::ba {
@@ -72,6 +73,9 @@ std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, dou
 
 namespace {
 
+// From this many points an association returns its freed memory.
+constexpr std::size_t kReleaseMemoryFrom = std::size_t{4} << 20;
+
 // The plane problem of `features` found at `poses`, the worst planes dropped.
 Association associationOf(std::vector<voxel::PlaneFeature> features,
                           const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
@@ -99,7 +103,16 @@ Association associationOf(std::vector<voxel::PlaneFeature> features,
 
 Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                       const voxel::PlaneSettings& planes, double reject_ratio) {
-  return associationOf(voxel::extractPlanes(scans, poses, planes), scans, poses, reject_ratio);
+  Association out = associationOf(voxel::extractPlanes(scans, poses, planes), scans, poses, reject_ratio);
+  // A refinement block's extraction frees hundreds of MB in small pieces
+  // (octree splits, features, clusters) that the allocator would keep; the
+  // next stage's peak would stack on them. Windows (a few 100 000 points,
+  // many at once on the threads) leave little and keep the allocator's
+  // caches.
+  std::size_t points = 0;
+  for (const PointCloud* scan : scans) points += scan->size();
+  if (points >= kReleaseMemoryFrom) releaseFreedMemory();
+  return out;
 }
 
 std::pair<Association, Association> associateAtTwoVoxels(const std::vector<const PointCloud*>& scans,

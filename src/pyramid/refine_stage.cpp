@@ -203,9 +203,10 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     const std::vector<Pose> current = slice(result, block.first, block.end);
 
     const FixedPlaneMap fixed(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size()));
-    // The map's extraction freed hundreds of MB of small pieces (features,
-    // clusters): returned now, the refinement's own association does not
-    // stack its peak on them (1000 frames: 1295 -> 1243 MiB).
+    // The plane problem the map was made from (hundreds of MB in small
+    // pieces): returned, so that the refinement's association does not
+    // stack its peak on it (1000 frames: 1295 -> 1211 MiB with the release
+    // in ba::associate).
     releaseFreedMemory();
     const double input_rms = fixed.rms(input);
     const double current_rms = fixed.rms(current);

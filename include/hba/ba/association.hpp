@@ -30,6 +30,8 @@ struct Association {
   PlaneProblem problem{{}, 0};
 };
 
+// Clouds of 4 M points or more (refinement blocks) hand the extraction's
+// freed memory back to the system before returning (core/release_memory.hpp).
 Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                       const voxel::PlaneSettings& planes, double reject_ratio);
 
