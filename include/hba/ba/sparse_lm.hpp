@@ -4,9 +4,10 @@
 // (Z^T diag(w) Z plus per-frame blocks, see plane_cost.hpp), so a product
 // H x costs O(sum over planes of the frames that see them), and the damped
 // system is solved by conjugate gradients with a block-Jacobi
-// preconditioner. Memory and time per iteration
-// grow with the number of observations, not with the square or cube of the frame count. Frame 0 is held fixed
-// (gauge) unless position priors define the frame. Deterministic for any thread count.
+// preconditioner (ba/factored_system.hpp holds the system). Memory and
+// time per iteration grow with the number of observations, not with the
+// square or cube of the frame count. Frame 0 is held fixed (gauge) unless
+// position priors define the frame. Deterministic for any thread count.
 #include <cstddef>
 #include <vector>
 
