@@ -12,7 +12,10 @@ find_package(Threads REQUIRED)
 
 find_package(liblzf REQUIRED)   # PCD binary_compressed
 
-# stb (image writing/reading for `hba render`): Debian ships the compiled
+find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)
+
+# stb (the pictures' text, stb_easy_font; the tests decode the pictures with
+# stb_image, a decoder other than the encoder's): Debian ships the compiled
 # implementations as libstb, so no *_IMPLEMENTATION define is needed.
 find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
 find_library(STB_LIBRARY NAMES stb)

@@ -3,6 +3,7 @@
 #include "hba/render/map_picture.hpp"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,12 +32,14 @@ double quantile(std::vector<double> values, double q) {
 
 // The region to show: the crop, else where most map points and every
 // trajectory are (extreme 0.5 % of points ignored: stray returns), plus a margin.
-// Every how many points a quantile looks at: at most about a million in
-// all (the picture's framing, not a measurement; and no large copies).
+// Every how many points a quantile looks at: at most about 200 000 in all.
+// It frames the picture, it is not a measurement: the 0.5 % quantile of
+// 200 000 samples is off by about 0.02 % of the points, and sorting a
+// million took longer than drawing them.
 std::size_t quantileStride(const std::vector<MapPanel>& panels) {
   std::size_t points = 0;
   for (const MapPanel& panel : panels) points += panel.map.size();
-  return std::max<std::size_t>(1, points / 1'000'000);
+  return std::max<std::size_t>(1, points / 200'000);
 }
 
 Box2 viewBox(const std::vector<MapPanel>& panels, const RenderSettings& settings) {
@@ -149,7 +152,6 @@ void drawTopView(Image& image, const MapPanel& panel, const Box2& box, const Top
         line.front().x() < area.left + area.width - 5 && line.front().y() < area.top + area.height - 5;
     if (start_visible) drawDisc(image, line.front(), 5.0, layer.color);  // the start
   }
-  drawScaleBar(image, area, view.pixels_per_meter);
 }
 
 // x (same columns as the top view) against z, z stretched to fill the strip.
@@ -176,6 +178,12 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
     }
     drawPolyline(image, line, layer.color, 1.6, area.clip());
   }
+}
+
+// The side view's caption (unclipped text: drawn after the panels' views).
+void labelSideView(Image& image, const TopViewTransform& view, const Rect& area,
+                   std::pair<double, double> z_range) {
+  const double z_scale = (area.height - 8) / (z_range.second - z_range.first);
   const double exaggeration = z_scale / view.pixels_per_meter;
   drawText(image, area.left + 8, area.top + 6,
            fmt::format("side view: x vs z (z x{:.1f}), z {:.1f}..{:.1f} m", exaggeration, z_range.first,
@@ -243,12 +251,17 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
   const auto z_range = heightRange(panels, box, 0.002, 0.998);
   const double scale = std::min(panel_width / (box.xmax - box.xmin), top_height / (box.ymax - box.ymin));
 
+  std::vector<Rect> top_areas, side_areas;
   for (int k = 0; k < n; ++k) {
     const int left = kGap + k * (panel_width + kGap);
-    const Rect top_area{left, kTitleBand, panel_width, top_height};
+    top_areas.push_back({left, kTitleBand, panel_width, top_height});
+    side_areas.push_back({left, kTitleBand + top_height + kGap, panel_width, side_height});
     fillRect(image, left, kTitleBand, left + panel_width, kTitleBand + top_height, kPanelBackground);
     drawText(image, left + 4, 8, panels[k].title, kText, 3);
-
+    if (settings.side_view) {
+      fillRect(image, left, side_areas[k].top, left + panel_width, side_areas[k].top + side_height,
+               kPanelBackground);
+    }
     TopViewTransform view;
     view.pixels_per_meter = scale;
     view.left = left;
@@ -256,14 +269,21 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
     // Centre the box in the area.
     view.origin_x = 0.5 * (box.xmin + box.xmax) - 0.5 * panel_width / scale;
     view.origin_y = 0.5 * (box.ymin + box.ymax) + 0.5 * top_height / scale;
-    drawTopView(image, panels[k], box, view, top_area, heights, settings.voxel);
     picture.top_views.push_back(view);
-
+  }
+  // The panels' views at once: each draws only inside its own areas (its
+  // trajectories' start disc a pixel beyond, into the gap). Text is not
+  // clipped, so it comes after.
+  tbb::parallel_for(0, n, [&](int k) {
+    drawTopView(image, panels[k], box, picture.top_views[k], top_areas[k], heights, settings.voxel);
     if (settings.side_view) {
-      const Rect side_area{left, kTitleBand + top_height + kGap, panel_width, side_height};
-      fillRect(image, left, side_area.top, left + panel_width, side_area.top + side_height, kPanelBackground);
-      drawSideView(image, panels[k], box, view, side_area, heights, z_range, settings.voxel);
+      drawSideView(image, panels[k], box, picture.top_views[k], side_areas[k], heights, z_range,
+                   settings.voxel);
     }
+  });
+  for (int k = 0; k < n; ++k) {
+    drawScaleBar(image, top_areas[k], scale);
+    if (settings.side_view) labelSideView(image, picture.top_views[k], side_areas[k], z_range);
   }
   drawFooter(image, panels, heights, settings.value_scale);
   return picture;

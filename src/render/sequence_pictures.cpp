@@ -1,4 +1,6 @@
 // The entry points on a sequence of scans: merge the maps, then draw them.
+#include <tbb/parallel_invoke.h>
+
 #include "before_after_maps.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/alignment.hpp"
@@ -108,9 +110,11 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
   for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
   RenderSettings overview = settings;
   overview.voxel = maps.overview_voxel;  // the points' footprint
-  const Image whole = renderPanels(panels, overview).image;
-  const std::optional<Image> zoom = thicknessZoom(scans, poses, maps, panels, settings);
-  writePng(out_png, zoom ? stacked(whole, *zoom) : whole);
+  // The zoom's scans are read while the overview is drawn (mostly on one core).
+  std::optional<Image> whole, zoom;
+  tbb::parallel_invoke([&] { whole = renderPanels(panels, overview).image; },
+                       [&] { zoom = thicknessZoom(scans, poses, maps, panels, settings); });
+  writePng(out_png, zoom ? stacked(*whole, *zoom) : *whole);
 }
 
 void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,

@@ -20,14 +20,21 @@ class Image {
   void set(int x, int y, Rgb color);  // ignores pixels outside the image
   // Mixes `color` over the pixel with opacity alpha in [0, 1].
   void blend(int x, int y, Rgb color, double alpha);
+  // Copies `source` with its top-left corner at (left, top), clipped.
+  void paste(const Image& source, int left, int top);
   const std::vector<std::uint8_t>& pixels() const { return pixels_; }  // row-major RGB
 
  private:
+  std::size_t offsetOf(int x, int y) const;
+
   int width_, height_;
   std::vector<std::uint8_t> pixels_;
 };
 
-// Encodes as PNG (stb_image_write) and writes atomically. Throws hba::Error.
+// The PNG file of `image` (libpng, 8-bit RGB). Throws hba::Error.
+std::vector<std::uint8_t> encodePng(const Image& image);
+
+// Encodes as PNG and writes atomically. Throws hba::Error naming the file.
 void writePng(const std::filesystem::path& path, const Image& image);
 
 }  // namespace hba::render
