@@ -45,9 +45,7 @@ void PicturePoints::add(const PointCloud& cloud, const Pose& pose) {
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (i + kLookahead < keys.size()) index_.prefetch(keys[i + kLookahead]);
     if (keys[i] == kOutside || (i > 0 && keys[i] == keys[i - 1])) continue;
-    bool inserted = false;
-    index_.insert(keys[i], inserted);
-    if (inserted) points_.push_back(local[i]);
+    if (index_.insert(keys[i])) points_.push_back(local[i]);
   }
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The points a picture draws (private to render): one per occupied voxel,
-// the first that fell in it, numbered by a flat index of packed voxel keys.
-// 35-60 bytes a voxel where a merged map with centroids takes over 100:
+// the first that fell in it, found by a flat set of packed voxel keys.
+// 25-40 bytes a voxel where a merged map with centroids takes over 100:
 // pictures of long sequences stay small.
 #include <cstdint>
 #include <vector>
@@ -28,8 +28,8 @@ class PicturePoints {
  private:
   double inverse_voxel_;
   Vec3 origin_;
-  voxel::PackedVoxelIndex index_;  // packed voxel key -> number
-  std::vector<Vec3f> points_;      // relative to origin_, in the order first hit
+  voxel::PackedVoxelSet index_;  // packed voxel keys seen
+  std::vector<Vec3f> points_;    // relative to origin_, in the order first hit
 };
 
 }  // namespace hba::render

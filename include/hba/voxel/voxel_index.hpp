@@ -93,4 +93,67 @@ struct PackedKeyHash {
 };
 using PackedVoxelIndex = FlatIndex<std::uint64_t, PackedKeyHash>;
 
+// Which packed keys were seen, in 8-byte slots: half a PackedVoxelIndex's
+// memory, so twice as many voxels stay in the caches (a picture's points
+// need no numbers). Grown by doubling at 70 % load.
+class PackedVoxelSet {
+ public:
+  // Whether `key` is new (and now recorded).
+  bool insert(std::uint64_t key) {
+    if (key == kEmpty) {  // the empty slots' mark, kept aside
+      const bool fresh = !has_empty_key_;
+      has_empty_key_ = true;
+      count_ += fresh;
+      return fresh;
+    }
+    if (10 * (stored_ + 1) > 7 * slots_.size()) grow();
+    std::size_t s = home(key);
+    while (slots_[s] != kEmpty) {
+      if (slots_[s] == key) return false;
+      s = (s + 1) & mask_;
+    }
+    slots_[s] = key;
+    ++stored_;
+    ++count_;
+    return true;
+  }
+
+  std::size_t size() const { return count_; }
+
+  // Starts loading the slot where `key` is looked for first.
+  void prefetch(std::uint64_t key) const {
+    if (!slots_.empty()) __builtin_prefetch(&slots_[home(key)]);
+  }
+
+  // Room for `keys` keys without growing.
+  void reserve(std::size_t keys) {
+    while (10 * keys > 7 * slots_.size()) grow();
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+  std::size_t home(std::uint64_t key) const {
+    return static_cast<std::size_t>((PackedKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 20) & mask_;
+  }
+
+  void grow() {
+    std::vector<std::uint64_t> old = std::move(slots_);
+    slots_.assign(old.empty() ? 1024 : 2 * old.size(), kEmpty);
+    mask_ = slots_.size() - 1;
+    for (const std::uint64_t key : old) {
+      if (key == kEmpty) continue;
+      std::size_t s = home(key);
+      while (slots_[s] != kEmpty) s = (s + 1) & mask_;
+      slots_[s] = key;
+    }
+  }
+
+  std::vector<std::uint64_t> slots_;
+  std::size_t mask_ = 0;
+  std::size_t stored_ = 0;  // in slots_
+  std::size_t count_ = 0;   // stored_, and the empty mark's key if seen
+  bool has_empty_key_ = false;
+};
+
 }  // namespace hba::voxel

@@ -1,0 +1,58 @@
+// The flat voxel tables: the same answers as the standard containers,
+// through growth, collisions and the key that marks empty slots.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "hba/voxel/voxel_index.hpp"
+
+namespace hba::voxel {
+namespace {
+
+TEST(PackedVoxelSet, AgreesWithAStandardSetThroughGrowth) {
+  PackedVoxelSet set;
+  std::unordered_set<std::uint64_t> reference;
+  std::mt19937_64 random(5);
+  for (int i = 0; i < 200000; ++i) {
+    // Few distinct keys in the low bits: repeats, and keys that share homes.
+    const std::uint64_t key = i % 3 == 0 ? random() : (random() % 5000) << 42 | (random() % 7);
+    if (i % 5 == 0) set.prefetch(key);
+    ASSERT_EQ(set.insert(key), reference.insert(key).second) << i;
+  }
+  EXPECT_EQ(set.size(), reference.size());
+}
+
+TEST(PackedVoxelSet, TheEmptyMarkIsAKeyLikeAnother) {
+  PackedVoxelSet set;
+  const std::uint64_t mark = ~std::uint64_t{0};
+  EXPECT_TRUE(set.insert(mark));
+  EXPECT_FALSE(set.insert(mark));
+  EXPECT_TRUE(set.insert(0));
+  EXPECT_FALSE(set.insert(0));
+  EXPECT_EQ(set.size(), 2u);
+  set.reserve(5000);  // regrowing keeps what is there
+  EXPECT_FALSE(set.insert(mark));
+  EXPECT_FALSE(set.insert(0));
+  EXPECT_TRUE(set.insert(mark - 1));
+  EXPECT_EQ(set.size(), 3u);
+}
+
+TEST(PackedVoxelIndex, NumbersKeysInFirstSeenOrder) {
+  PackedVoxelIndex index;
+  std::unordered_map<std::uint64_t, std::uint32_t> reference;
+  std::mt19937_64 random(9);
+  for (int i = 0; i < 100000; ++i) {
+    const std::uint64_t key = random() % 30000;
+    bool inserted = false;
+    const std::uint32_t number = index.insert(key, inserted);
+    const auto [it, fresh] = reference.emplace(key, static_cast<std::uint32_t>(reference.size()));
+    ASSERT_EQ(inserted, fresh);
+    ASSERT_EQ(number, it->second);
+  }
+  EXPECT_EQ(index.size(), reference.size());
+}
+
+}  // namespace
+}  // namespace hba::voxel
