@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -79,10 +79,10 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   result.poses = initial;
   const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
 
-  Association last;
-  // The trust check's planes: at the input poses and the finest voxel, found
-  // with the first round's (the same points placed once).
-  std::optional<Association> fixed;
+  // The last round's planes, and the trust check's: at the input poses and
+  // the finest voxel, found with the first round's (the same points placed
+  // once), or the first round's own when it is at the finest voxel already.
+  std::shared_ptr<const Association> last, fixed;
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
   const double finest =
@@ -96,15 +96,17 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     if (round == 0 && settings.check_fixed_map && halvings > 0) {
       auto [coarse, fine] =
           associateAtTwoVoxels(scans, result.poses, round_settings.planes, finest, settings.reject_ratio);
-      last = std::move(coarse);
-      fixed = std::move(fine);
+      last = std::make_shared<const Association>(std::move(coarse));
+      fixed = std::make_shared<const Association>(std::move(fine));
     } else {
-      last = associate(scans, result.poses, round_settings.planes, settings.reject_ratio);
+      last = std::make_shared<const Association>(
+          associate(scans, result.poses, round_settings.planes, settings.reject_ratio));
+      if (round == 0 && settings.check_fixed_map) fixed = last;
     }
     // Without planes there is nothing to weigh the prior against.
-    const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
+    const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
     const auto associated = Clock::now();
-    const LmSummary summary = solveLevenbergMarquardt(last.problem, result.poses, lm, prior);
+    const LmSummary summary = solveLevenbergMarquardt(last->problem, result.poses, lm, prior);
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
@@ -115,10 +117,6 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    if (!fixed) {
-      round_settings.planes.voxel_size = finest;
-      fixed = associate(scans, initial, round_settings.planes, settings.reject_ratio);
-    }
     result.fixed_map_cost_initial = fixed->problem.cost(initial);
     result.fixed_map_cost_final = fixed->problem.cost(result.poses);
     // Not trusted: a blurrier map on the input's own planes, or neighbouring
@@ -132,26 +130,26 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     if (slid || result.fixed_map_cost_final > result.fixed_map_cost_initial) {
       result.trusted = false;
       result.poses = initial;
-      last = std::move(*fixed);
+      last = fixed;
     }
   }
-  const MotionPrior& prior = last.problem.numPlanes() > 0 ? full_prior : no_prior;
+  const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
   // Each plane's cost at the result and at the input, once for the totals
   // and the RMS figures.
-  const std::vector<double> final_costs = last.problem.planeCosts(result.poses);
-  const std::vector<double> initial_costs = last.problem.planeCosts(initial);
+  const std::vector<double> final_costs = last->problem.planeCosts(result.poses);
+  const std::vector<double> initial_costs = last->problem.planeCosts(initial);
   result.final_cost = sumOf(final_costs);
-  Linearization final_lin = last.problem.linearize(result.poses);
+  Linearization final_lin = last->problem.linearize(result.poses);
   prior.addTo(final_lin, result.poses);
   result.hessian = std::move(final_lin.hessian);
   result.last_association_initial_cost = sumOf(initial_costs);
-  result.num_planes = last.problem.numPlanes();
-  for (const PlaneObservation& plane : last.problem.planes()) {
+  result.num_planes = last->problem.numPlanes();
+  for (const PlaneObservation& plane : last->problem.planes()) {
     result.num_plane_points += static_cast<std::size_t>(plane.pointCount());
   }
-  result.plane_rms_initial = planeRms(last.problem, initial_costs);
-  result.plane_rms_final = planeRms(last.problem, final_costs);
-  result.plane_point_indices = pointIndicesPerFrame(last.features, scans);
+  result.plane_rms_initial = planeRms(last->problem, initial_costs);
+  result.plane_rms_final = planeRms(last->problem, final_costs);
+  result.plane_point_indices = pointIndicesPerFrame(last->features, scans);
   return result;
 }
 
