@@ -1,9 +1,10 @@
 #include "birds_eye_search.hpp"
 
+#include "occupancy_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -14,104 +15,6 @@ constexpr double kDegree = M_PI / 180.0;
 // Range at which one heading step moves a point by one cell: most structure
 // a scan neighbourhood sees is nearer than this.
 constexpr double kHeadingLeverM = 20.0;
-
-using Vec2 = Eigen::Vector2d;
-
-struct Cell {
-  long ix = 0;
-  long iy = 0;
-};
-
-long cellIndex(double v, double cell) { return static_cast<long>(std::floor(v / cell)); }
-
-std::int64_t cellKey(long ix, long iy) {
-  return (static_cast<std::int64_t>(ix) << 32) ^ static_cast<std::int64_t>(static_cast<std::uint32_t>(iy));
-}
-
-struct ColumnStats {
-  long ix = 0;
-  long iy = 0;
-  double z_min = 0.0;
-  double z_max = 0.0;
-  Vec3 sum = Vec3::Zero();
-  std::size_t count = 0;
-};
-
-// Columns (cells of the xy grid) whose points span at least `height`, in a
-// fixed order (by key), each with the centroid of its points.
-std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, double height) {
-  std::unordered_map<std::int64_t, ColumnStats> columns;
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const Vec3 p = cloud.world(i);
-    const long ix = cellIndex(p.x(), cell);
-    const long iy = cellIndex(p.y(), cell);
-    auto [it, fresh] = columns.try_emplace(cellKey(ix, iy));
-    ColumnStats& c = it->second;
-    if (fresh) {
-      c.ix = ix;
-      c.iy = iy;
-      c.z_min = c.z_max = p.z();
-    }
-    c.z_min = std::min(c.z_min, p.z());
-    c.z_max = std::max(c.z_max, p.z());
-    c.sum += p;
-    ++c.count;
-  }
-  std::vector<ColumnStats> kept;
-  for (const auto& [key, c] : columns) {
-    if (c.z_max - c.z_min >= height) kept.push_back(c);
-  }
-  std::sort(kept.begin(), kept.end(), [](const ColumnStats& a, const ColumnStats& b) {
-    return cellKey(a.ix, a.iy) < cellKey(b.ix, b.iy);
-  });
-  return kept;
-}
-
-// The `from` map's structure columns as a dense occupancy grid.
-class OccupancyGrid {
- public:
-  OccupancyGrid(const std::vector<ColumnStats>& columns, double cell, int dilation) : cell_(cell) {
-    if (columns.empty()) return;
-    min_x_ = max_x_ = columns.front().ix;
-    min_y_ = max_y_ = columns.front().iy;
-    for (const ColumnStats& c : columns) {
-      min_x_ = std::min(min_x_, c.ix);
-      max_x_ = std::max(max_x_, c.ix);
-      min_y_ = std::min(min_y_, c.iy);
-      max_y_ = std::max(max_y_, c.iy);
-    }
-    min_x_ -= dilation;
-    min_y_ -= dilation;
-    max_x_ += dilation;
-    max_y_ += dilation;
-    width_ = max_x_ - min_x_ + 1;
-    occupied_.assign(static_cast<std::size_t>(width_ * (max_y_ - min_y_ + 1)), 0);
-    for (const ColumnStats& c : columns) {
-      for (long dx = -dilation; dx <= dilation; ++dx) {
-        for (long dy = -dilation; dy <= dilation; ++dy) {
-          occupied_[index(c.ix + dx, c.iy + dy)] = 1;
-        }
-      }
-    }
-  }
-
-  bool occupied(const Vec2& p) const {
-    if (occupied_.empty()) return false;
-    const long ix = cellIndex(p.x(), cell_);
-    const long iy = cellIndex(p.y(), cell_);
-    if (ix < min_x_ || ix > max_x_ || iy < min_y_ || iy > max_y_) return false;
-    return occupied_[index(ix, iy)] != 0;
-  }
-
- private:
-  std::size_t index(long ix, long iy) const {
-    return static_cast<std::size_t>((iy - min_y_) * width_ + (ix - min_x_));
-  }
-
-  double cell_;
-  long min_x_ = 0, max_x_ = -1, min_y_ = 0, max_y_ = -1, width_ = 0;
-  std::vector<std::uint8_t> occupied_;
-};
 
 // A planar correction of the guess: heading about the guess's position, then a shift.
 struct Offset {
@@ -143,12 +46,12 @@ std::vector<Scored> scoreLevel(const OccupancyGrid& grid, const std::vector<Vec2
   for (const double yaw : yaws) {
     const Eigen::Rotation2Dd rotation(yaw);
     for (std::size_t k = 0; k < queries.size(); ++k) turned[k] = rotation * (queries[k] - pivot) + pivot;
-    for (const double dx : xs) {
-      for (const double dy : ys) {
-        const Vec2 shift(dx, dy);
-        std::size_t hits = 0;
-        for (const Vec2& q : turned) hits += grid.occupied(q + shift) ? 1 : 0;
-        scored.push_back({{dx, dy, yaw}, queries.empty() ? 0.0 : static_cast<double>(hits) / queries.size()});
+    const std::vector<std::uint32_t> hits = countHits(grid, turned, xs, ys);
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      for (std::size_t j = 0; j < ys.size(); ++j) {
+        const double share =
+            queries.empty() ? 0.0 : static_cast<double>(hits[i * ys.size() + j]) / queries.size();
+        scored.push_back({{xs[i], ys[j], yaw}, share});
       }
     }
   }

@@ -1,0 +1,124 @@
+#include "occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
+
+namespace hba::closure {
+namespace {
+
+std::int64_t cellKey(long ix, long iy) {
+  return (static_cast<std::int64_t>(ix) << 32) ^ static_cast<std::int64_t>(static_cast<std::uint32_t>(iy));
+}
+
+// The shifts as whole cells, or nothing when one is not (within 1e-9 of a
+// cell: steps built by repeated additions of the cell).
+std::optional<std::vector<long>> wholeCells(const std::vector<double>& shifts, double cell) {
+  std::vector<long> cells;
+  for (const double s : shifts) {
+    const double ratio = s / cell;
+    const double whole = std::round(ratio);
+    if (!(std::abs(ratio - whole) < 1e-9) || !(std::abs(whole) < 1e9)) return std::nullopt;
+    cells.push_back(static_cast<long>(whole));
+  }
+  return cells;
+}
+
+// A point's cell along one axis when shifting it by whole cells moves the
+// cell by as many: its position in cells is finite, not huge, and more than
+// a millionth of a cell from an edge (rounding errs by far less).
+std::optional<long> stableCell(double v, double cell) {
+  const double r = v / cell;
+  if (!(std::abs(r) < 1e9)) return std::nullopt;
+  const double base = std::floor(r);
+  const double fraction = r - base;
+  if (fraction < 1e-6 || fraction > 1.0 - 1e-6) return std::nullopt;
+  return static_cast<long>(base);
+}
+
+}  // namespace
+
+long cellIndex(double v, double cell) { return static_cast<long>(std::floor(v / cell)); }
+
+std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, double height) {
+  std::unordered_map<std::int64_t, ColumnStats> columns;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3 p = cloud.world(i);
+    const long ix = cellIndex(p.x(), cell);
+    const long iy = cellIndex(p.y(), cell);
+    auto [it, fresh] = columns.try_emplace(cellKey(ix, iy));
+    ColumnStats& c = it->second;
+    if (fresh) {
+      c.ix = ix;
+      c.iy = iy;
+      c.z_min = c.z_max = p.z();
+    }
+    c.z_min = std::min(c.z_min, p.z());
+    c.z_max = std::max(c.z_max, p.z());
+    c.sum += p;
+    ++c.count;
+  }
+  std::vector<ColumnStats> kept;
+  for (const auto& [key, c] : columns) {
+    if (c.z_max - c.z_min >= height) kept.push_back(c);
+  }
+  std::sort(kept.begin(), kept.end(), [](const ColumnStats& a, const ColumnStats& b) {
+    return cellKey(a.ix, a.iy) < cellKey(b.ix, b.iy);
+  });
+  return kept;
+}
+
+OccupancyGrid::OccupancyGrid(const std::vector<ColumnStats>& columns, double cell, int dilation) : cell_(cell) {
+  if (columns.empty()) return;
+  min_x_ = max_x_ = columns.front().ix;
+  min_y_ = max_y_ = columns.front().iy;
+  for (const ColumnStats& c : columns) {
+    min_x_ = std::min(min_x_, c.ix);
+    max_x_ = std::max(max_x_, c.ix);
+    min_y_ = std::min(min_y_, c.iy);
+    max_y_ = std::max(max_y_, c.iy);
+  }
+  min_x_ -= dilation;
+  min_y_ -= dilation;
+  max_x_ += dilation;
+  max_y_ += dilation;
+  width_ = max_x_ - min_x_ + 1;
+  occupied_.assign(static_cast<std::size_t>(width_ * (max_y_ - min_y_ + 1)), 0);
+  for (const ColumnStats& c : columns) {
+    for (long dx = -dilation; dx <= dilation; ++dx) {
+      for (long dy = -dilation; dy <= dilation; ++dy) occupied_[index(c.ix + dx, c.iy + dy)] = 1;
+    }
+  }
+}
+
+bool OccupancyGrid::occupied(const Vec2& p) const {
+  if (occupied_.empty()) return false;
+  return occupiedCell(cellIndex(p.x(), cell_), cellIndex(p.y(), cell_));
+}
+
+std::vector<std::uint32_t> countHits(const OccupancyGrid& grid, const std::vector<Vec2>& points,
+                                     const std::vector<double>& xs, const std::vector<double>& ys) {
+  const std::size_t ny = ys.size();
+  std::vector<std::uint32_t> hits(xs.size() * ny, 0);
+  const std::optional<std::vector<long>> cx = wholeCells(xs, grid.cell());
+  const std::optional<std::vector<long>> cy = wholeCells(ys, grid.cell());
+  for (const Vec2& p : points) {
+    const std::optional<long> ix = cx && cy ? stableCell(p.x(), grid.cell()) : std::nullopt;
+    const std::optional<long> iy = ix ? stableCell(p.y(), grid.cell()) : std::nullopt;
+    if (!iy) {  // shifted as a point, as the definition says
+      for (std::size_t i = 0; i < xs.size(); ++i) {
+        for (std::size_t j = 0; j < ny; ++j) hits[i * ny + j] += grid.occupied(p + Vec2(xs[i], ys[j]));
+      }
+      continue;
+    }
+    // Along x innermost: the grid's rows are in x.
+    for (std::size_t j = 0; j < ny; ++j) {
+      const long y = *iy + (*cy)[j];
+      for (std::size_t i = 0; i < xs.size(); ++i) hits[i * ny + j] += grid.occupiedCell(*ix + (*cx)[i], y);
+    }
+  }
+  return hits;
+}
+
+}  // namespace hba::closure
