@@ -60,14 +60,14 @@ class FactoredSystem {
     std::size_t b = 0;
     Mat6 ab = Mat6::Zero();
   };
-  Eigen::Map<const Eigen::Matrix<float, 3, 6>> z(std::size_t k) const {
-    return Eigen::Map<const Eigen::Matrix<float, 3, 6>>(&z_[18 * k]);
+  Eigen::Map<const Eigen::Matrix<float, 3, 6, Eigen::RowMajor>> z(std::size_t k) const {
+    return Eigen::Map<const Eigen::Matrix<float, 3, 6, Eigen::RowMajor>>(&z_[18 * k]);
   }
 
   const ObservationIndex& index_;
   std::size_t frames_ = 0;
   std::vector<std::size_t> chunk_begin_;  // planes of chunk c: [chunk_begin_[c], chunk_begin_[c+1])
-  std::vector<float> z_;                  // 3x6 column-major per observation
+  std::vector<float> z_;                  // 3x6 per observation, rows contiguous
   std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;

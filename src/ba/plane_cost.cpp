@@ -1,6 +1,7 @@
 #include "hba/ba/plane_cost.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Eigenvalues>
 
@@ -50,9 +51,9 @@ void toWorld(const PlaneObservation& plane, const FrameTransforms& frames, World
     const FrameCluster& fc = plane.clusters[a];
     const Mat3& R = frames.R[fc.frame];
     WorldCluster& wc = world.frames[a];
-    wc.n = fc.cluster.count;
-    wc.rbar = R * fc.cluster.mean;
-    wc.sw = R * fc.cluster.scatter * R.transpose();
+    wc.n = fc.count();
+    wc.rbar = R * fc.mean();
+    wc.sw = R * fc.scatter() * R.transpose();
     const Vec3 centroid = wc.rbar + frames.t[fc.frame];
     if (a == 0) reference = centroid;
     wc.offset = centroid - reference;
@@ -83,9 +84,16 @@ double eigenGapWeight(double l1, double lk, double l3) {
 
 }  // namespace
 
+FrameCluster::FrameCluster(std::uint32_t frame_index, const PointCluster& points)
+    : frame(frame_index),
+      count_(static_cast<std::uint32_t>(std::llround(points.count))),
+      mean_(points.mean),
+      scatter_{points.scatter(0, 0), points.scatter(0, 1), points.scatter(0, 2),
+               points.scatter(1, 1), points.scatter(1, 2), points.scatter(2, 2)} {}
+
 double PlaneObservation::pointCount() const {
   double n = 0.0;
-  for (const FrameCluster& fc : clusters) n += fc.cluster.count;
+  for (const FrameCluster& fc : clusters) n += fc.count();
   return n;
 }
 

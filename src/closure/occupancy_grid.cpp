@@ -69,7 +69,8 @@ std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, 
   return kept;
 }
 
-OccupancyGrid::OccupancyGrid(const std::vector<ColumnStats>& columns, double cell, int dilation) : cell_(cell) {
+OccupancyGrid::OccupancyGrid(const std::vector<ColumnStats>& columns, double cell, int dilation)
+    : cell_(cell) {
   if (columns.empty()) return;
   min_x_ = max_x_ = columns.front().ix;
   min_y_ = max_y_ = columns.front().iy;

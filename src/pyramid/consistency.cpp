@@ -22,10 +22,10 @@ FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans, const 
     for (const ba::FrameCluster& fc : plane.clusters) {
       CompactCluster c;
       c.frame = fc.frame;
-      c.count = static_cast<float>(fc.cluster.count);
-      c.mean = {static_cast<float>(fc.cluster.mean.x()), static_cast<float>(fc.cluster.mean.y()),
-                static_cast<float>(fc.cluster.mean.z())};
-      const Mat3& S = fc.cluster.scatter;
+      c.count = static_cast<float>(fc.count());
+      c.mean = {static_cast<float>(fc.mean().x()), static_cast<float>(fc.mean().y()),
+                static_cast<float>(fc.mean().z())};
+      const Mat3 S = fc.scatter();
       c.scatter = {static_cast<float>(S(0, 0)), static_cast<float>(S(0, 1)), static_cast<float>(S(0, 2)),
                    static_cast<float>(S(1, 1)), static_cast<float>(S(1, 2)), static_cast<float>(S(2, 2))};
       clusters_.push_back(c);
@@ -54,13 +54,12 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
     plane.clusters.clear();
     for (std::size_t k = plane_begin_[p]; k < plane_begin_[p + 1]; ++k) {
       const CompactCluster& c = clusters_[k];
-      ba::FrameCluster fc;
-      fc.frame = c.frame;
-      fc.cluster.count = c.count;
-      fc.cluster.mean = Vec3(c.mean[0], c.mean[1], c.mean[2]);
+      ba::PointCluster points;
+      points.count = c.count;
+      points.mean = Vec3(c.mean[0], c.mean[1], c.mean[2]);
       const auto& v = c.scatter;
-      fc.cluster.scatter << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
-      plane.clusters.push_back(fc);
+      points.scatter << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+      plane.clusters.emplace_back(c.frame, points);
     }
     costs[p] = ba::planeCost(plane, frames);
   });

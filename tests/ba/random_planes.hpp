@@ -38,15 +38,14 @@ inline RandomPlane randomPlane(std::mt19937& rng, const std::vector<Pose>& poses
   const Vec3 center = 4.0 * Vec3(u(rng), u(rng), u(rng));
   RandomPlane plane;
   for (std::uint32_t f : frames) {
-    ba::FrameCluster fc;
-    fc.frame = f;
+    ba::PointCluster cluster;
     std::vector<Vec3> points;
     for (int k = 0; k < points_per_frame; ++k) {
       const Vec3 q = center + u(rng) * e1 + u(rng) * e2 + g(rng) * normal;
       points.push_back(poses[f].inverse() * q);
-      fc.cluster.add(points.back());
+      cluster.add(points.back());
     }
-    plane.observation.clusters.push_back(fc);
+    plane.observation.clusters.emplace_back(f, cluster);
     plane.sensor_points.push_back(std::move(points));
   }
   return plane;

@@ -252,10 +252,9 @@ TEST(PlaneCost, DegeneratePlanesGiveFiniteResults) {
   // All points identical: A = 0, every eigenvalue equal.
   PlaneObservation blob;
   for (std::uint32_t f = 0; f < 2; ++f) {
-    FrameCluster fc;
-    fc.frame = f;
-    for (int k = 0; k < 5; ++k) fc.cluster.add(Vec3(1, 2, 3));
-    blob.clusters.push_back(fc);
+    PointCluster points;
+    for (int k = 0; k < 5; ++k) points.add(Vec3(1, 2, 3));
+    blob.clusters.emplace_back(f, points);
   }
   const std::vector<Pose> poses(2, Pose::identity());
   const PlaneLinearization lin = linearizePlane(blob, FrameTransforms(poses));

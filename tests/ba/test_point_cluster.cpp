@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "hba/ba/plane_cost.hpp"
 #include "hba/ba/point_cluster.hpp"
 
 namespace hba::ba {
@@ -45,6 +46,24 @@ TEST(PointCluster, MergingWithEmptyIsIdentity) {
   empty.merge(c);
   EXPECT_EQ(empty.scatter, c.scatter);
   EXPECT_EQ(PointCluster().covariance(), Mat3::Zero());
+}
+
+}  // namespace
+}  // namespace hba::ba
+
+namespace hba::ba {
+namespace {
+
+TEST(FrameCluster, KeepsTheClusterIn80Bytes) {
+  PointCluster points;
+  for (const Vec3& p : {Vec3(1.0, 2.0, 3.5), Vec3(-0.5, 4.0, 1.25), Vec3(2.0, -1.0, 0.0)}) points.add(p);
+  points.scatter = 0.5 * (points.scatter + points.scatter.transpose()).eval();  // as planes make them
+  const FrameCluster kept(7, points);
+  EXPECT_EQ(kept.frame, 7u);
+  EXPECT_EQ(kept.count(), 3.0);
+  EXPECT_EQ(kept.mean(), points.mean);
+  EXPECT_EQ(kept.scatter(), points.scatter);  // bit for bit
+  EXPECT_EQ(sizeof(FrameCluster), 80u);       // frame and count share 8 bytes
 }
 
 }  // namespace

@@ -52,17 +52,16 @@ TEST(OccupancyGrid, HitCountsMatchTheDefinition) {
       std::vector<Vec2> points;
       for (int k = 0; k < 400; ++k) {
         Vec2 p = centre + Vec2(spread(random), spread(random));
-        if (k % 4 == 0) p.x() = cell * std::round(p.x() / cell);  // on an edge
+        if (k % 4 == 0) p.x() = cell * std::round(p.x() / cell);                          // on an edge
         if (k % 4 == 1) p.y() = std::nextafter(cell * std::round(p.y() / cell), -1e300);  // just below one
         if (k % 4 == 2) p.x() = cell * std::round(p.x() / cell) + 1e-8;  // within the guard band
         points.push_back(p);
       }
       points.push_back(Vec2(std::nan(""), 0.0));
       // Whole cells (both levels' shifts, centred on a peak or not), and not.
-      for (const auto& [xs, ys] :
-           {std::pair{shifts(0.0, 8, cell), shifts(0.0, 8, cell)},
-            std::pair{shifts(4 * cell * 3, 4, cell), shifts(-4 * cell * 2, 4, cell)},
-            std::pair{shifts(0.25, 3, 0.25 * cell), shifts(0.0, 3, 0.25 * cell)}}) {
+      for (const auto& [xs, ys] : {std::pair{shifts(0.0, 8, cell), shifts(0.0, 8, cell)},
+                                   std::pair{shifts(4 * cell * 3, 4, cell), shifts(-4 * cell * 2, 4, cell)},
+                                   std::pair{shifts(0.25, 3, 0.25 * cell), shifts(0.0, 3, 0.25 * cell)}}) {
         ASSERT_EQ(countHits(grid, points, xs, ys), byDefinition(grid, points, xs, ys));
       }
     }
