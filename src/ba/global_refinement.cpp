@@ -29,7 +29,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     Association association = associate(scans, result.poses, settings.planes, settings.reject_ratio);
     // The points of each plane are summed into its clusters: their indices
     // (8 bytes a plane point) are not needed by the LM.
-    association.features = {};
+    association.extraction = {};
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;

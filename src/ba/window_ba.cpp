@@ -51,23 +51,6 @@ std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> co
   return costs;
 }
 
-std::vector<std::vector<std::uint32_t>> pointIndicesPerFrame(const std::vector<voxel::PlaneFeature>& features,
-                                                             const std::vector<const PointCloud*>& scans) {
-  // Marks instead of sorting: linear in the points, and keyframes hold millions.
-  std::vector<std::vector<bool>> used(scans.size());
-  for (std::size_t f = 0; f < scans.size(); ++f) used[f].assign(scans[f]->size(), false);
-  for (const voxel::PlaneFeature& feature : features) {
-    for (const voxel::PointRef& ref : feature.points) used[ref.frame][ref.index] = true;
-  }
-  std::vector<std::vector<std::uint32_t>> indices(scans.size());
-  for (std::size_t f = 0; f < scans.size(); ++f) {
-    for (std::size_t i = 0; i < used[f].size(); ++i) {
-      if (used[f][i]) indices[f].push_back(static_cast<std::uint32_t>(i));
-    }
-  }
-  return indices;
-}
-
 }  // namespace
 
 BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
@@ -149,7 +132,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
   result.plane_rms_initial = planeRms(last->problem, initial_costs);
   result.plane_rms_final = planeRms(last->problem, final_costs);
-  result.plane_point_indices = pointIndicesPerFrame(last->features, scans);
+  result.plane_point_indices = last->extraction.pointIndicesPerScan();
   return result;
 }
 

@@ -18,33 +18,50 @@
 namespace hba::voxel {
 namespace {
 
-// All window points in the world, addressed by a global id (scans in order,
-// points in order), so that ids in a voxel are sorted by (frame, index).
+// Window points in the world, less `origin`, addressed by a global id
+// (scans in order, points in order), so that ids in a voxel are sorted by
+// (frame, index). Positions are floats: they are near the origin, which is
+// near the scans (a float 20 km out is 2 mm coarse; here it is 8 um).
 struct WorldPoints {
-  std::vector<Vec3f> position;       // float: only used for the plane test
-  std::vector<std::uint32_t> frame;  // owning scan of each id
-  std::vector<std::size_t> first;    // first global id of each scan
+  std::vector<Vec3f> position;       // world minus origin
+  std::vector<std::uint32_t> first;  // first global id of each scan, and the total
+  Vec3 origin = Vec3::Zero();
+  std::vector<Mat3> R;  // each scan's rotation
+  std::vector<Vec3> t;  // and translation less the origin
 };
 
+// The origin: the scans' mean position on a grid of 64 m, a multiple of
+// every power-of-two voxel up to 64 m, so that the voxels stay where they
+// would be without it, and the same for any voxel size.
+Vec3 originOf(const std::vector<Pose>& poses) {
+  constexpr double kGrid = 64.0;
+  Vec3 mean = Vec3::Zero();
+  for (const Pose& pose : poses) mean += pose.t / static_cast<double>(poses.size());
+  return kGrid * (mean / kGrid).array().round().matrix();
+}
+
 WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses) {
-  WorldPoints world;
   std::size_t total = 0;
-  for (const PointCloud* scan : scans) {
-    world.first.push_back(total);
-    total += scan->size();
-  }
+  for (const PointCloud* scan : scans) total += scan->size();
   if (total > std::numeric_limits<std::uint32_t>::max()) {
     throw Error("plane extraction: more than 2^32 points in one window");
   }
+  WorldPoints world;
+  world.first.push_back(0);
+  for (const PointCloud* scan : scans)
+    world.first.push_back(world.first.back() + static_cast<std::uint32_t>(scan->size()));
+  if (!poses.empty()) world.origin = originOf(poses);
+  for (const Pose& pose : poses) {
+    world.R.push_back(pose.R());
+    world.t.push_back(pose.t - world.origin);
+  }
   world.position.resize(total);
-  world.frame.resize(total);
   tbb::parallel_for(std::size_t{0}, scans.size(), [&](std::size_t f) {
-    const Mat3 R = poses[f].R();
-    const Vec3& t = poses[f].t;
+    const Mat3& R = world.R[f];
+    const Vec3& t = world.t[f];
     const auto& points = scans[f]->points;
     for (std::size_t i = 0; i < points.size(); ++i) {
       world.position[world.first[f] + i] = (R * points[i].cast<double>() + t).cast<float>();
-      world.frame[world.first[f] + i] = static_cast<std::uint32_t>(f);
     }
   });
   return world;
@@ -75,13 +92,23 @@ ShiftedMoments momentsOf(const WorldPoints& world, IdSpan ids) {
   return moments;
 }
 
+// The scan of the first id of `ids`, and the end of its run of ids: spans
+// ascend, so a scan's ids come in one run (no per-point frame is kept: a
+// refinement block holds 20 M points).
+struct FrameRun {
+  std::uint32_t frame;
+  const std::uint32_t* end;
+};
+FrameRun frameRunAt(const WorldPoints& world, const std::uint32_t* begin, const std::uint32_t* end) {
+  const auto frame = static_cast<std::uint32_t>(
+      std::upper_bound(world.first.begin(), world.first.end(), *begin) - world.first.begin() - 1);
+  const std::uint32_t stop = world.first[frame + 1];
+  return {frame, std::lower_bound(begin, end, stop)};
+}
+
 int countFrames(const WorldPoints& world, IdSpan ids) {
   int frames = 0;
-  std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
-  for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {  // frames come in runs
-    if (world.frame[*id] != last) ++frames;
-    last = world.frame[*id];
-  }
+  for (const std::uint32_t* id = ids.begin; id != ids.end; id = frameRunAt(world, id, ids.end).end) ++frames;
   return frames;
 }
 
@@ -99,8 +126,9 @@ struct SplitScratch {
 
 class OctreeSplitter {
  public:
-  OctreeSplitter(const WorldPoints& world, const PlaneSettings& settings)
-      : world_(world), settings_(settings) {}
+  // `ids`: the start of the id array the visited spans lie in.
+  OctreeSplitter(const WorldPoints& world, const PlaneSettings& settings, const std::uint32_t* ids)
+      : world_(world), settings_(settings), ids_(ids) {}
 
   // Tests the cell [corner, corner + edge)^3 holding `ids` (whose sums are
   // `moments`, when known); appends its planes. Splitting reorders `ids` in
@@ -147,19 +175,36 @@ class OctreeSplitter {
   }
 
  private:
+  // The plane of a leaf: each frame's points (a run of ids) summed where
+  // they are, then taken into the frame's own coordinates (q = R p + t, so
+  // p = R^T (q - t) and the scatter turns with R^T).
   PlaneFeature toFeature(IdSpan ids, int depth) const {
     PlaneFeature feature;
     feature.depth = depth;
-    feature.points.reserve(ids.size());
-    for (const std::uint32_t* id = ids.begin; id != ids.end; ++id) {
-      const std::uint32_t f = world_.frame[*id];
-      feature.points.push_back({f, static_cast<std::uint32_t>(*id - world_.first[f])});
+    feature.first_point = static_cast<std::uint32_t>(ids.begin - ids_);
+    feature.end_point = static_cast<std::uint32_t>(ids.end - ids_);
+    for (const std::uint32_t* run = ids.begin; run != ids.end;) {
+      const auto [f, run_end] = frameRunAt(world_, run, ids.end);
+      ShiftedMoments moments(world_.position[*run].cast<double>());
+      for (const std::uint32_t* id = run; id != run_end; ++id)
+        moments.add(world_.position[*id].cast<double>());
+      PointCluster cluster;
+      cluster.count = static_cast<double>(run_end - run);
+      const Vec3 offset = moments.offsetSum() / cluster.count;
+      const Mat3& R = world_.R[f];
+      cluster.mean = R.transpose() * (moments.origin() + offset - world_.t[f]);
+      const Mat3 scatter = moments.outerSum() - cluster.count * offset * offset.transpose();
+      cluster.scatter = R.transpose() * scatter * R;
+      cluster.scatter = 0.5 * (cluster.scatter + cluster.scatter.transpose()).eval();
+      feature.clusters.emplace_back(f, cluster);
+      run = run_end;
     }
     return feature;
   }
 
   const WorldPoints& world_;
   const PlaneSettings& settings_;
+  const std::uint32_t* ids_;
 };
 
 void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
@@ -197,21 +242,21 @@ namespace {
 constexpr std::size_t kPointsPerPlaneVoxel = 64;
 
 // The planes of the root voxels `cells` (of settings.voxel_size) of `world`.
-std::vector<PlaneFeature> planesOfCells(const WorldPoints& world, const CellAssignment& cells,
-                                        const PlaneSettings& settings) {
+PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, const PlaneSettings& settings) {
   // Root voxels, their ids ascending (counting sort by cell).
   CellMembers members = membersOf(cells);
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
     keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(), settings.voxel_size);
   }
+  cells = {};  // 4 bytes a point, while the planes' clusters grow
 
   // Visit voxels in key order so the output never depends on the hash.
   std::vector<std::size_t> order(keys.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
 
-  const OctreeSplitter splitter(world, settings);
+  const OctreeSplitter splitter(world, settings, members.ids.data());
   std::vector<std::vector<PlaneFeature>> per_voxel(order.size());
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, order.size()), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -229,24 +274,57 @@ std::vector<PlaneFeature> planesOfCells(const WorldPoints& world, const CellAssi
         }
       });
 
-  std::vector<PlaneFeature> planes;
+  PlaneExtraction out;
+  std::size_t count = 0;
+  for (const auto& found : per_voxel) count += found.size();
+  out.planes.reserve(count);
   for (auto& found : per_voxel) {
-    for (auto& plane : found) planes.push_back(std::move(plane));
+    for (auto& plane : found) out.planes.push_back(std::move(plane));
   }
-  return planes;
+  out.point_ids = std::move(members.ids);
+  out.first_id = world.first;
+  return out;
 }
 
 }  // namespace
 
-std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
-                                        const std::vector<Pose>& poses, const PlaneSettings& settings) {
+std::vector<PointRef> PlaneExtraction::pointsOf(const PlaneFeature& plane) const {
+  std::vector<PointRef> out;
+  out.reserve(plane.pointCount());
+  std::uint32_t frame = 0;
+  for (std::uint32_t k = plane.first_point; k < plane.end_point; ++k) {
+    const std::uint32_t id = point_ids[k];
+    while (id >= first_id[frame + 1]) ++frame;  // ids ascend: frames come in order
+    out.push_back({frame, id - first_id[frame]});
+  }
+  return out;
+}
+
+std::vector<std::vector<std::uint32_t>> PlaneExtraction::pointIndicesPerScan() const {
+  // Marks instead of sorting: linear in the points, and keyframes hold millions.
+  const std::size_t scans = first_id.empty() ? 0 : first_id.size() - 1;
+  std::vector<bool> used(first_id.empty() ? 0 : first_id.back(), false);
+  for (const PlaneFeature& plane : planes) {
+    for (std::uint32_t k = plane.first_point; k < plane.end_point; ++k) used[point_ids[k]] = true;
+  }
+  std::vector<std::vector<std::uint32_t>> indices(scans);
+  for (std::size_t f = 0; f < scans; ++f) {
+    for (std::uint32_t id = first_id[f]; id < first_id[f + 1]; ++id) {
+      if (used[id]) indices[f].push_back(id - first_id[f]);
+    }
+  }
+  return indices;
+}
+
+PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                              const PlaneSettings& settings) {
   validate(scans, poses, settings);
   const WorldPoints world = placeInWorld(scans, poses);
   return planesOfCells(world, assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel),
                        settings);
 }
 
-std::pair<std::vector<PlaneFeature>, std::vector<PlaneFeature>> extractPlanesAtTwoVoxels(
+std::pair<PlaneExtraction, PlaneExtraction> extractPlanesAtTwoVoxels(
     const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
     const PlaneSettings& settings, double fine_voxel) {
   validate(scans, poses, settings);
@@ -256,10 +334,11 @@ std::pair<std::vector<PlaneFeature>, std::vector<PlaneFeature>> extractPlanesAtT
   PlaneSettings fine_settings = settings;
   fine_settings.voxel_size = fine_voxel;
   const WorldPoints world = placeInWorld(scans, poses);
-  const CellAssignment fine = assignCells(world.position, fine_voxel, kPointsPerPlaneVoxel);
+  CellAssignment fine = assignCells(world.position, fine_voxel, kPointsPerPlaneVoxel);
   std::optional<CellAssignment> coarse = coarsenCells(fine, world.position, settings.voxel_size);
   if (!coarse) coarse = assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel);
-  return {planesOfCells(world, *coarse, settings), planesOfCells(world, fine, fine_settings)};
+  PlaneExtraction coarse_planes = planesOfCells(world, std::move(*coarse), settings);
+  return {std::move(coarse_planes), planesOfCells(world, std::move(fine), fine_settings)};
 }
 
 }  // namespace hba::voxel

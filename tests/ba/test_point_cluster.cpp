@@ -3,7 +3,7 @@
 #include <random>
 
 #include "hba/ba/plane_cost.hpp"
-#include "hba/ba/point_cluster.hpp"
+#include "hba/core/point_cluster.hpp"
 
 namespace hba::ba {
 namespace {

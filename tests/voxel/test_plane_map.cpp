@@ -3,6 +3,7 @@
 #include <random>
 
 #include <tbb/global_control.h>
+#include <Eigen/Eigenvalues>
 
 #include "hba/core/error.hpp"
 #include "hba/voxel/plane_map.hpp"
@@ -31,13 +32,17 @@ TEST(PlaneMap, FindsAPlaneSeenByTwoFrames) {
   std::vector<PointCloud> scans(2);
   for (auto& s : scans) addSquare(s, rng, 2, 1.0f, 0.2f, 3.8f, 200);
   PlaneSettings settings;
-  const auto planes = extractPlanes(pointers(scans), {Pose(), Pose()}, settings);
-  ASSERT_EQ(planes.size(), 1u);
-  EXPECT_EQ(planes[0].depth, 0);
-  EXPECT_EQ(planes[0].points.size(), 400u);
-  EXPECT_EQ(planes[0].points.front().frame, 0u);
-  EXPECT_EQ(planes[0].points.back().frame, 1u);
-  EXPECT_EQ(planes[0].points.back().index, 199u);
+  const PlaneExtraction found = extractPlanes(pointers(scans), {Pose(), Pose()}, settings);
+  ASSERT_EQ(found.planes.size(), 1u);
+  EXPECT_EQ(found.planes[0].depth, 0);
+  const std::vector<PointRef> points = found.pointsOf(found.planes[0]);
+  EXPECT_EQ(points.size(), 400u);
+  EXPECT_EQ(points.front().frame, 0u);
+  EXPECT_EQ(points.back().frame, 1u);
+  EXPECT_EQ(points.back().index, 199u);
+  ASSERT_EQ(found.planes[0].clusters.size(), 2u);
+  EXPECT_EQ(found.planes[0].clusters[1].frame, 1u);
+  EXPECT_EQ(found.planes[0].clusters[1].count(), 200.0);
 }
 
 TEST(PlaneMap, PosesPlaceTheScansInTheWorld) {
@@ -48,8 +53,8 @@ TEST(PlaneMap, PosesPlaceTheScansInTheWorld) {
   addSquare(scans[0], rng, 2, 1.0f, 0.2f, 3.8f, 200);
   addSquare(scans[1], rng, 2, 0.0f, 0.2f, 3.8f, 200);
   const Pose shifted(Quat::Identity(), Vec3(0, 0, 1));
-  EXPECT_EQ(extractPlanes(pointers(scans), {Pose(), shifted}, PlaneSettings{}).size(), 1u);
-  EXPECT_TRUE(extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{}).empty());
+  EXPECT_EQ(extractPlanes(pointers(scans), {Pose(), shifted}, PlaneSettings{}).planes.size(), 1u);
+  EXPECT_TRUE(extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{}).planes.empty());
 }
 
 TEST(PlaneMap, PlaneSeenByOneFrameIsDropped) {
@@ -57,10 +62,10 @@ TEST(PlaneMap, PlaneSeenByOneFrameIsDropped) {
   std::vector<PointCloud> scans(2);
   addSquare(scans[0], rng, 2, 1.0f, 0.2f, 3.8f, 200);
   addSquare(scans[1], rng, 0, 9.0f, 8.2f, 11.8f, 200);  // elsewhere
-  EXPECT_TRUE(extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{}).empty());
+  EXPECT_TRUE(extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{}).planes.empty());
   PlaneSettings single;
   single.min_frames = 1;
-  EXPECT_EQ(extractPlanes(pointers(scans), {Pose(), Pose()}, single).size(), 2u);
+  EXPECT_EQ(extractPlanes(pointers(scans), {Pose(), Pose()}, single).planes.size(), 2u);
 }
 
 TEST(PlaneMap, SplitsACornerIntoSingleWallPlanes) {
@@ -72,18 +77,18 @@ TEST(PlaneMap, SplitsACornerIntoSingleWallPlanes) {
     addSquare(s, rng, 2, 1.0f, 0.05f, 3.95f, 1500);
     addSquare(s, rng, 0, 1.5f, 0.05f, 3.95f, 1500);
   }
-  const auto planes = extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{});
-  ASSERT_GE(planes.size(), 4u);
+  const PlaneExtraction found = extractPlanes(pointers(scans), {Pose(), Pose()}, PlaneSettings{});
+  ASSERT_GE(found.planes.size(), 4u);
   std::size_t covered = 0;
-  for (const auto& plane : planes) {
+  for (const auto& plane : found.planes) {
     EXPECT_GE(plane.depth, 1);
     int floor = 0, wall = 0;
-    for (const PointRef& r : plane.points) {
+    for (const PointRef& r : found.pointsOf(plane)) {
       const Vec3f& p = scans[r.frame].points[r.index];
       (p.z() == 1.0f && p.x() != 1.5f ? floor : wall) += 1;
     }
     EXPECT_TRUE(floor == 0 || wall == 0) << floor << " floor, " << wall << " wall points";
-    covered += plane.points.size();
+    covered += plane.pointCount();
   }
   EXPECT_GT(covered, 3000u);  // most points end up in planes
 }
@@ -98,8 +103,31 @@ TEST(PlaneMap, RejectsLinesAndScatter) {
       blob[f].add(Vec3f(u(rng), u(rng), u(rng)));
     }
   }
-  EXPECT_TRUE(extractPlanes(pointers(line), {Pose(), Pose()}, PlaneSettings{}).empty());
-  EXPECT_TRUE(extractPlanes(pointers(blob), {Pose(), Pose()}, PlaneSettings{}).empty());
+  EXPECT_TRUE(extractPlanes(pointers(line), {Pose(), Pose()}, PlaneSettings{}).planes.empty());
+  EXPECT_TRUE(extractPlanes(pointers(blob), {Pose(), Pose()}, PlaneSettings{}).planes.empty());
+}
+
+// The same planes, points and clusters, bit for bit.
+void expectSameFeatures(const PlaneExtraction& a, const PlaneExtraction& b) {
+  ASSERT_EQ(a.planes.size(), b.planes.size());
+  for (std::size_t p = 0; p < a.planes.size(); ++p) {
+    EXPECT_EQ(a.planes[p].depth, b.planes[p].depth);
+    const std::vector<PointRef> pa = a.pointsOf(a.planes[p]), pb = b.pointsOf(b.planes[p]);
+    ASSERT_EQ(pa.size(), pb.size());
+    for (std::size_t k = 0; k < pa.size(); ++k) {
+      EXPECT_EQ(pa[k].frame, pb[k].frame);
+      EXPECT_EQ(pa[k].index, pb[k].index);
+    }
+    ASSERT_EQ(a.planes[p].clusters.size(), b.planes[p].clusters.size());
+    for (std::size_t k = 0; k < a.planes[p].clusters.size(); ++k) {
+      const FrameCluster& ca = a.planes[p].clusters[k];
+      const FrameCluster& cb = b.planes[p].clusters[k];
+      EXPECT_EQ(ca.frame, cb.frame);
+      EXPECT_EQ(ca.count(), cb.count());
+      EXPECT_EQ(ca.mean(), cb.mean());
+      EXPECT_EQ(ca.scatter(), cb.scatter());
+    }
+  }
 }
 
 TEST(PlaneMap, OutputIsIdenticalForAnyThreadCount) {
@@ -115,29 +143,10 @@ TEST(PlaneMap, OutputIsIdenticalForAnyThreadCount) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     return extractPlanes(pointers(scans), poses, PlaneSettings{});
   };
-  const auto one = run(1);
-  const auto two = run(2);
-  ASSERT_EQ(one.size(), two.size());
-  ASSERT_FALSE(one.empty());
-  for (std::size_t p = 0; p < one.size(); ++p) {
-    ASSERT_EQ(one[p].points.size(), two[p].points.size());
-    for (std::size_t k = 0; k < one[p].points.size(); ++k) {
-      EXPECT_EQ(one[p].points[k].frame, two[p].points[k].frame);
-      EXPECT_EQ(one[p].points[k].index, two[p].points[k].index);
-    }
-  }
-}
-
-void expectSameFeatures(const std::vector<PlaneFeature>& a, const std::vector<PlaneFeature>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t p = 0; p < a.size(); ++p) {
-    EXPECT_EQ(a[p].depth, b[p].depth);
-    ASSERT_EQ(a[p].points.size(), b[p].points.size());
-    for (std::size_t k = 0; k < a[p].points.size(); ++k) {
-      EXPECT_EQ(a[p].points[k].frame, b[p].points[k].frame);
-      EXPECT_EQ(a[p].points[k].index, b[p].points[k].index);
-    }
-  }
+  const PlaneExtraction one = run(1);
+  const PlaneExtraction two = run(2);
+  ASSERT_FALSE(one.planes.empty());
+  expectSameFeatures(one, two);
 }
 
 TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
@@ -159,12 +168,52 @@ TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
     fine.voxel_size = fine_voxel;
     const auto [both_coarse, both_fine] =
         extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, fine_voxel);
-    ASSERT_FALSE(both_fine.empty()) << fine_voxel;
+    ASSERT_FALSE(both_fine.planes.empty()) << fine_voxel;
     expectSameFeatures(both_coarse, extractPlanes(pointers(scans), poses, coarse));
     expectSameFeatures(both_fine, extractPlanes(pointers(scans), poses, fine));
   }
   EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 8.0), Error);
   EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 0.0), Error);
+}
+
+TEST(PlaneMap, ClustersAreEachFramesPointsInItsOwnCoordinates) {
+  // Each cluster must be what the frame's points of the plane sum to in the
+  // scan's own coordinates, also 20 km from the origin, where a float world
+  // coordinate is 2 mm coarse (the sums are taken near the scans instead).
+  std::mt19937 rng(9);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  std::vector<PointCloud> scans(3);
+  for (auto& s : scans) {
+    for (int wall = 0; wall < 4; ++wall) addSquare(s, rng, wall % 3, 1.3f + 3.7f * wall, -6.f, 6.f, 2000);
+    for (Vec3f& p : s.points) p += Vec3f(noise(rng), noise(rng), noise(rng));
+  }
+  std::vector<Pose> poses;
+  for (int f = 0; f < 3; ++f) {
+    poses.emplace_back(Quat(Eigen::AngleAxisd(0.4 + 0.002 * f, Vec3(0.1, 0.3, 1.0).normalized())),
+                       Vec3(20000.0 + 0.03 * f, -15000.0 - 0.02 * f, 31.0));
+  }
+  const PlaneExtraction found = extractPlanes(pointers(scans), poses, PlaneSettings{});
+  ASSERT_GE(found.planes.size(), 4u);
+  for (const PlaneFeature& plane : found.planes) {
+    std::vector<PointCluster> direct(scans.size());
+    for (const PointRef& r : found.pointsOf(plane))
+      direct[r.frame].add(scans[r.frame].points[r.index].cast<double>());
+    std::size_t observing = 0;
+    for (const PointCluster& c : direct) observing += c.count > 0.0;
+    ASSERT_EQ(plane.clusters.size(), observing);
+    for (const FrameCluster& cluster : plane.clusters) {
+      const PointCluster& expected = direct[cluster.frame];
+      EXPECT_EQ(cluster.count(), expected.count);
+      EXPECT_LT((cluster.mean() - expected.mean).norm(), 2e-5);
+      // Float positions a few metres out round at a micrometre: the spread
+      // within the plane agrees to a few millionths, across it (the cost,
+      // 1 cm of noise) to 1e-3; a float 20 km out (2 mm) is 10 % off there.
+      EXPECT_LT((cluster.scatter() - expected.scatter).norm(), 1e-5 * expected.scatter.norm());
+      const Vec3 normal = Eigen::SelfAdjointEigenSolver<Mat3>(expected.scatter).eigenvectors().col(0);
+      const double across = normal.dot(expected.scatter * normal);
+      EXPECT_NEAR(normal.dot(cluster.scatter() * normal), across, 1e-3 * across);
+    }
+  }
 }
 
 TEST(PlaneMap, PlaneTestUsesEigenvalueRatios) {
@@ -182,7 +231,7 @@ TEST(PlaneMap, RejectsBadInput) {
   PlaneSettings bad;
   bad.voxel_size = -1.0;
   EXPECT_THROW(extractPlanes({&scan}, {Pose()}, bad), Error);
-  EXPECT_TRUE(extractPlanes({&scan}, {Pose()}, PlaneSettings{}).empty());
+  EXPECT_TRUE(extractPlanes({&scan}, {Pose()}, PlaneSettings{}).planes.empty());
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
-// From voxel plane features to BA plane observations: per-frame point
-// clusters in sensor coordinates, and the outlier filter on plane residuals.
+// From voxel plane features to BA plane observations (their per-frame
+// clusters), and the outlier filter on plane residuals.
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -12,11 +12,6 @@
 
 namespace hba::ba {
 
-// One observation per feature, with one cluster per observing frame (sorted
-// by frame). The only pass over the points: the LM loop never sees them.
-std::vector<PlaneObservation> buildObservations(const std::vector<voxel::PlaneFeature>& features,
-                                                const std::vector<const PointCloud*>& scans);
-
 // Indices (ascending) of the planes kept when the worst `reject_ratio`
 // fraction by `residual` is dropped (ties broken by index, so the choice is
 // deterministic). reject_ratio <= 0 keeps all.
@@ -26,7 +21,7 @@ std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, dou
 // observations, minus the worst `reject_ratio` of planes by mean squared
 // distance (not the sum, so large planes are not dropped for their size).
 struct Association {
-  std::vector<voxel::PlaneFeature> features;
+  voxel::PlaneExtraction extraction;  // the kept planes (their clusters moved to the problem)
   PlaneProblem problem{{}, 0};
 };
 

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "hba/core/frame_cluster.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 
@@ -32,9 +33,29 @@ struct PointRef {
   std::uint32_t index = 0;
 };
 
+// One plane: what each observing frame's points sum to, in that frame's
+// own coordinates (all the cost needs: the extraction is the only pass over
+// the points), and where its points sit in the extraction's list of them.
 struct PlaneFeature {
-  std::vector<PointRef> points;  // sorted by (frame, index)
-  int depth = 0;                 // 0 = root voxel, 1 = octant, ...
+  std::vector<FrameCluster> clusters;  // one per observing frame, ascending
+  std::uint32_t first_point = 0;       // its points: PlaneExtraction::point_ids
+  std::uint32_t end_point = 0;         //   [first_point, end_point)
+  int depth = 0;                       // 0 = root voxel, 1 = octant, ...
+  std::size_t pointCount() const { return end_point - first_point; }
+};
+
+// The planes of one extraction and their points. A point's id counts
+// through the scans in order (scans[0]'s points first), so each plane's ids
+// ascend by (frame, index).
+struct PlaneExtraction {
+  std::vector<PlaneFeature> planes;
+  std::vector<std::uint32_t> point_ids;  // each plane's ids in one run
+  std::vector<std::uint32_t> first_id;   // of each scan, and the total last
+
+  // A plane's points, sorted by (frame, index).
+  std::vector<PointRef> pointsOf(const PlaneFeature& plane) const;
+  // The indices (ascending) of every plane's points, per scan.
+  std::vector<std::vector<std::uint32_t>> pointIndicesPerScan() const;
 };
 
 // Plane test on the eigenvalues l1 <= l2 <= l3 of a point covariance.
@@ -44,8 +65,8 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings);
 // The output order is fixed (voxels in lexicographic key order, octants in
 // index order) and does not depend on hashing or on the thread count.
 // Throws hba::Error if the sizes differ, a scan is null, or settings are invalid.
-std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& scans,
-                                        const std::vector<Pose>& poses, const PlaneSettings& settings);
+PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                              const PlaneSettings& settings);
 
 // The planes at two root voxels, `settings.voxel_size` and `fine_voxel`, of
 // the same scans at the same poses: the same features, bit for bit, as two
@@ -53,7 +74,7 @@ std::vector<PlaneFeature> extractPlanes(const std::vector<const PointCloud*>& sc
 // (the coarse cells are gathered from the fine ones where the ratio is a
 // power of two). Throws as extractPlanes, and if fine_voxel is not in
 // (0, voxel_size].
-std::pair<std::vector<PlaneFeature>, std::vector<PlaneFeature>> extractPlanesAtTwoVoxels(
+std::pair<PlaneExtraction, PlaneExtraction> extractPlanesAtTwoVoxels(
     const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
     const PlaneSettings& settings, double fine_voxel);
 

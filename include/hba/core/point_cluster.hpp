@@ -6,7 +6,7 @@
 
 #include "hba/core/types.hpp"
 
-namespace hba::ba {
+namespace hba {
 
 struct PointCluster {
   double count = 0.0;
@@ -19,4 +19,4 @@ struct PointCluster {
   Mat3 covariance() const;
 };
 
-}  // namespace hba::ba
+}  // namespace hba

@@ -1,6 +1,6 @@
-#include "hba/ba/point_cluster.hpp"
+#include "hba/core/point_cluster.hpp"
 
-namespace hba::ba {
+namespace hba {
 
 void PointCluster::add(const Vec3& p) {
   count += 1.0;
@@ -26,4 +26,4 @@ void PointCluster::merge(const PointCluster& other) {
 
 Mat3 PointCluster::covariance() const { return count > 0.0 ? Mat3(scatter / count) : Mat3::Zero(); }
 
-}  // namespace hba::ba
+}  // namespace hba
