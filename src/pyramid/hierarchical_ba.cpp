@@ -225,7 +225,8 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
 
   // The refinement's motion prior and self-check take the closed start as
   // the input: its steps are the input's, its loops closed.
-  result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report, closed.priors);
+  result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report, closed.priors,
+                                scans.kept());
   const RefinementReport& refined = report.refinement;
   if (!closed.priors.empty() && (!refined.ran || (refined.groups.ran && !refined.groups.rejected))) {
     // The refinement's blocks hold the priors themselves; the hierarchy
@@ -279,7 +280,9 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   HbaSettings resolved = settings;
   resolved.threads = resolvedThreadCount(settings);
   tbb::task_arena arena(resolved.threads);
-  const TimedClouds layer_one(scans, settings.scan_voxel);
+  // Each scan read and downsampled once: the self-check and the refinement
+  // read them all again (and its groups once more).
+  const TimedClouds layer_one(scans, settings.scan_voxel, /*keep=*/initial.size() > 1);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.

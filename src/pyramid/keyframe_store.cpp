@@ -1,10 +1,12 @@
 #include "keyframe_store.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <mutex>
 
 #include <atomic>
@@ -12,7 +14,6 @@
 #include <system_error>
 
 #include "hba/core/error.hpp"
-#include "hba/io/kitti_bin.hpp"
 
 namespace hba::pyramid {
 namespace fs = std::filesystem;
@@ -36,9 +37,34 @@ void removeAbandonedFolders(const fs::path& base) {
   }
 }
 
+// All of `bytes` at `offset`, or an error naming the file.
+void writeAll(int fd, const void* data, std::size_t bytes, std::uint64_t offset, const fs::path& file) {
+  const char* at = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t done = ::pwrite(fd, at, bytes, static_cast<off_t>(offset));
+    if (done < 0 && errno == EINTR) continue;
+    if (done <= 0) failAt(file, "cannot write the kept clouds (is the disk full?)");
+    at += done;
+    bytes -= static_cast<std::size_t>(done);
+    offset += static_cast<std::uint64_t>(done);
+  }
+}
+
+void readAll(int fd, void* data, std::size_t bytes, std::uint64_t offset, const fs::path& file) {
+  char* at = static_cast<char*>(data);
+  while (bytes > 0) {
+    const ssize_t done = ::pread(fd, at, bytes, static_cast<off_t>(offset));
+    if (done < 0 && errno == EINTR) continue;
+    if (done <= 0) failAt(file, "cannot read the kept clouds back");
+    at += done;
+    bytes -= static_cast<std::size_t>(done);
+    offset += static_cast<std::uint64_t>(done);
+  }
+}
+
 }  // namespace
 
-KeyframeStore::KeyframeStore(std::size_t count) : count_(count) {
+KeyframeStore::KeyframeStore(std::size_t count) : count_(count), entries_(count) {
   static std::atomic<unsigned> counter{0};
   std::error_code ec;
   const fs::path base = fs::temp_directory_path(ec);
@@ -49,25 +75,48 @@ KeyframeStore::KeyframeStore(std::size_t count) : count_(count) {
   fs::create_directories(folder_, ec);
   if (ec) failAt(folder_, "cannot create the keyframe folder: " + ec.message());
   remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(folder_);
+  file_ = folder_ / "clouds.bin";
+  fd_ = ::open(file_.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd_ < 0) failAt(file_, std::string("cannot create the file for kept clouds: ") + std::strerror(errno));
 }
 
 KeyframeStore::~KeyframeStore() {
+  if (fd_ >= 0) ::close(fd_);
   remove_on_interrupt_.reset();
   std::error_code ec;
   fs::remove_all(folder_, ec);
 }
 
-fs::path KeyframeStore::pathOf(std::size_t i) const { return folder_ / (std::to_string(i) + ".bin"); }
-
-// io's KITTI .bin files (float32 x y z intensity): exact for float points,
-// no header. Written as scratch files, not atomically: they belong to this
-// process, and syncing each to disk would cost more than the BA that reads
-// them. Clouds without intensity come back with intensity 0, which the BA
-// does not use.
+// Scratch data, not written atomically nor synced: it belongs to this
+// process, and syncing would cost more than the BA that reads it. A cloud
+// stored again goes to the end of the file (its old bytes are not reused).
 void KeyframeStore::store(std::size_t i, const PointCloud& cloud) const {
-  io::writeScratchKittiBin(pathOf(i), cloud);
+  if (i >= count_)
+    throw Error("keyframe store: cloud " + std::to_string(i) + " of " + std::to_string(count_));
+  Entry entry;
+  entry.points = cloud.size();
+  entry.intensity = cloud.hasIntensity();
+  const std::size_t point_bytes = cloud.size() * sizeof(Vec3f);
+  const std::size_t intensity_bytes = entry.intensity ? cloud.size() * sizeof(float) : 0;
+  entry.offset = end_.fetch_add(point_bytes + intensity_bytes);
+  writeAll(fd_, cloud.points.data(), point_bytes, entry.offset, file_);
+  writeAll(fd_, cloud.intensity.data(), intensity_bytes, entry.offset + point_bytes, file_);
+  entries_[i] = entry;
 }
 
-PointCloud KeyframeStore::load(std::size_t i) const { return io::readKittiBin(pathOf(i)); }
+PointCloud KeyframeStore::load(std::size_t i) const {
+  if (i >= count_)
+    throw Error("keyframe store: cloud " + std::to_string(i) + " of " + std::to_string(count_));
+  const Entry entry = entries_[i];
+  PointCloud cloud;
+  cloud.points.resize(entry.points);
+  readAll(fd_, cloud.points.data(), entry.points * sizeof(Vec3f), entry.offset, file_);
+  if (entry.intensity) {
+    cloud.intensity.resize(entry.points);
+    readAll(fd_, cloud.intensity.data(), entry.points * sizeof(float),
+            entry.offset + entry.points * sizeof(Vec3f), file_);
+  }
+  return cloud;
+}
 
 }  // namespace hba::pyramid

@@ -159,7 +159,8 @@ double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& resu
 
 std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
-                                 HbaReport& report, const std::vector<graph::PositionPriorFactor>& priors) {
+                                 HbaReport& report, const std::vector<graph::PositionPriorFactor>& priors,
+                                 bool scans_kept) {
   const auto start = Clock::now();
   const ba::RefinementSettings rs = settings.refinementBa();
   const std::vector<double> steps = stepLengths(initial);
@@ -183,7 +184,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
   const io::ScanSource* source = &scans;
   const bool several_blocks =
       !report.layer_reports.empty() && report.layer_reports.front().cloud_points > settings.refine_max_points;
-  if (several_blocks && settings.refine && report.layers > 1) {
+  if (several_blocks && settings.refine && report.layers > 1 && !scans_kept) {
     spilled = std::make_unique<SpilledScanSource>(scans);
     source = spilled.get();
   }
@@ -274,7 +275,7 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
     if (groups_follow && !(block.end >= initial.size() && blocks == 1)) kept_maps.keep(fixed);
     if (block.end >= initial.size()) break;
-    if (!spilled) {
+    if (!spilled && !scans_kept) {
       spilled = std::make_unique<SpilledScanSource>(scans);
       source = spilled.get();
     }

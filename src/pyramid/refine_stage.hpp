@@ -16,9 +16,12 @@ namespace hba::pyramid {
 // with report.layers layers); fills report.consistency and
 // report.refinement and adds warnings. `priors` (the closure stage's kept
 // ones, in the poses' coordinates) hold the refinement's long-range shape.
+// `scans_kept`: `scans` reads each scan once and keeps it (TimedClouds with
+// keep), so the blocks and groups need no copy of their own.
 std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                                  const std::vector<Pose>& hierarchy, const HbaSettings& settings,
                                  HbaReport& report,
-                                 const std::vector<graph::PositionPriorFactor>& priors = {});
+                                 const std::vector<graph::PositionPriorFactor>& priors = {},
+                                 bool scans_kept = false);
 
 }  // namespace hba::pyramid

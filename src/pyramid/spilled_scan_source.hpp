@@ -27,7 +27,6 @@ class SpilledScanSource : public io::ScanSource {
   const io::ScanSource& inner_;
   KeyframeStore store_;
   std::unique_ptr<std::atomic<int>[]> state_;
-  mutable std::vector<char> has_intensity_;  // written before its state turns kKept
 };
 
 }  // namespace hba::pyramid

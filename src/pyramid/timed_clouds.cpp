@@ -13,11 +13,20 @@ PointCloud TimedScanSource::load(std::size_t i) const {
   return cloud;
 }
 
-TimedClouds::TimedClouds(const io::ScanSource& clouds, double voxel)
+namespace {
+const io::ScanSource& innermost(const io::ScanSource& read,
+                                const std::optional<voxel::DownsampledScanSource>& downsampled) {
+  return downsampled ? static_cast<const io::ScanSource&>(*downsampled) : read;
+}
+}  // namespace
+
+TimedClouds::TimedClouds(const io::ScanSource& clouds, double voxel, bool keep)
     : read_(clouds, read_seconds_),
       downsampled_(voxel > 0.0 ? std::make_optional<voxel::DownsampledScanSource>(read_, voxel)
                                : std::nullopt),
-      loaded_(downsampled_ ? static_cast<const io::ScanSource&>(*downsampled_) : read_, load_seconds_) {}
+      kept_(keep ? std::make_unique<SpilledScanSource>(innermost(read_, downsampled_)) : nullptr),
+      loaded_(kept_ ? static_cast<const io::ScanSource&>(*kept_) : innermost(read_, downsampled_),
+              load_seconds_) {}
 
 LoadSeconds TimedClouds::seconds() const {
   const double read = read_seconds_.total();

@@ -5,10 +5,12 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "hba/io/scan_source.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "spilled_scan_source.hpp"
 
 namespace hba::pyramid {
 
@@ -42,21 +44,26 @@ class TimedScanSource : public io::ScanSource {
 
 // The clouds one layer's windows load, and what their loads took: layer-1
 // scans are read and then downsampled to `voxel`; stored keyframes
-// (voxel 0) are only read. Holds references to `clouds` and to itself, so
-// it is neither copied nor moved.
+// (voxel 0) are only read. With `keep`, each cloud is read (and
+// downsampled) once and kept on disk for the later loads (the refinement
+// and its groups read every scan again). Holds references to `clouds` and
+// to itself, so it is neither copied nor moved. Throws hba::Error if `keep`
+// and the temporary folder cannot be made.
 class TimedClouds {
  public:
-  explicit TimedClouds(const io::ScanSource& clouds, double voxel = 0.0);
+  explicit TimedClouds(const io::ScanSource& clouds, double voxel = 0.0, bool keep = false);
   TimedClouds(const TimedClouds&) = delete;
   TimedClouds& operator=(const TimedClouds&) = delete;
 
   const io::ScanSource& source() const { return loaded_; }
+  bool kept() const { return kept_ != nullptr; }
   LoadSeconds seconds() const;
 
  private:
   ThreadSeconds read_seconds_, load_seconds_;
   TimedScanSource read_;                                     // `clouds`, timed
   std::optional<voxel::DownsampledScanSource> downsampled_;  // of read_, when voxel > 0
+  std::unique_ptr<SpilledScanSource> kept_;                  // of the above, when kept
   TimedScanSource loaded_;                                   // the whole load, timed
 };
 
