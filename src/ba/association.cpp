@@ -40,17 +40,21 @@ Association associationOf(voxel::PlaneExtraction extraction, const std::vector<P
   // Outlier filter on the mean squared distance (not the sum), so that large
   // planes are not dropped merely for having many points.
   const FrameTransforms frames(poses);
+  std::vector<double> cost(observations.size());
   std::vector<double> residual(observations.size());
   tbb::parallel_for(std::size_t{0}, observations.size(), [&](std::size_t p) {
-    residual[p] = planeCost(observations[p], frames) / observations[p].pointCount();
+    cost[p] = planeCost(observations[p], frames);
+    residual[p] = cost[p] / observations[p].pointCount();
   });
   Association out;
   std::vector<PlaneObservation> kept;
   const std::vector<std::size_t> best = keepBestPlanes(residual, reject_ratio);
   out.extraction.planes.reserve(best.size());
+  out.plane_costs.reserve(best.size());
   kept.reserve(best.size());
   for (std::size_t p : best) {
     out.extraction.planes.push_back(std::move(features[p]));
+    out.plane_costs.push_back(cost[p]);
     kept.push_back(std::move(observations[p]));
   }
   out.extraction.point_ids = std::move(extraction.point_ids);
@@ -60,6 +64,8 @@ Association associationOf(voxel::PlaneExtraction extraction, const std::vector<P
 }
 
 }  // namespace
+
+double Association::cost() const { return PlaneProblem::total(plane_costs); }
 
 Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                       const voxel::PlaneSettings& planes, double reject_ratio) {

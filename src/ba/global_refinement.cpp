@@ -33,8 +33,8 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;
-    const LmSummary summary =
-        solveSparseLevenbergMarquardt(problem, result.poses, settings.lm, prior, positions);
+    const LmSummary summary = solveSparseLevenbergMarquardt(problem, result.poses, settings.lm, prior,
+                                                            positions, association.cost());
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
@@ -48,7 +48,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
         result.observations += plane.clusters.size();
         result.plane_points += static_cast<std::size_t>(plane.pointCount());
       }
-      result.cost_before = problem.cost(before);
+      result.cost_before = association.cost();  // found at `before`
       result.cost_after = problem.cost(result.poses);
     }
     if (summary.accepted_steps == 0) break;

@@ -37,12 +37,13 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 }
 
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                  const LmSettings& settings, const MotionPrior& prior) {
+                                  const LmSettings& settings, const MotionPrior& prior,
+                                  std::optional<double> start_plane_cost) {
   auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
   LmSummary summary;
   // Costs are compared through cost() only, so rounding differences between
   // the two eigen solvers can never make an accepted step look uphill.
-  double cost = objective(poses);
+  double cost = start_plane_cost ? *start_plane_cost + prior.cost(poses) : objective(poses);
   summary.initial_cost = cost;
   Linearization lin;
   bool stale = true;  // lin is not at `poses`: linearize only when it is used

@@ -35,11 +35,13 @@ std::vector<double> PlaneProblem::planeCosts(const std::vector<Pose>& poses) con
   return costs;
 }
 
-double PlaneProblem::cost(const std::vector<Pose>& poses) const {
-  double total = 0.0;
-  for (double c : planeCosts(poses)) total += c;  // fixed order: deterministic
-  return total;
+double PlaneProblem::total(const std::vector<double>& plane_costs) {
+  double sum = 0.0;
+  for (double c : plane_costs) sum += c;  // fixed order: deterministic
+  return sum;
 }
+
+double PlaneProblem::cost(const std::vector<Pose>& poses) const { return total(planeCosts(poses)); }
 
 namespace {
 

@@ -112,7 +112,8 @@ Mat6 positiveInverse(const Mat6& block) {
 
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                         const SparseLmSettings& settings, const MotionPrior& prior,
-                                        const PositionPriors& positions) {
+                                        const PositionPriors& positions,
+                                        std::optional<double> start_plane_cost) {
   auto objective = [&](const std::vector<Pose>& at) {
     return problem.cost(at) + prior.cost(at) + positions.cost(at);
   };
@@ -133,7 +134,8 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
     }
   };
   LmSummary summary;
-  double cost = objective(poses);
+  double cost =
+      start_plane_cost ? *start_plane_cost + prior.cost(poses) + positions.cost(poses) : objective(poses);
   summary.initial_cost = cost;
   moveRigidly(poses, cost);
   double mu = settings.initial_damping;

@@ -36,13 +36,6 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
   }
 }
 
-// The per-plane costs' sum, in plane order (as PlaneProblem::cost).
-double sumOf(const std::vector<double>& costs) {
-  double total = 0.0;
-  for (double c : costs) total += c;
-  return total;
-}
-
 // RMS point-to-plane distance of each plane, from its cost.
 std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> costs) {
   for (std::size_t p = 0; p < costs.size(); ++p) {
@@ -66,6 +59,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   // the finest voxel, found with the first round's (the same points placed
   // once), or the first round's own when it is at the finest voxel already.
   std::shared_ptr<const Association> last, fixed;
+  bool last_at_input = false;  // `last` was found at the input poses
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
   const double finest =
@@ -81,15 +75,18 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
           associateAtTwoVoxels(scans, result.poses, round_settings.planes, finest, settings.reject_ratio);
       last = std::make_shared<const Association>(std::move(coarse));
       fixed = std::make_shared<const Association>(std::move(fine));
+      last_at_input = true;
     } else {
       last = std::make_shared<const Association>(
           associate(scans, result.poses, round_settings.planes, settings.reject_ratio));
       if (round == 0 && settings.check_fixed_map) fixed = last;
+      last_at_input = round == 0;
     }
     // Without planes there is nothing to weigh the prior against.
     const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
     const auto associated = Clock::now();
-    const LmSummary summary = solveLevenbergMarquardt(last->problem, result.poses, lm, prior);
+    // The association found its planes at these poses: their cost is known.
+    const LmSummary summary = solveLevenbergMarquardt(last->problem, result.poses, lm, prior, last->cost());
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
@@ -100,7 +97,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    result.fixed_map_cost_initial = fixed->problem.cost(initial);
+    result.fixed_map_cost_initial = fixed->cost();  // found at the input poses
     result.fixed_map_cost_final = fixed->problem.cost(result.poses);
     // Not trusted: a blurrier map on the input's own planes, or neighbouring
     // frames pulled apart far beyond what the prior allows (planes that
@@ -114,18 +111,21 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
       result.trusted = false;
       result.poses = initial;
       last = fixed;
+      last_at_input = true;
     }
   }
   const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
   // Each plane's cost at the result and at the input, once for the totals
-  // and the RMS figures.
-  const std::vector<double> final_costs = last->problem.planeCosts(result.poses);
-  const std::vector<double> initial_costs = last->problem.planeCosts(initial);
-  result.final_cost = sumOf(final_costs);
+  // and the RMS figures (the association's own where it was found there).
+  const std::vector<double> initial_costs =
+      last_at_input ? last->plane_costs : last->problem.planeCosts(initial);
+  const std::vector<double> final_costs =
+      !result.trusted && last_at_input ? initial_costs : last->problem.planeCosts(result.poses);
+  result.final_cost = PlaneProblem::total(final_costs);
   Linearization final_lin = last->problem.linearize(result.poses);
   prior.addTo(final_lin, result.poses);
   result.hessian = std::move(final_lin.hessian);
-  result.last_association_initial_cost = sumOf(initial_costs);
+  result.last_association_initial_cost = PlaneProblem::total(initial_costs);
   result.num_planes = last->problem.numPlanes();
   for (const PlaneObservation& plane : last->problem.planes()) {
     result.num_plane_points += static_cast<std::size_t>(plane.pointCount());

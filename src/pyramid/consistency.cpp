@@ -114,15 +114,28 @@ FixedPlaneMap FixedPlaneMap::load(const std::filesystem::path& path) {
   return map;
 }
 
-double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {
+double FixedPlaneMap::rmsOf(const std::vector<double>& costs) const {
   if (!(points_ > 0.0)) return 0.0;
   double cost = 0.0;
-  for (double c : planeCosts(poses)) cost += c;  // fixed order: deterministic
+  for (double c : costs) cost += c;  // fixed order: deterministic
   return std::sqrt(cost / points_);
 }
 
+double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {
+  if (!(points_ > 0.0)) return 0.0;
+  return rmsOf(planeCosts(poses));
+}
+
 std::vector<double> FixedPlaneMap::regionRms(const std::vector<Pose>& poses) const {
+  return regionRmsOf(planeCosts(poses));
+}
+
+FixedPlaneMap::Figures FixedPlaneMap::figures(const std::vector<Pose>& poses) const {
   const std::vector<double> costs = planeCosts(poses);
+  return {rmsOf(costs), regionRmsOf(costs)};
+}
+
+std::vector<double> FixedPlaneMap::regionRmsOf(const std::vector<double>& costs) const {
   std::vector<double> sums(region_points_.size(), 0.0);
   for (std::size_t p = 0; p < costs.size(); ++p) sums[plane_region_[p]] += costs[p];
   for (std::size_t r = 0; r < sums.size(); ++r) {

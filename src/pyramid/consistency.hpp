@@ -31,6 +31,12 @@ class FixedPlaneMap {
   // planes reads 0).
   double rms(const std::vector<Pose>& poses) const;
   std::vector<double> regionRms(const std::vector<Pose>& poses) const;
+  // Both from one evaluation of the planes (the same figures).
+  struct Figures {
+    double rms = 0.0;
+    std::vector<double> region_rms;
+  };
+  Figures figures(const std::vector<Pose>& poses) const;
   // First frame of each region.
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
   // The map written to a file and read back, the same to the bit (a
@@ -51,6 +57,8 @@ class FixedPlaneMap {
   };
   FixedPlaneMap() = default;
   std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
+  double rmsOf(const std::vector<double>& costs) const;
+  std::vector<double> regionRmsOf(const std::vector<double>& costs) const;
 
   std::vector<CompactCluster> clusters_;
   std::vector<std::size_t> plane_begin_{0};  // clusters of plane p: [plane_begin_[p], plane_begin_[p+1])

@@ -103,10 +103,8 @@ struct RegionFigures {
   double final_rms = 0.0;
 };
 
-void addRegions(const FixedPlaneMap& fixed, const std::vector<Pose>& input, const std::vector<Pose>& poses,
-                std::size_t first, std::vector<RegionFigures>& out) {
-  const std::vector<double> region_input = fixed.regionRms(input);
-  const std::vector<double> region_final = fixed.regionRms(poses);
+void addRegions(const FixedPlaneMap& fixed, const std::vector<double>& region_input,
+                const std::vector<double>& region_final, std::size_t first, std::vector<RegionFigures>& out) {
   for (std::size_t k = 0; k < fixed.regions(); ++k) {
     out.push_back({first + fixed.regionStarts()[k], region_input[k], region_final[k]});
   }
@@ -149,8 +147,9 @@ double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& resu
     const std::vector<Pose> input = inputOnto(initial, result, span.first, span.end);
     const std::vector<Pose> poses = slice(result, span.first, span.end);
     const FixedPlaneMap fixed = FixedPlaneMap::load(kept.files[b]);
-    final_sum.add(fixed.rms(poses), fixed.points());
-    addRegions(fixed, input, poses, span.first, regions);
+    const FixedPlaneMap::Figures at_final = fixed.figures(poses);
+    final_sum.add(at_final.rms, fixed.points());
+    addRegions(fixed, fixed.regionRms(input), at_final.region_rms, span.first, regions);
   }
   return final_sum.rms();
 }
@@ -209,7 +208,8 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     // stack its peak on it (1000 frames: 1295 -> 1211 MiB with the release
     // in ba::associate).
     releaseFreedMemory();
-    const double input_rms = fixed.rms(input);
+    const FixedPlaneMap::Figures at_input = fixed.figures(input);
+    const double input_rms = at_input.rms;
     const double current_rms = fixed.rms(current);
     c.planes += fixed.planes();
     input_sum.add(input_rms, fixed.points());
@@ -260,7 +260,8 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
       report.seconds_solve += refined.seconds_solve;
       poses = refined.poses;
     }
-    double final_rms = fixed.rms(poses);
+    FixedPlaneMap::Figures at_final = fixed.figures(poses);
+    double final_rms = at_final.rms;
     if (!(final_rms <= input_rms * 1.005)) {
       c.final_rejected = true;
       warn(report, fmt::format("frames {}-{}: the result is less consistent than the input (plane "
@@ -269,9 +270,10 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
                                block.first, block.end - 1, input_rms, final_rms));
       poses = input;
       final_rms = input_rms;
+      at_final = at_input;
     }
     final_sum.add(final_rms, fixed.points());
-    addRegions(fixed, input, poses, block.first, regions);
+    addRegions(fixed, at_input.region_rms, at_final.region_rms, block.first, regions);
     std::copy(poses.begin(), poses.end(), result.begin() + static_cast<long>(block.first));
     if (groups_follow && !(block.end >= initial.size() && blocks == 1)) kept_maps.keep(fixed);
     if (block.end >= initial.size()) break;

@@ -126,6 +126,45 @@ TEST(WindowBa, TrustCheckUsesTheFinestPlanesAtTheInput) {
   EXPECT_EQ(result.fixed_map_cost_final, fixed.cost(result.poses));
 }
 
+// The outlier filter's per-plane costs are kept for the planes it keeps, in
+// their order: a solver started at the association's poses takes them as
+// its first cost, so they must be problem.planeCosts() there to the bit.
+TEST(Association, KeepsEachKeptPlanesCostAtItsPoses) {
+  const auto window = noisyWindow(7);
+  PlaneSettings planes = syntheticSettings().planes;
+  planes.voxel_size = 2.0;  // many planes, so that the filter drops some
+  const Association association = associate(window.scanPointers(), window.initial, planes, 0.2);
+  const PlaneProblem& problem = association.problem;
+  ASSERT_GT(problem.numPlanes(), 10u);
+  EXPECT_EQ(association.plane_costs, problem.planeCosts(window.initial));
+  EXPECT_EQ(association.cost(), problem.cost(window.initial));
+  // Elsewhere they are not the costs.
+  EXPECT_NE(association.cost(), problem.cost(window.truth));
+}
+
+// Given the cost at the start, the solver takes the same steps as when it
+// evaluates that cost itself.
+TEST(LevenbergMarquardt, AKnownStartCostGivesTheSameSteps) {
+  const auto window = noisyWindow(8);
+  const BaSettings settings = syntheticSettings();
+  const Association association =
+      associate(window.scanPointers(), window.initial, settings.planes, settings.reject_ratio);
+  const MotionPrior prior = neighbourPrior(window.initial, {}, settings.motion_prior);
+  std::vector<Pose> evaluated = window.initial;
+  std::vector<Pose> given = window.initial;
+  const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
+  const LmSummary a = solveLevenbergMarquardt(association.problem, evaluated, lm, prior);
+  const LmSummary b = solveLevenbergMarquardt(association.problem, given, lm, prior, association.cost());
+  ASSERT_GT(a.accepted_steps, 0);
+  EXPECT_EQ(a.initial_cost, b.initial_cost);
+  EXPECT_EQ(a.final_cost, b.final_cost);
+  EXPECT_EQ(a.iterations, b.iterations);
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    EXPECT_EQ(evaluated[i].t, given[i].t);
+    EXPECT_EQ(evaluated[i].R(), given[i].R());
+  }
+}
+
 TEST(WindowBa, IdenticalResultsWithOneAndTwoThreads) {
   SyntheticWindowSpec spec;
   spec.noise_sigma = 0.01;

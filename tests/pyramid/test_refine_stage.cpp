@@ -66,6 +66,10 @@ TEST(RefineStage, KeptSelfCheckMapReadsBackTheSame) {
   for (const std::vector<Pose>* poses : {&seq.initial, &seq.truth.poses}) {
     EXPECT_EQ(back.rms(*poses), map.rms(*poses));
     EXPECT_EQ(back.regionRms(*poses), map.regionRms(*poses));
+    // Both figures from one evaluation: the same as each on its own.
+    const FixedPlaneMap::Figures figures = map.figures(*poses);
+    EXPECT_EQ(figures.rms, map.rms(*poses));
+    EXPECT_EQ(figures.region_rms, map.regionRms(*poses));
   }
   EXPECT_THROW(FixedPlaneMap::load(path), Error);  // gone: a clear error, not an empty map
 }

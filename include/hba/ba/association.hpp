@@ -23,6 +23,10 @@ std::vector<std::size_t> keepBestPlanes(const std::vector<double>& residual, dou
 struct Association {
   voxel::PlaneExtraction extraction;  // the kept planes (their clusters moved to the problem)
   PlaneProblem problem{{}, 0};
+  // problem.planeCosts() at the poses it was found at, computed by the
+  // outlier filter anyway: a solver starting there needs no evaluation.
+  std::vector<double> plane_costs;
+  double cost() const;  // their sum, as problem.cost() adds them (same bits)
 };
 
 // Clouds of 4 M points or more (refinement blocks) hand the extraction's

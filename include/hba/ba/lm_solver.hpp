@@ -2,6 +2,7 @@
 // Levenberg-Marquardt on the poses of a PlaneProblem, frame 0 held fixed
 // (the cost is invariant to one rigid motion of all frames). Dense Cholesky
 // (LLT) on the 6(K-1) system; an accepted step always lowers the cost.
+#include <optional>
 #include <vector>
 
 #include "hba/ba/motion_prior.hpp"
@@ -31,7 +32,10 @@ struct LmSummary {
 std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::VectorXd& delta);
 
 // Optimizes `poses` in place, on the plane cost plus `prior` (may be empty).
+// `start_plane_cost`: problem.cost(poses), when the caller has it already
+// (Association::cost() of an association found at `poses`).
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
-                                  const LmSettings& settings, const MotionPrior& prior = {});
+                                  const LmSettings& settings, const MotionPrior& prior = {},
+                                  std::optional<double> start_plane_cost = std::nullopt);
 
 }  // namespace hba::ba

@@ -33,6 +33,8 @@ class PlaneProblem {
   // Per-plane costs (N * lambda_min), in plane order.
   std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
   double cost(const std::vector<Pose>& poses) const;
+  // The sum of per-plane costs as cost() takes it (in order: deterministic).
+  static double total(const std::vector<double>& plane_costs);
   Linearization linearize(const std::vector<Pose>& poses) const;
 
  private:

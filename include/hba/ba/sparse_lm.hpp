@@ -9,6 +9,7 @@
 // square or cube of the frame count. Frame 0 is held fixed (gauge) unless
 // position priors define the frame. Deterministic for any thread count.
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "hba/ba/lm_solver.hpp"
@@ -54,8 +55,10 @@ struct SparseLmSettings {
 Mat6 positiveInverse(const Mat6& block);
 
 // Optimizes `poses` in place on the plane cost plus `prior` plus `positions`.
+// `start_plane_cost`: problem.cost(poses), when the caller has it already.
 LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                         const SparseLmSettings& settings, const MotionPrior& prior = {},
-                                        const PositionPriors& positions = {});
+                                        const PositionPriors& positions = {},
+                                        std::optional<double> start_plane_cost = std::nullopt);
 
 }  // namespace hba::ba
