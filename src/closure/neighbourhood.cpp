@@ -37,7 +37,7 @@ PointCloud mergeNeighbourhood(const io::ScanSource& scans, const std::vector<Pos
   for (const PointCloud& cloud : moved) {
     merged.points.insert(merged.points.end(), cloud.points.begin(), cloud.points.end());
   }
-  return voxel::downsample(merged, voxel);
+  return voxel::downsample(merged, voxel, 4);  // overlapping scans: several points a cell
 }
 
 }  // namespace hba::closure

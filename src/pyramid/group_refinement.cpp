@@ -49,7 +49,8 @@ PointCloud mergeGroup(const io::ScanSource& scans, const std::vector<Pose>& pose
     // 40-frame group; geometric growth copies each point about twice.
     for (const Vec3f& p : scan.points) merged.points.push_back(R * p + t);
   }
-  return voxel > 0.0 ? voxel::downsample(merged, voxel) : merged;
+  // Overlapping scans at twice the refinement's voxel: about 8 points a cell.
+  return voxel > 0.0 ? voxel::downsample(merged, voxel, 8) : merged;
 }
 
 }  // namespace

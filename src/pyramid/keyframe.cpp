@@ -29,7 +29,8 @@ PointCloud buildKeyframe(const std::vector<const PointCloud*>& clouds, const std
       }
     }
   }
-  return voxel::downsample(merged, voxel);
+  // Ten overlapping scans at twice their voxel: about 5 points a cell.
+  return voxel::downsample(merged, voxel, 4);
 }
 
 }  // namespace hba::pyramid

@@ -66,7 +66,8 @@ Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_
     std::vector<PointCloud> loaded(end - block.end);
     tbb::parallel_for(block.end, end, [&](std::size_t i) {
       PointCloud& cloud = loaded[i - block.end];
-      cloud = voxel > 0.0 ? voxel::downsample(scans.load(i), voxel) : scans.load(i);
+      // Scans at the scan voxel taken to twice it: about 2 points a cell.
+      cloud = voxel > 0.0 ? voxel::downsample(scans.load(i), voxel, 2) : scans.load(i);
       cloud.intensity = {};  // planes need positions only
     });
     for (PointCloud& cloud : loaded) {

@@ -25,12 +25,14 @@ struct CellSum {
 // Cells come from one pass through a flat hash table (cell_assignment.cpp):
 // no sorting and no allocation per cell, which matters because every scan
 // and every keyframe goes through here.
-PointCloud downsample(const PointCloud& cloud, double voxel_size) {
+PointCloud downsample(const PointCloud& cloud, double voxel_size, std::size_t points_per_cell) {
   if (!(voxel_size > 0.0)) return cloud;
   // A scan at scan voxels has about a cell a point: a table sized for that
-  // never regrows. Clouds of millions
-  // start smaller, so that a coarse voxel does not cost a huge table.
-  const std::size_t points_per_cell = cloud.size() <= (std::size_t{1} << 20) ? 1 : 4;
+  // never regrows. Clouds of millions start smaller, so that a coarse voxel
+  // does not cost a huge table. A table far larger than its cells is mostly
+  // page faults and cache misses (a keyframe of ten scans' plane points:
+  // 8 MB for 1 MB of cells).
+  if (points_per_cell == 0) points_per_cell = cloud.size() <= (std::size_t{1} << 20) ? 1 : 4;
   const CellAssignment cells = assignCells(cloud.points, voxel_size, points_per_cell);
   const bool with_intensity = cloud.hasIntensity();
   std::vector<CellSum> sums(cells.cells());

@@ -130,6 +130,17 @@ TEST(Downsample, MatchesTheReferenceRuleNearAndFarFromTheOrigin) {
   }
 }
 
+// The expected points a cell only size the voxel table: a table far too
+// small (grown many times over) or far too large gives the same cloud.
+TEST(Downsample, TheTableSizeHintNeverChangesTheResult) {
+  const PointCloud cloud = randomCloud(Vec3(100.0, -40.0, 3.0), 20.0, 50000, 11);
+  const PointCloud reference = referenceDownsample(cloud, 0.3);
+  ASSERT_LT(reference.size(), cloud.size());  // cells are shared
+  for (const std::size_t hint : {std::size_t{0}, std::size_t{1}, std::size_t{4}, std::size_t{1000000}}) {
+    expectIdentical(downsample(cloud, 0.3, hint), reference);
+  }
+}
+
 // More than 2^21 cells along an axis: full keys, same rule.
 TEST(Downsample, MatchesTheReferenceRuleOverAHugeSpan) {
   PointCloud cloud = randomCloud(Vec3::Zero(), 5.0, 5000, 3);
