@@ -106,10 +106,16 @@ FrameRun frameRunAt(const WorldPoints& world, const std::uint32_t* begin, const 
   return {frame, std::lower_bound(begin, end, stop)};
 }
 
-int countFrames(const WorldPoints& world, IdSpan ids) {
+// Whether `ids` hold points of at least `wanted` frames: counts runs only
+// until it knows (a refinement's plane may span hundreds of frames, each a
+// binary search).
+bool seenByFrames(const WorldPoints& world, IdSpan ids, int wanted) {
   int frames = 0;
-  for (const std::uint32_t* id = ids.begin; id != ids.end; id = frameRunAt(world, id, ids.end).end) ++frames;
-  return frames;
+  for (const std::uint32_t* id = ids.begin; id != ids.end && frames < wanted;
+       id = frameRunAt(world, id, ids.end).end) {
+    ++frames;
+  }
+  return frames >= wanted;
 }
 
 // Room for reordering the largest cell during a split.
@@ -140,7 +146,7 @@ class OctreeSplitter {
     const Vec3 eigenvalues = moments ? covarianceEigenvalues(*moments, ids.size())
                                      : covarianceEigenvalues(momentsOf(world_, ids), ids.size());
     if (passesPlaneTest(eigenvalues, settings_)) {
-      if (countFrames(world_, ids) >= settings_.min_frames) out.push_back(toFeature(ids, depth));
+      if (seenByFrames(world_, ids, settings_.min_frames)) out.push_back(toFeature(ids, depth));
       return;
     }
     if (depth >= settings_.max_depth) return;

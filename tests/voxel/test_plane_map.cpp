@@ -68,6 +68,23 @@ TEST(PlaneMap, PlaneSeenByOneFrameIsDropped) {
   EXPECT_EQ(extractPlanes(pointers(scans), {Pose(), Pose()}, single).planes.size(), 2u);
 }
 
+// The frame count stops as soon as it reaches min_frames: a plane one frame
+// short is still dropped, and one that reaches it kept with all its frames.
+TEST(PlaneMap, PlaneNeedsMinFramesFrames) {
+  std::mt19937 rng(5);
+  std::vector<PointCloud> scans(4);
+  for (int f = 0; f < 2; ++f) addSquare(scans[f], rng, 2, 1.0f, 0.2f, 3.8f, 200);  // two frames
+  for (int f = 0; f < 4; ++f) addSquare(scans[f], rng, 2, 9.0f, 8.2f, 11.8f, 200);  // four
+  const std::vector<Pose> poses(4);
+  PlaneSettings three;
+  three.min_frames = 3;
+  const PlaneExtraction found = extractPlanes(pointers(scans), poses, three);
+  ASSERT_EQ(found.planes.size(), 1u);
+  EXPECT_EQ(found.planes.front().clusters.size(), 4u);
+  three.min_frames = 2;
+  EXPECT_EQ(extractPlanes(pointers(scans), poses, three).planes.size(), 2u);
+}
+
 TEST(PlaneMap, SplitsACornerIntoSingleWallPlanes) {
   // A floor z = 1 and a wall x = 1.5 inside one 4 m voxel: the root fails the
   // test, octants pass; no plane may mix floor and wall points.
