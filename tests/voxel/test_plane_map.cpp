@@ -73,7 +73,7 @@ TEST(PlaneMap, PlaneSeenByOneFrameIsDropped) {
 TEST(PlaneMap, PlaneNeedsMinFramesFrames) {
   std::mt19937 rng(5);
   std::vector<PointCloud> scans(4);
-  for (int f = 0; f < 2; ++f) addSquare(scans[f], rng, 2, 1.0f, 0.2f, 3.8f, 200);  // two frames
+  for (int f = 0; f < 2; ++f) addSquare(scans[f], rng, 2, 1.0f, 0.2f, 3.8f, 200);   // two frames
   for (int f = 0; f < 4; ++f) addSquare(scans[f], rng, 2, 9.0f, 8.2f, 11.8f, 200);  // four
   const std::vector<Pose> poses(4);
   PlaneSettings three;
