@@ -93,29 +93,6 @@ class CellTable {
   std::size_t used_ = 0;
 };
 
-template <typename Key>
-CellAssignment assignKeys(const std::vector<Key>& keys, std::size_t points_per_cell) {
-  constexpr std::size_t kLookahead = 16;  // points between a prefetch and its use
-  const std::size_t n = keys.size();
-  CellTable<Key> table(n / std::max<std::size_t>(points_per_cell, 1));
-  CellAssignment out;
-  out.cell_of_point.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    // Scans come ring by ring: a point mostly shares the cell of the one
-    // before it, which then needs no lookup.
-    if (i > 0 && keys[i] == keys[i - 1]) {
-      out.cell_of_point[i] = out.cell_of_point[i - 1];
-      continue;
-    }
-    if (i + kLookahead < n) table.prefetch(keys[i + kLookahead]);
-    const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
-    const std::uint32_t cell = table.find(keys[i], next);
-    if (cell == next) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
-    out.cell_of_point[i] = cell;
-  }
-  return out;
-}
-
 // The lowest cell of a cloud and whether all its cells pack into 64 bits.
 struct CellBounds {
   VoxelKey low;
@@ -163,41 +140,87 @@ class KeyOf {
   bool power_of_two_ = false;
 };
 
-// Runs body(i) for every point; a large cloud (a refinement block of
-// millions) in parallel, as each point's key is independent of the others.
+// Clouds of this many points or more (refinement blocks of millions) take
+// their keys in parallel, as each point's key is independent of the others.
+constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
+
+// Runs body(i) for i in [begin, end), in parallel when `parallel`.
 template <typename Body>
-void forEachPoint(std::size_t points, const Body& body) {
-  constexpr std::size_t kParallelFrom = std::size_t{1} << 20;
-  if (points < kParallelFrom) {
-    for (std::size_t i = 0; i < points; ++i) body(i);
+void forEachPoint(std::size_t begin, std::size_t end, bool parallel, const Body& body) {
+  if (!parallel) {
+    for (std::size_t i = begin; i < end; ++i) body(i);
   } else {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points, 1 << 16),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1 << 16),
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) body(i);
                       });
   }
 }
 
+template <typename Body>
+void forEachPoint(std::size_t points, const Body& body) {
+  forEachPoint(0, points, points >= kParallelFrom, body);
+}
+
+// Numbers the cells of points 0 .. n-1 (their keys from keyOf(i)) in
+// first-hit order. Keys are taken a chunk at a time, just before they are
+// numbered: a refinement block's 20 M keys would take 160 MB held at once,
+// and a chunk's stay in the cache.
+template <typename Key, typename KeyOfPoint>
+CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t points_per_cell) {
+  constexpr std::size_t kLookahead = 16;                // points between a prefetch and its use
+  constexpr std::size_t kChunk = std::size_t{1} << 18;  // keys held at once
+  const bool parallel = n >= kParallelFrom;
+  CellTable<Key> table(n / std::max<std::size_t>(points_per_cell, 1));
+  CellAssignment out;
+  out.cell_of_point.resize(n);
+  // A chunk's keys and the lookahead's beyond it (taken again with the next
+  // chunk: a few keys a chunk).
+  std::vector<Key> keys(std::min(n, kChunk + kLookahead));
+  Key previous{};
+  for (std::size_t begin = 0; begin < n; begin += kChunk) {
+    const std::size_t end = std::min(n, begin + kChunk);
+    const std::size_t known = std::min(n, end + kLookahead);
+    forEachPoint(begin, known, parallel, [&](std::size_t i) { keys[i - begin] = keyOf(i); });
+    for (std::size_t i = begin; i < end; ++i) {
+      const Key& key = keys[i - begin];
+      // Scans come ring by ring: a point mostly shares the cell of the one
+      // before it, which then needs no lookup.
+      if (i > 0 && key == previous) {
+        out.cell_of_point[i] = out.cell_of_point[i - 1];
+        continue;
+      }
+      if (i + kLookahead < n) table.prefetch(keys[i + kLookahead - begin]);
+      const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+      const std::uint32_t cell = table.find(key, next);
+      if (cell == next) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
+      out.cell_of_point[i] = cell;
+      previous = key;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
   const KeyOf keyOf(size);
-  // Keys in parallel; the numbering (assignKeys) stays serial: cells are
-  // numbered in first-hit order.
+  // Keys in parallel for large clouds; the numbering stays serial: cells
+  // are numbered in first-hit order.
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
-    std::vector<VoxelKey> keys(points.size());
-    forEachPoint(points.size(), [&](std::size_t i) { keys[i] = keyOf(points[i]); });
-    return assignKeys(keys, points_per_cell);
+    return numberCells<VoxelKey>(
+        points.size(), [&](std::size_t i) { return keyOf(points[i]); }, points_per_cell);
   }
-  std::vector<std::uint64_t> keys(points.size());
-  forEachPoint(points.size(), [&](std::size_t i) {
-    const VoxelKey key = keyOf(points[i]);
-    keys[i] = static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
-              static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
-              static_cast<std::uint64_t>(key.z - bounds.low.z);
-  });
-  return assignKeys(keys, points_per_cell);
+  return numberCells<std::uint64_t>(
+      points.size(),
+      [&](std::size_t i) {
+        const VoxelKey key = keyOf(points[i]);
+        return static_cast<std::uint64_t>(key.x - bounds.low.x) << (2 * kPackedBits) |
+               static_cast<std::uint64_t>(key.y - bounds.low.y) << kPackedBits |
+               static_cast<std::uint64_t>(key.z - bounds.low.z);
+      },
+      points_per_cell);
 }
 
 std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std::vector<Vec3f>& points,
