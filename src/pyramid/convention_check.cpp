@@ -4,17 +4,29 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_set>
 
 #include <tbb/parallel_for.h>
 
 #include "hba/voxel/downsample.hpp"
+#include "hba/voxel/voxel_index.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::pyramid {
 namespace {
 
-using KeySet = std::unordered_set<voxel::VoxelKey, voxel::VoxelKeyHash>;
+// The distinct voxels a map occupies: only their count is needed. A flat
+// table, not a node per voxel (26 alternative maps fill one each).
+class KeySet {
+ public:
+  void insert(const voxel::VoxelKey& key) {
+    bool inserted = false;
+    index_.insert(key, inserted);
+  }
+  std::size_t size() const { return index_.size(); }
+
+ private:
+  voxel::VoxelIndex index_;
+};
 
 double rotationDeg(const Pose& a, const Pose& b) { return a.q.angularDistance(b.q) * 180.0 / M_PI; }
 
@@ -110,7 +122,7 @@ ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<
       addVoxels(scan, Pose::identity(), s.voxel, own);
       single += static_cast<double>(own.size()) / static_cast<double>(frames.size());
       addVoxels(scan, poses[i].inverse(), s.voxel, as_inverted);
-      as_world.insert(own.begin(), own.end());
+      addVoxels(scan, Pose::identity(), s.voxel, as_world);  // the scans merged with no poses
       // The source moved scans back by their pose; moving them twice
       // undoes that: the scans as stored, with their poses.
       if (given.scans_in_world) addVoxels(scan, poses[i] * poses[i], s.voxel, as_stored);
