@@ -119,8 +119,9 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   // and the RMS figures (the association's own where it was found there).
   const std::vector<double> initial_costs =
       last_at_input ? last->plane_costs : last->problem.planeCosts(initial);
+  // Not trusted: the result is the input, and `last` the trust check's planes found there.
   const std::vector<double> final_costs =
-      !result.trusted && last_at_input ? initial_costs : last->problem.planeCosts(result.poses);
+      result.trusted ? last->problem.planeCosts(result.poses) : initial_costs;
   result.final_cost = PlaneProblem::total(final_costs);
   Linearization final_lin = last->problem.linearize(result.poses);
   prior.addTo(final_lin, result.poses);

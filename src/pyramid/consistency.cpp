@@ -121,10 +121,7 @@ double FixedPlaneMap::rmsOf(const std::vector<double>& costs) const {
   return std::sqrt(cost / points_);
 }
 
-double FixedPlaneMap::rms(const std::vector<Pose>& poses) const {
-  if (!(points_ > 0.0)) return 0.0;
-  return rmsOf(planeCosts(poses));
-}
+double FixedPlaneMap::rms(const std::vector<Pose>& poses) const { return rmsOf(planeCosts(poses)); }
 
 std::vector<double> FixedPlaneMap::regionRms(const std::vector<Pose>& poses) const {
   return regionRmsOf(planeCosts(poses));
