@@ -85,9 +85,14 @@ std::string extrinsicText(const Mat3& R) {
                      clean(q.w()));
 }
 
-void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& keys) {
+// Each point's voxel into `keys`, and into `also` when given (one key a point).
+void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& keys, KeySet* also = nullptr) {
   const Mat3 R = pose.R();
-  for (const Vec3f& p : scan.points) keys.insert(voxel::VoxelKey::of(R * p.cast<double>() + pose.t, voxel));
+  for (const Vec3f& p : scan.points) {
+    const voxel::VoxelKey key = voxel::VoxelKey::of(R * p.cast<double>() + pose.t, voxel);
+    keys.insert(key);
+    if (also) also->insert(key);
+  }
 }
 
 }  // namespace
@@ -119,10 +124,9 @@ ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<
       const std::size_t i = frames[f];
       const PointCloud& scan = clouds[f];
       KeySet own;
-      addVoxels(scan, Pose::identity(), s.voxel, own);
+      addVoxels(scan, Pose::identity(), s.voxel, own, &as_world);  // as_world: merged with no poses
       single += static_cast<double>(own.size()) / static_cast<double>(frames.size());
       addVoxels(scan, poses[i].inverse(), s.voxel, as_inverted);
-      addVoxels(scan, Pose::identity(), s.voxel, as_world);  // the scans merged with no poses
       // The source moved scans back by their pose; moving them twice
       // undoes that: the scans as stored, with their poses.
       if (given.scans_in_world) addVoxels(scan, poses[i] * poses[i], s.voxel, as_stored);
