@@ -56,7 +56,8 @@ void run(const Args& args) {
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, reportJson(result, dataset, settings, conventions));
 
-  if (!args.no_render) writePicture(args, dataset, scans, dataset.trajectory().poses, result.poses, out);
+  if (!args.no_render)
+    writePicture(args, dataset, scans, result, settings.scan_voxel, dataset.trajectory().poses, out);
   staging.commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging.destination().string());

@@ -48,17 +48,23 @@ double peakMemoryMiB() {
 }
 
 void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
-                  const std::vector<Pose>& before, const std::vector<Pose>& optimized, const fs::path& out) {
+                  const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
+                  const fs::path& out) {
 #ifdef __GLIBC__
   // The optimization's freed heap stays resident while the picture's large
   // buffers come as fresh pages: handing it back first keeps the run's peak
   // memory that of the optimization.
   malloc_trim(0);
 #endif
+  const std::vector<Pose>& optimized = result.poses;
   const std::optional<Trajectory> gt = groundTruth(args, dataset, optimized.size());
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
-  render::writeBeforeAfter(scans, before, optimized, gt ? &gt->poses : nullptr, png);
+  render::RenderSettings settings;
+  const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
+  if (kept) settings.scans_voxel = scan_voxel;
+  render::writeBeforeAfter(kept ? *result.scans : scans, before, optimized, gt ? &gt->poses : nullptr, png,
+                           settings);
 }
 
 // The sensor poses in three formats, and the poses of the frame the input

@@ -45,9 +45,12 @@ std::vector<std::string> writeOptimizedPoses(const std::filesystem::path& out, c
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
                           const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
 void writeReport(const std::filesystem::path& out, const nlohmann::json& report);
-// before_after.png of `before` and `optimized` (ground truth drawn when given or found).
+// before_after.png of `before` and `result.poses` (ground truth drawn when
+// given or found). The scans are read as the optimization kept them (parsed
+// and downsampled once, at `scan_voxel`) when it kept them at least as fine
+// as the picture's voxel; from `scans` otherwise.
 void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
-                  const std::vector<Pose>& before, const std::vector<Pose>& optimized,
+                  const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
                   const std::filesystem::path& out);
 
 // Several sessions (args.more_sessions): optimize_sessions.cpp.

@@ -140,7 +140,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
       {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
       {"registered", alignment_report}};
   writeReport(out, report);
-  if (!args.no_render) writePicture(args, datasets[0], scans, initial, result.poses, out);
+  if (!args.no_render) writePicture(args, datasets[0], scans, result, settings.scan_voxel, initial, out);
   staging.commit();
   spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{})", result.report.seconds_total,
                staging.destination().string(), datasets.size(), args.no_render ? "" : ", before_after.png");

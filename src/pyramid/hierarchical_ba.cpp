@@ -282,7 +282,9 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   tbb::task_arena arena(resolved.threads);
   // Each scan read and downsampled once: the self-check and the refinement
   // read them all again (and its groups once more).
-  const TimedClouds layer_one(scans, settings.scan_voxel, /*keep=*/initial.size() > 1);
+  // Shared: the result hands the kept scans on.
+  const auto layer_one =
+      std::make_shared<const TimedClouds>(scans, settings.scan_voxel, /*keep=*/initial.size() > 1);
   // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
   // apart. Working relative to the first pose makes the result independent of
   // where the world's origin is.
@@ -293,17 +295,19 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   HbaResult result;
   Vec3 shift = Vec3::Zero();
   arena.execute([&] {
-    ClosureOutcome closed = runClosureStage(layer_one.source(), near_initial, near_closures, resolved);
+    ClosureOutcome closed = runClosureStage(layer_one->source(), near_initial, near_closures, resolved);
     // Priors may put the start far from the input (UTM coordinates): the
     // hierarchy works near the start's first pose instead.
     shift = closed.start.front().t;
     closed.start = translated(closed.start, -shift);
     for (auto& prior : closed.priors) prior.position -= shift;
-    result =
-        runNearOrigin(layer_one, translated(near_initial, -shift), resolved, closed, closures.session_starts);
+    result = runNearOrigin(*layer_one, translated(near_initial, -shift), resolved, closed,
+                           closures.session_starts);
   });
   result.report.threads = resolved.threads;
   result.poses = translated(result.poses, origin + shift);
+  if (layer_one->kept())
+    result.scans = std::shared_ptr<const io::ScanSource>(layer_one, &layer_one->source());
   return result;
 }
 

@@ -89,6 +89,11 @@ void checkSizes(const io::ScanSource& scans, const std::array<const std::vector<
   }
 }
 
+// Scan `i` at `voxel`: downsampled here unless it came so already.
+PointCloud loadAt(const io::ScanSource& scans, std::size_t i, double voxel, double scans_voxel) {
+  return scans_voxel >= voxel ? scans.load(i) : voxel::downsample(scans.load(i), voxel);
+}
+
 std::vector<std::size_t> upTo(std::size_t n) {
   std::vector<std::size_t> out(n);
   for (std::size_t i = 0; i < n; ++i) out[i] = i;
@@ -97,11 +102,11 @@ std::vector<std::size_t> upTo(std::size_t n) {
 
 }  // namespace
 
-double sensorReach(const io::ScanSource& scans) {
+double sensorReach(const io::ScanSource& scans, double voxel, double scans_voxel) {
   std::vector<double> ranges;
   for (const std::size_t i : {std::size_t{0}, scans.size() / 2, scans.size() - 1}) {
     if (i >= scans.size()) continue;
-    const PointCloud scan = scans.load(i);
+    const PointCloud scan = loadAt(scans, i, voxel, scans_voxel);
     for (std::size_t k = 0; k < scan.size(); ++k) ranges.push_back(scan.world(k).head<2>().norm());
   }
   if (ranges.empty()) return 0.0;
@@ -125,10 +130,10 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                  int pixels, double moments_cell) {
+                                  int pixels, double moments_cell, double scans_voxel) {
   checkSizes(scans, poses);
   BeforeAfterMaps maps;
-  maps.overview_voxel = overviewVoxel(poses, sensorReach(scans), voxel, pixels);
+  maps.overview_voxel = overviewVoxel(poses, sensorReach(scans, voxel, scans_voxel), voxel, pixels);
   // The overview's points relative to the first pose (far from the world
   // origin, floats would lose the voxel).
   const Vec3 origin = latticeCorner(poses[1]->empty() ? Vec3::Zero() : poses[1]->front().t, 1.0);
@@ -146,7 +151,7 @@ BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
     std::array<PicturePoints, 2> local{PicturePoints(maps.overview_voxel, origin, expected),
                                        PicturePoints(maps.overview_voxel, origin, expected)};
     for (std::size_t i = first; i < end; ++i) {
-      const PointCloud scan = voxel::downsample(scans.load(i), voxel);
+      const PointCloud scan = loadAt(scans, i, voxel, scans_voxel);
       // Coarser only where that halves the points at least.
       const PointCloud coarse =
           maps.overview_voxel >= 1.5 * voxel ? voxel::downsample(scan, maps.overview_voxel) : scan;
@@ -177,7 +182,7 @@ BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
 
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                     const Box2& square, double reach) {
+                                     const Box2& square, double reach, double scans_voxel) {
   checkSizes(scans, poses);
   auto near = [&](const Pose& pose) {
     const double dx = std::max({square.xmin - pose.t.x(), 0.0, pose.t.x() - square.xmax});
@@ -195,7 +200,7 @@ std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
   const Vec3 corner = latticeCorner(Vec3(square.xmin, square.ymin, 0.0), voxel);
   using Part = std::array<PointCloud, 2>;
   const std::function<Part(std::size_t)> read = [&](std::size_t i) {
-    const PointCloud scan = voxel::downsample(scans.load(i), voxel);
+    const PointCloud scan = loadAt(scans, i, voxel, scans_voxel);
     Part part;
     for (std::size_t k = 0; k < 2; ++k) {
       if (near((*poses[k])[i])) part[k] = movedNear(scan, (*poses[k])[i], corner, inside);

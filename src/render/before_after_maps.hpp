@@ -25,8 +25,9 @@ struct BeforeAfterMaps {
 };
 
 // How far a scan's points reach horizontally (95th percentile over the
-// first, middle and last scans; m).
-double sensorReach(const io::ScanSource& scans);
+// first, middle and last scans at `voxel`, so that scans that come
+// downsampled at `scans_voxel` give the same; m).
+double sensorReach(const io::ScanSource& scans, double voxel = 0.0, double scans_voxel = 0.0);
 
 // The overview's voxel: `voxel`, or coarser where the map (the
 // trajectories' extent plus `reach` either side) is so large that half of
@@ -35,15 +36,16 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
                      int pixels);
 
 // Every scan read once (in parallel batches, merged in scan order: the same
-// maps for any thread count), downsampled to `voxel` in its own frame.
+// maps for any thread count), downsampled to `voxel` in its own frame
+// unless `scans_voxel` (the voxel the scans come downsampled at) is as large.
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                  int pixels, double moments_cell);
+                                  int pixels, double moments_cell, double scans_voxel = 0.0);
 
 // The points inside `square` of the scans whose pose lies within `reach`
-// (m) of it, merged at `voxel`, for each pose set.
+// (m) of it, merged at `voxel`, for each pose set (`scans_voxel` as above).
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                     const Box2& square, double reach);
+                                     const Box2& square, double reach, double scans_voxel = 0.0);
 
 }  // namespace hba::render

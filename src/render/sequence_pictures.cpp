@@ -3,6 +3,7 @@
 
 #include "before_after_maps.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/release_memory.hpp"
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"
@@ -36,19 +37,6 @@ std::vector<Pose> alignedGroundTruth(const std::vector<Pose>& ground_truth,
 
 }  // namespace
 
-// The two pictures one above the other, the first's width.
-Image stacked(const Image& upper, const Image& lower) {
-  Image out(upper.width(), upper.height() + lower.height());
-  for (int y = 0; y < upper.height(); ++y) {
-    for (int x = 0; x < upper.width(); ++x) out.set(x, y, upper.at(x, y));
-  }
-  for (int y = 0; y < lower.height(); ++y) {
-    for (int x = 0; x < std::min(upper.width(), lower.width()); ++x)
-      out.set(x, upper.height() + y, lower.at(x, y));
-  }
-  return out;
-}
-
 // Centimetre corrections are invisible at the scale of a whole map: a second
 // row zooms on the square where the planes got thinnest, coloured by their
 // thickness (a doubled wall is thick, a crisp one thin). Nothing when no
@@ -66,7 +54,8 @@ std::optional<Image> thicknessZoom(const io::ScanSource& scans,
   if (!region) return std::nullopt;
   // Scans within a few tens of metres give the square its dense points.
   constexpr double kReach = 40.0;
-  std::array<PointCloud, 2> fine = squareMaps(scans, poses, settings.voxel, *region, kReach);
+  std::array<PointCloud, 2> fine =
+      squareMaps(scans, poses, settings.voxel, *region, kReach, settings.scans_voxel);
   std::vector<MapPanel> zoom(2);
   for (std::size_t k = 0; k < 2; ++k) {
     zoom[k].values = (k == 0 ? before : after).perPoint(fine[k]);
@@ -82,6 +71,36 @@ std::optional<Image> thicknessZoom(const io::ScanSource& scans,
   z.value_scale = RenderSettings::ValueScale{0.0, 0.03, "plane thickness 0 cm", "3 cm"};
   return renderPanels(zoom, z).image;
 }
+
+namespace {
+
+// The overview row and, when some plane got thinner, the zoom row below it.
+// The maps they are drawn from are gone when this returns: the PNG is
+// encoded without them.
+std::vector<Image> drawBeforeAfter(const io::ScanSource& scans,
+                                   const std::array<const std::vector<Pose>*, 2>& poses,
+                                   std::vector<MapPanel> panels, const RenderSettings& settings) {
+  constexpr double kThicknessCell = 1.0;  // m: a patch of wall
+  // Two panels side by side: each about half the picture's width.
+  BeforeAfterMaps maps = streamBeforeAfter(scans, poses, settings.voxel, settings.width / 2, kThicknessCell,
+                                           settings.scans_voxel);
+  for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
+  // The scans' chunks were made and freed on several threads, each in its
+  // own heap: handed back, so that the drawing's buffers do not stack on them.
+  releaseFreedMemory();
+  RenderSettings overview = settings;
+  overview.voxel = maps.overview_voxel;  // the points' footprint
+  // The zoom's scans are read while the overview is drawn (mostly on one core).
+  std::optional<Image> whole, zoom;
+  tbb::parallel_invoke([&] { whole = renderPanels(panels, overview).image; },
+                       [&] { zoom = thicknessZoom(scans, poses, maps, panels, settings); });
+  std::vector<Image> rows;
+  rows.push_back(std::move(*whole));
+  if (zoom) rows.push_back(std::move(*zoom));
+  return rows;
+}
+
+}  // namespace
 
 void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
                       const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
@@ -99,22 +118,16 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
   }
   if (settings.crop) {  // one region at full resolution, no zoom row
     std::array<PointCloud, 2> fine =
-        squareMaps(scans, poses, settings.voxel, *settings.crop, std::numeric_limits<double>::infinity());
+        squareMaps(scans, poses, settings.voxel, *settings.crop, std::numeric_limits<double>::infinity(),
+                   settings.scans_voxel);
     for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
     writePng(out_png, renderPanels(panels, settings).image);
     return;
   }
-  constexpr double kThicknessCell = 1.0;  // m: a patch of wall
-  // Two panels side by side: each about half the picture's width.
-  BeforeAfterMaps maps = streamBeforeAfter(scans, poses, settings.voxel, settings.width / 2, kThicknessCell);
-  for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
-  RenderSettings overview = settings;
-  overview.voxel = maps.overview_voxel;  // the points' footprint
-  // The zoom's scans are read while the overview is drawn (mostly on one core).
-  std::optional<Image> whole, zoom;
-  tbb::parallel_invoke([&] { whole = renderPanels(panels, overview).image; },
-                       [&] { zoom = thicknessZoom(scans, poses, maps, panels, settings); });
-  writePng(out_png, zoom ? stacked(*whole, *zoom) : *whole);
+  const std::vector<Image> rows = drawBeforeAfter(scans, poses, std::move(panels), settings);
+  std::vector<const Image*> stack;
+  for (const Image& row : rows) stack.push_back(&row);
+  writePng(out_png, stack);
 }
 
 void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,

@@ -15,6 +15,7 @@
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/sim/simulation.hpp"
+#include "hba/voxel/downsample.hpp"
 #include "simulated_sequence.hpp"
 #include "test_support.hpp"
 
@@ -141,6 +142,24 @@ TEST(HierarchicalBa, SameInputGivesTheSamePosesBitForBit) {
       EXPECT_EQ(first[i].t, second[i].t) << "frame " << i;
       EXPECT_EQ(first[i].q.coeffs(), second[i].q.coeffs()) << "frame " << i;
     }
+  }
+}
+
+// The scans the run read, downsampled and kept, are handed on (for the
+// picture): each is the scan downsampled at settings.scan_voxel, bit for bit.
+TEST(HierarchicalBa, HandsOnTheScansAsItReadThem) {
+  const io::MemoryScanSource source(simulated().scans);
+  const HbaSettings settings;
+  const HbaResult result = runHierarchicalBa(source, simulated().initial, settings);
+  ASSERT_TRUE(result.scans);
+  ASSERT_EQ(result.scans->size(), source.size());
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    const PointCloud kept = result.scans->load(i);
+    const PointCloud expected = voxel::downsample(source.load(i), settings.scan_voxel);
+    ASSERT_EQ(kept.size(), expected.size()) << "scan " << i;
+    EXPECT_EQ(kept.origin, expected.origin) << "scan " << i;
+    for (std::size_t k = 0; k < kept.size(); ++k)
+      ASSERT_EQ(kept.points[k], expected.points[k]) << i << ", " << k;
   }
 }
 

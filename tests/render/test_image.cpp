@@ -59,6 +59,27 @@ TEST(Png, EveryPixelComesBackFromAnotherDecoder) {
   }
 }
 
+// Rows of several images, encoded in place one above the other, decode as
+// the stacked picture; images of different widths are refused.
+TEST(Png, StackedImagesComeBackAsOnePicture) {
+  test::TempDir tmp;
+  const Image upper = testImage(131, 40, 3), lower = testImage(131, 17, 4);
+  writePng(tmp / "s.png", std::vector<const Image*>{&upper, &lower});
+  int dw = 0, dh = 0, channels = 0;
+  std::unique_ptr<unsigned char, void (*)(void*)> pixels(
+      stbi_load((tmp / "s.png").c_str(), &dw, &dh, &channels, 3), stbi_image_free);
+  ASSERT_TRUE(pixels) << stbi_failure_reason();
+  ASSERT_EQ(dw, 131);
+  ASSERT_EQ(dh, 57);
+  expectSamePixels(upper, pixels.get());
+  expectSamePixels(lower, pixels.get() + static_cast<std::size_t>(131) * 40 * 3);
+  // One image alone is the same file as its stack of one.
+  EXPECT_EQ(encodePng(upper), encodePng(std::vector<const Image*>{&upper}));
+  const Image narrow = testImage(130, 5, 5);
+  EXPECT_THROW(encodePng(std::vector<const Image*>{&upper, &narrow}), Error);
+  EXPECT_THROW(encodePng(std::vector<const Image*>{}), Error);
+}
+
 TEST(Png, AnUnwritablePathIsNamedAndNothingIsLeft) {
   test::TempDir tmp;
   const auto path = tmp / "missing-folder" / "t.png";

@@ -2,14 +2,17 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
+#include <cmath>
 #include <memory>
 
 #include "../eval/synthetic_scans.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/lie.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/render/colormap.hpp"
 #include "hba/render/map_picture.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
 #include "map_change.hpp"
 #include "test_support.hpp"
 
@@ -156,6 +159,46 @@ TEST(RenderCli, SamePicturesFromScansInMemory) {
   writeBeforeAfter(scans, before, after, &before, tmp / "memory_cmp.png", settings);
   EXPECT_EQ(test::readText(tmp / "memory_map.png"), test::readText(tmp / "map.png"));
   EXPECT_EQ(test::readText(tmp / "memory_cmp.png"), test::readText(tmp / "cmp.png"));
+}
+
+// Rings of ground points as a spinning sensor sees them: as many a ring
+// near the sensor as far out, so downsampling thins the near ones.
+std::vector<PointCloud> ringScans(std::size_t count) {
+  std::vector<PointCloud> scans(count);
+  for (PointCloud& scan : scans) {
+    for (double r = 2.0; r < 60.0; r *= 1.05) {
+      for (int k = 0; k < 720; ++k) {
+        const double a = k * M_PI / 360.0;
+        scan.add(Vec3f(static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a)), -1.5f));
+      }
+    }
+  }
+  return scans;
+}
+
+// Scans that come downsampled at the picture's voxel already (as `hba
+// optimize` hands on the ones it kept) give the picture drawn from the
+// scans as recorded, byte for byte.
+TEST(RenderCli, ScansDownsampledBeforehandGiveTheSamePicture) {
+  test::TempDir tmp;
+  std::vector<Pose> before, after;
+  for (int i = 0; i < 6; ++i) {
+    before.emplace_back(Mat3(so3Exp(Vec3(0, 0, 0.2 * i))), Vec3(20.0 * i, 3.0 * i, 0.0));
+    after.push_back(before.back());
+    after.back().t.y() += 0.5;
+  }
+  const io::MemoryScanSource scans(ringScans(before.size()));
+  RenderSettings settings;
+  // Narrow: the overview's voxel is coarser than settings.voxel and follows
+  // the sensor's reach, which must not depend on how the scans came.
+  settings.width = 240;
+  settings.height = 400;
+  writeBeforeAfter(scans, before, after, nullptr, tmp / "raw.png", settings);
+  const voxel::DownsampledScanSource downsampled(scans, settings.voxel);
+  RenderSettings given = settings;
+  given.scans_voxel = settings.voxel;
+  writeBeforeAfter(downsampled, before, after, nullptr, tmp / "given.png", given);
+  EXPECT_EQ(test::readText(tmp / "given.png"), test::readText(tmp / "raw.png"));
 }
 
 }  // namespace

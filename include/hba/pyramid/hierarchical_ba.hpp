@@ -3,6 +3,7 @@
 // then a top-down pose graph (or direct assignment) back to every scan,
 // repeated until the poses settle. See docs/pyramid.md.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -166,6 +167,12 @@ struct HbaReport {
 struct HbaResult {
   std::vector<Pose> poses;  // optimized layer-1 poses, same order as the input
   HbaReport report;
+  // The scans as the run read them, at settings.scan_voxel, kept on disk (a
+  // private folder in $TMPDIR, removed with the last copy of this pointer):
+  // a picture or map afterwards need not parse and downsample them again.
+  // Reads through to the caller's `scans`, which must outlive it. Null for a
+  // single scan (nothing kept).
+  std::shared_ptr<const io::ScanSource> scans;
 };
 
 // `scans` as read (sensor frame, full density: a dataset's or scans in

@@ -33,8 +33,12 @@ class Image {
 
 // The PNG file of `image` (libpng, 8-bit RGB). Throws hba::Error.
 std::vector<std::uint8_t> encodePng(const Image& image);
+// One PNG of the images one above the other, the first at the top, read
+// in place (no stacked copy). They must be equally wide. Throws hba::Error.
+std::vector<std::uint8_t> encodePng(const std::vector<const Image*>& stack);
 
 // Encodes as PNG and writes atomically. Throws hba::Error naming the file.
 void writePng(const std::filesystem::path& path, const Image& image);
+void writePng(const std::filesystem::path& path, const std::vector<const Image*>& stack);
 
 }  // namespace hba::render

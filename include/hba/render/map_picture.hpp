@@ -27,7 +27,10 @@ Box2 parseBox(const std::string& text);
 struct RenderSettings {
   int width = 1800;  // whole picture, pixels
   int height = 1100;
-  double voxel = 0.1;        // m, downsampling of each merged map
+  double voxel = 0.1;  // m, downsampling of each merged map
+  // The scans come downsampled at this voxel already (m; 0: as recorded):
+  // at `voxel` or coarser, the before/after picture takes them as they are.
+  double scans_voxel = 0.0;
   std::optional<Box2> crop;  // show only this region (at full resolution)
   bool side_view = true;     // add the side strip under each bird's-eye view
   // Colour by the panels' `values` on this scale instead of by height.
