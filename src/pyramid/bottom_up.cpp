@@ -9,24 +9,51 @@
 #include "layer_report_sum.hpp"
 #include "streamed_clouds.hpp"
 #include "window_batches.hpp"
+#include "window_exchange.hpp"
 #include "window_run.hpp"
 #include "window_summary.hpp"
 
 namespace hba::pyramid {
 
+namespace {
+
+// Each window's share of a layer's work: its points where they are known
+// without reading (the stored keyframes of an upper layer), else its frames
+// (the scans of one sensor are much alike).
+std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& windows) {
+  std::vector<double> work;
+  work.reserve(windows.size());
+  for (const Window& window : windows) {
+    double points = 0.0;
+    for (std::size_t k = 0; k < window.count; ++k) {
+      points += layer.keyframes ? static_cast<double>(layer.keyframes->points(window.first + k)) : 1.0;
+    }
+    work.push_back(points);
+  }
+  return work;
+}
+
+}  // namespace
+
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
                            const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
-                           const std::string& progress_label) {
+                           const std::string& progress_label, const dist::Group& group) {
   checkWindowPlan(windows, layer.poses.size());
   std::vector<WindowSummary> summaries(windows.size());
   StreamedClouds streamed(clouds.source());
   const auto threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
   const bool scans = layer.keyframes == nullptr;
+  // This process's windows: all of them, or its range of a group's.
+  const WindowRange mine = windowsOfMember(windowWork(layer, windows), group.rank(), group.size());
+  const std::vector<Window> my_windows(windows.begin() + static_cast<long>(mine.first),
+                                       windows.begin() + static_cast<long>(mine.end));
 
   const LoadSeconds loaded_before = clouds.seconds();
-  Progress progress(progress_label, windows.size(), "windows");
-  for (const WindowBatch& batch : batchWindows(windows, windowsPerBatch(scans, threads))) {
+  Progress progress(progress_label, my_windows.size(), "windows");
+  for (WindowBatch batch : batchWindows(my_windows, windowsPerBatch(scans, threads))) {
+    batch.first_window += mine.first;
+    batch.end_window += mine.first;
     auto start = Clock::now();
     streamed.keepRange(batch.first_frame, batch.end_frame);
     times.load += secondsSince(start);
@@ -59,10 +86,13 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
   times.load_parts.read += loaded_after.read - loaded_before.read;
   times.load_parts.downsample += loaded_after.downsample - loaded_before.downsample;
 
+  const std::size_t cloud_points =
+      group.size() > 1 ? shareWindows(group, mine, summaries, next, streamed) : streamed.pointsLoaded();
+
   LayerOutcome outcome;
   outcome.report = sumLayerReport(summaries);
   outcome.report.frames = layer.poses.size();
-  outcome.report.cloud_points = streamed.pointsLoaded();
+  outcome.report.cloud_points = cloud_points;
   outcome.windows.reserve(summaries.size());
   for (WindowSummary& summary : summaries) outcome.windows.push_back(std::move(summary.outcome));
   return outcome;

@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/dist/group.hpp"
 #include "hba/pyramid/settings.hpp"
 #include "keyframe_store.hpp"
 #include "layer.hpp"
@@ -26,9 +27,13 @@ struct StageTimes {
 // batches (window_batches.hpp; their load times added to `times`), so memory stays bounded by a few windows'
 // worth of clouds. With `next` set, each window's plane points, downsampled
 // to `keyframe_voxel`, are stored there as keyframe j of the next layer.
+// In a group of processes each runs its range of the windows (reading only
+// their clouds) and then has every window's (window_exchange.hpp); every
+// member must call it, for the same layer.
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
                            const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
-                           const std::string& progress_label);
+                           const std::string& progress_label,
+                           const dist::Group& group = dist::singleProcess());
 
 }  // namespace hba::pyramid

@@ -106,7 +106,7 @@ const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans,
 
 std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& poses,
                           const HbaSettings& settings, const ClosureOutcome& closed, int layers,
-                          int iteration, HbaReport& report) {
+                          int iteration, HbaReport& report, const dist::Group& group) {
   StageTimes times;
   Layer layer = scanLayer(poses);
 
@@ -119,7 +119,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
     LayerOutcome outcome =
         optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings, keyframes.get(),
-                      keyframeVoxel(settings, level + 1), times, "layer " + std::to_string(level));
+                      keyframeVoxel(settings, level + 1), times, "layer " + std::to_string(level), group);
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.seconds = secondsSince(start);
@@ -136,7 +136,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
   std::unique_ptr<TimedClouds> stored;
   const TimedClouds& top_clouds = cloudsOf(layer, scans, stored);
   LayerOutcome top = optimizeLayer(layer, top_clouds, all, settings.globalBa(), settings, nullptr, 0.0, times,
-                                   "layer " + std::to_string(layers) + " (global BA)");
+                                   "layer " + std::to_string(layers) + " (global BA)", group);
   top.report.iteration = iteration;
   top.report.layer = layers;
   top.report.global = true;
@@ -184,7 +184,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
 // The whole method, on poses near the origin.
 HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
                         const HbaSettings& settings, const ClosureOutcome& closed,
-                        const std::vector<std::size_t>& session_starts) {
+                        const std::vector<std::size_t>& session_starts, const dist::Group& group) {
   const auto start = Clock::now();
   HbaResult result;
   HbaReport& report = result.report;
@@ -211,7 +211,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
     std::vector<Pose> updated =
-        iterate(scans, result.poses, settings, closed, report.layers, iteration, report);
+        iterate(scans, result.poses, settings, closed, report.layers, iteration, report, group);
     const PoseChange u = largestChange(result.poses, updated);
     report.iterations.back().max_translation_update = u.translation_m;
     report.iterations.back().max_rotation_update = u.rotation_deg;
@@ -273,7 +273,8 @@ int resolvedThreadCount(const HbaSettings& settings) {
 }
 
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                            const HbaSettings& settings, const ClosureInputs& closures) {
+                            const HbaSettings& settings, const ClosureInputs& closures,
+                            const dist::Group& group) {
   validate(scans, initial, settings, closures);
   // Every parallel part runs on this many threads: TBB's within the arena,
   // Ceres's through the pose graph's settings.
@@ -302,7 +303,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
     closed.start = translated(closed.start, -shift);
     for (auto& prior : closed.priors) prior.position -= shift;
     result = runNearOrigin(*layer_one, translated(near_initial, -shift), resolved, closed,
-                           closures.session_starts);
+                           closures.session_starts, group);
   });
   result.report.threads = resolved.threads;
   result.poses = translated(result.poses, origin + shift);

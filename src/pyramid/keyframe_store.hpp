@@ -34,6 +34,8 @@ class KeyframeStore : public io::ScanSource {
   // Keeps `cloud` as cloud i (i < size()), replacing what was kept. Thread-
   // safe for distinct i. Throws hba::Error (e.g. a full disk).
   void store(std::size_t i, const PointCloud& cloud) const;
+  // The points of cloud i as stored (0 if it never was), without reading it.
+  std::size_t points(std::size_t i) const { return static_cast<std::size_t>(entries_.at(i).points); }
 
  private:
   // Where cloud i sits in the file: its float x y z, then its intensities.

@@ -7,7 +7,7 @@
 namespace hba::pyramid {
 
 StreamedClouds::StreamedClouds(const io::ScanSource& source)
-    : source_(source), counted_(source.size(), false) {}
+    : source_(source), counted_(source.size(), false), frame_points_(source.size(), 0) {}
 
 void StreamedClouds::keepRange(std::size_t first, std::size_t end) {
   for (auto it = held_.begin(); it != held_.end();) {
@@ -24,10 +24,19 @@ void StreamedClouds::keepRange(std::size_t first, std::size_t end) {
     const std::size_t i = missing[k];
     if (i < counted_.size() && !counted_[i]) {
       counted_[i] = true;
+      frame_points_[i] = loaded[k].size();
       points_loaded_ += loaded[k].size();
     }
     held_[i] = std::move(loaded[k]);
   }
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> StreamedClouds::framesLoaded() const {
+  std::vector<std::pair<std::size_t, std::size_t>> frames;
+  for (std::size_t i = 0; i < counted_.size(); ++i) {
+    if (counted_[i]) frames.emplace_back(i, frame_points_[i]);
+  }
+  return frames;
 }
 
 std::vector<const PointCloud*> StreamedClouds::cloudsOf(const Window& window) const {

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "hba/core/point_cloud.hpp"
@@ -27,11 +28,14 @@ class StreamedClouds {
 
   // Points of every frame loaded so far, each frame counted once.
   std::size_t pointsLoaded() const { return points_loaded_; }
+  // Each frame loaded so far, with its points, in frame order.
+  std::vector<std::pair<std::size_t, std::size_t>> framesLoaded() const;
 
  private:
   const io::ScanSource& source_;
   std::map<std::size_t, PointCloud> held_;
-  std::vector<bool> counted_;  // per frame of the source: its points are in points_loaded_
+  std::vector<bool> counted_;              // per frame of the source: its points are in points_loaded_
+  std::vector<std::size_t> frame_points_;  // per frame of the source, once counted
   std::size_t points_loaded_ = 0;
 };
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <thread>
 
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
@@ -18,6 +19,7 @@
 #include "hba/voxel/downsample.hpp"
 #include "simulated_sequence.hpp"
 #include "test_support.hpp"
+#include "threaded_group.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -86,6 +88,47 @@ TEST(HierarchicalBa, SameResultWithOneAndTwoThreads) {
   for (std::size_t i = 0; i < one.size(); ++i) {
     EXPECT_EQ(one[i].t, two[i].t) << "frame " << i;
     EXPECT_EQ(one[i].q.coeffs(), two[i].q.coeffs()) << "frame " << i;
+  }
+}
+
+// A layer's windows spread over 2 and 3 members (threads standing in for
+// mpirun's processes): every member ends with the poses of one process,
+// bit for bit, and the same layer reports.
+TEST(HierarchicalBa, MembersOfAGroupGetThePosesOfOneProcess) {
+  HbaSettings settings;
+  settings.window = 6;  // three layers of 40 frames: upper layers are spread too
+  settings.stride = 3;
+  settings.layers = 3;
+  const io::MemoryScanSource source(simulated().scans);
+  const HbaResult alone = runHierarchicalBa(source, simulated().initial, settings);
+  ASSERT_EQ(alone.report.layers, 3);
+  for (const int size : {2, 3}) {
+    hba::test::ThreadedGroups groups(size);
+    std::vector<HbaResult> results(static_cast<std::size_t>(size));
+    std::vector<std::thread> members;
+    for (int rank = 0; rank < size; ++rank) {
+      members.emplace_back([&, rank] {
+        results[static_cast<std::size_t>(rank)] =
+            runHierarchicalBa(source, simulated().initial, settings, {}, groups.member(rank));
+      });
+    }
+    for (std::thread& member : members) member.join();
+    for (const HbaResult& result : results) {
+      ASSERT_EQ(result.poses.size(), alone.poses.size());
+      for (std::size_t i = 0; i < alone.poses.size(); ++i) {
+        ASSERT_EQ(result.poses[i].t, alone.poses[i].t) << size << " members, frame " << i;
+        ASSERT_EQ(result.poses[i].q.coeffs(), alone.poses[i].q.coeffs()) << size << " members, frame " << i;
+      }
+      ASSERT_EQ(result.report.layer_reports.size(), alone.report.layer_reports.size());
+      for (std::size_t l = 0; l < alone.report.layer_reports.size(); ++l) {
+        const LayerReport& a = alone.report.layer_reports[l];
+        const LayerReport& b = result.report.layer_reports[l];
+        EXPECT_EQ(b.windows, a.windows);
+        EXPECT_EQ(b.planes, a.planes);
+        EXPECT_EQ(b.cloud_points, a.cloud_points) << "layer " << l + 1;
+        EXPECT_EQ(b.cost_after, a.cost_after) << "layer " << l + 1;
+      }
+    }
   }
 }
 

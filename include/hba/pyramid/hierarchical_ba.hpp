@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
+#include "hba/dist/group.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_inputs.hpp"
 #include "hba/pyramid/settings.hpp"
@@ -182,8 +183,13 @@ struct HbaResult {
 // `closures` (loops to verify, position priors) are closed before the
 // hierarchy runs and kept in its pose graph; with priors that fix the frame
 // no pose is held.
+// With `group` (the processes of an mpirun), each layer's windows are spread
+// over its members, which must all call this with the same input; each
+// reads only the scans of its windows there, and all get the same poses,
+// those of one process. The other stages run in every member.
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                            const HbaSettings& settings, const ClosureInputs& closures = {});
+                            const HbaSettings& settings, const ClosureInputs& closures = {},
+                            const dist::Group& group = dist::singleProcess());
 
 // The threads a run of `settings` uses: settings.threads, or (0) as many as
 // this process allows (hba -j, a tbb::global_control, or the machine's cores).

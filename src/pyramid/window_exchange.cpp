@@ -1,0 +1,162 @@
+#include "window_exchange.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "hba/core/error.hpp"
+#include "hba/dist/bytes.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+void putPose(dist::ByteWriter& out, const Pose& pose) {
+  out.put(pose.q.coeffs());
+  out.put(pose.t);
+}
+
+Pose getPose(dist::ByteReader& in) {
+  Pose pose;
+  pose.q.coeffs() = in.get<Eigen::Vector4d>();
+  pose.t = in.get<Vec3>();
+  return pose;
+}
+
+void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
+  const WindowOutcome& o = s.outcome;
+  out.put<std::uint64_t>(o.window.first);
+  out.put<std::uint64_t>(o.window.count);
+  out.put<std::uint64_t>(o.optimized.size());
+  for (const Pose& pose : o.optimized) putPose(out, pose);
+  out.put<std::uint64_t>(o.factors.size());
+  for (const graph::RelativePoseFactor& f : o.factors) {
+    out.put<std::uint64_t>(f.from);
+    out.put<std::uint64_t>(f.to);
+    putPose(out, f.measurement);
+    out.put(f.information);
+  }
+  out.put<std::uint8_t>(o.has_planes);
+  out.put(s.cost_before);
+  out.put(s.cost_after);
+  out.put(s.sq_rms_before);
+  out.put(s.sq_rms_after);
+  out.put<std::uint64_t>(s.planes);
+  out.put<std::uint64_t>(s.plane_points);
+  out.put<std::int32_t>(s.iterations);
+  out.put<std::int32_t>(s.rounds);
+  out.put<std::uint8_t>(s.trusted);
+}
+
+WindowSummary getSummary(dist::ByteReader& in) {
+  WindowSummary s;
+  WindowOutcome& o = s.outcome;
+  o.window.first = in.get<std::uint64_t>();
+  o.window.count = in.get<std::uint64_t>();
+  o.optimized.resize(in.get<std::uint64_t>());
+  for (Pose& pose : o.optimized) pose = getPose(in);
+  o.factors.resize(in.get<std::uint64_t>());
+  for (graph::RelativePoseFactor& f : o.factors) {
+    f.from = in.get<std::uint64_t>();
+    f.to = in.get<std::uint64_t>();
+    f.measurement = getPose(in);
+    f.information = in.get<Mat6>();
+  }
+  o.has_planes = in.get<std::uint8_t>() != 0;
+  s.cost_before = in.get<double>();
+  s.cost_after = in.get<double>();
+  s.sq_rms_before = in.get<double>();
+  s.sq_rms_after = in.get<double>();
+  s.planes = in.get<std::uint64_t>();
+  s.plane_points = in.get<std::uint64_t>();
+  s.iterations = in.get<std::int32_t>();
+  s.rounds = in.get<std::int32_t>();
+  s.trusted = in.get<std::uint8_t>() != 0;
+  return s;
+}
+
+void putCloud(dist::ByteWriter& out, const PointCloud& cloud) {
+  out.put(cloud.origin);
+  out.putVector(cloud.points);
+  out.putVector(cloud.intensity);
+}
+
+PointCloud getCloud(dist::ByteReader& in) {
+  PointCloud cloud;
+  cloud.origin = in.get<Vec3>();
+  cloud.points = in.getVector<Vec3f>();
+  cloud.intensity = in.getVector<float>();
+  return cloud;
+}
+
+}  // namespace
+
+WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size) {
+  if (size < 1 || rank < 0 || rank >= size) {
+    throw Error("windows of member " + std::to_string(rank) + " of " + std::to_string(size));
+  }
+  double total = 0.0;
+  for (const double w : work) total += w;
+  // Window k goes to the member whose even share of the total holds the
+  // middle of its work (by count when there is no work): the members
+  // never decrease along the windows, so each gets a consecutive range.
+  std::vector<int> members(work.size());
+  double before = 0.0;
+  for (std::size_t k = 0; k < work.size(); ++k) {
+    const double share = total > 0.0 ? (before + 0.5 * work[k]) / total
+                                     : (static_cast<double>(k) + 0.5) / static_cast<double>(work.size());
+    members[k] = std::min(size - 1, static_cast<int>(share * size));
+    before += work[k];
+  }
+  const auto lo = std::lower_bound(members.begin(), members.end(), rank);
+  const auto hi = std::upper_bound(members.begin(), members.end(), rank);
+  return {static_cast<std::size_t>(lo - members.begin()), static_cast<std::size_t>(hi - members.begin())};
+}
+
+std::size_t shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
+                         const KeyframeStore* next, const StreamedClouds& streamed) {
+  dist::ByteWriter out;
+  out.put<std::uint64_t>(mine.first);
+  out.put<std::uint64_t>(mine.end);
+  for (std::size_t w = mine.first; w < mine.end; ++w) {
+    putSummary(out, summaries[w]);
+    if (next) putCloud(out, next->load(w));
+  }
+  const std::vector<std::pair<std::size_t, std::size_t>> loaded = streamed.framesLoaded();
+  out.put<std::uint64_t>(loaded.size());
+  for (const auto& [frame, points] : loaded) {
+    out.put<std::uint64_t>(frame);
+    out.put<std::uint64_t>(points);
+  }
+  const std::vector<dist::Bytes> all = group.allGather(out.take());
+
+  std::map<std::size_t, std::size_t> points_of;  // every member's frames, each once
+  for (std::size_t member = 0; member < all.size(); ++member) {
+    dist::ByteReader in(all[member]);
+    const auto first = in.get<std::uint64_t>();
+    const auto end = in.get<std::uint64_t>();
+    if (first > end || end > summaries.size()) {
+      throw Error("exchange between processes: member " + std::to_string(member) + " sent windows " +
+                  std::to_string(first) + "-" + std::to_string(end) + " of " + std::to_string(summaries.size()));
+    }
+    const bool own = static_cast<int>(member) == group.rank();
+    for (std::size_t w = first; w < end; ++w) {
+      WindowSummary summary = getSummary(in);
+      PointCloud keyframe = next ? getCloud(in) : PointCloud{};
+      if (own) continue;  // already here, as found
+      summaries[w] = std::move(summary);
+      if (next) next->store(w, keyframe);
+    }
+    const auto frames = in.get<std::uint64_t>();
+    for (std::uint64_t k = 0; k < frames; ++k) {
+      const auto frame = in.get<std::uint64_t>();
+      points_of[frame] = in.get<std::uint64_t>();
+    }
+    if (!in.done()) throw Error("exchange between processes: member " + std::to_string(member) + " sent more than read");
+  }
+  std::size_t points = 0;
+  for (const auto& [frame, n] : points_of) points += n;
+  return points;
+}
+
+}  // namespace hba::pyramid

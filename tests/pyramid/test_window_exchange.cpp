@@ -1,0 +1,81 @@
+// A layer's windows spread over the members of a group: who runs which,
+// and what they send each other.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "hba/core/error.hpp"
+#include "hba/dist/bytes.hpp"
+#include "window_exchange.hpp"
+
+namespace hba::pyramid {
+namespace {
+
+// Every window once, in order, member by member; no member's work above
+// an even share by more than one window's.
+void expectFairSplit(const std::vector<double>& work, int size) {
+  const double total = std::accumulate(work.begin(), work.end(), 0.0);
+  const double largest = work.empty() ? 0.0 : *std::max_element(work.begin(), work.end());
+  std::size_t next = 0;
+  for (int rank = 0; rank < size; ++rank) {
+    const WindowRange range = windowsOfMember(work, rank, size);
+    ASSERT_EQ(range.first, next) << "member " << rank << " of " << size;
+    ASSERT_LE(range.first, range.end);
+    double mine = 0.0;
+    for (std::size_t w = range.first; w < range.end; ++w) mine += work[w];
+    EXPECT_LE(mine, total / size + largest + 1e-9) << "member " << rank << " of " << size;
+    next = range.end;
+  }
+  EXPECT_EQ(next, work.size());
+}
+
+TEST(WindowExchange, MembersSplitTheWorkInConsecutiveRanges) {
+  expectFairSplit(std::vector<double>(199, 10.0), 1);
+  expectFairSplit(std::vector<double>(199, 10.0), 2);
+  expectFairSplit(std::vector<double>(199, 10.0), 4);
+  // Keyframes of very different sizes: split by points, not by count.
+  std::vector<double> uneven;
+  for (int k = 0; k < 40; ++k) uneven.push_back(k < 10 ? 1000.0 : 10.0);
+  expectFairSplit(uneven, 3);
+  const WindowRange first = windowsOfMember(uneven, 0, 2);
+  EXPECT_LT(first.end, 10u);  // half the points lie in the first few windows
+  // Fewer windows than members: some get none; no work: split by count.
+  expectFairSplit({5.0}, 4);
+  expectFairSplit(std::vector<double>(7, 0.0), 3);
+  expectFairSplit({}, 2);
+  EXPECT_EQ(windowsOfMember(std::vector<double>(6, 1.0), 0, 1).end, 6u);
+  EXPECT_THROW(windowsOfMember({1.0}, 2, 2), Error);
+  EXPECT_THROW(windowsOfMember({1.0}, 0, 0), Error);
+}
+
+TEST(WindowExchange, BytesComeBackAndAShortMessageIsRefused) {
+  dist::ByteWriter out;
+  out.put(3.25);
+  out.put(Vec3(1, -2, 1e6));
+  out.putVector(std::vector<Vec3f>{Vec3f(1, 2, 3), Vec3f(-4, 5.5f, 6)});
+  out.putVector(std::vector<float>{});
+  const dist::Bytes bytes = out.take();
+  dist::ByteReader in(bytes);
+  EXPECT_EQ(in.get<double>(), 3.25);
+  EXPECT_EQ(in.get<Vec3>(), Vec3(1, -2, 1e6));
+  const std::vector<Vec3f> points = in.getVector<Vec3f>();
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1], Vec3f(-4, 5.5f, 6));
+  EXPECT_TRUE(in.getVector<float>().empty());
+  EXPECT_TRUE(in.done());
+  EXPECT_THROW(in.get<std::uint8_t>(), Error);
+
+  const dist::Bytes cut(bytes.begin(), bytes.begin() + 20);
+  dist::ByteReader short_in(cut);
+  short_in.get<double>();
+  try {
+    short_in.get<Vec3>();
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ends early"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hba::pyramid
