@@ -13,6 +13,18 @@ find_package(Threads REQUIRED)
 find_package(liblzf REQUIRED)   # PCD binary_compressed
 
 find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)
+# MPI for the tool only (the library links no transport): AUTO takes it
+# when found (libopenmpi-dev), ON requires it, OFF leaves it out.
+if(HBA_WITH_MPI STREQUAL "AUTO")
+  find_package(MPI COMPONENTS CXX QUIET)
+  set(HBA_MPI ${MPI_CXX_FOUND})
+elseif(HBA_WITH_MPI)
+  find_package(MPI REQUIRED COMPONENTS CXX)
+  set(HBA_MPI ON)
+else()
+  set(HBA_MPI OFF)
+endif()
+message(STATUS "hba: MPI ${HBA_MPI} (HBA_WITH_MPI=${HBA_WITH_MPI})")
 
 # stb (the pictures' text, stb_easy_font; the tests decode the pictures with
 # stb_image, a decoder other than the encoder's): Debian ships the compiled

@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libpng-dev libstb-dev libnanoflann-dev liblzf-dev
   pybind11-dev python3-dev python3-numpy
+  libopenmpi-dev openmpi-bin
   clang-format
 )
 case "${1:-}" in

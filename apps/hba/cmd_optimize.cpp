@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "commands.hpp"
 #include "hba/core/error.hpp"
@@ -14,6 +15,7 @@
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
+#include "process_group.hpp"
 
 namespace hba::cli {
 namespace {
@@ -32,35 +34,46 @@ void run(const Args& args) {
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
   settings.threads = pyramid::resolvedThreadCount(settings);
-  if (!args.more_sessions.empty()) return runSessions(args, settings);
+  // Under mpirun: the windows spread over the processes, which all read the
+  // input; the first alone checks the conventions and writes the outputs.
+  const dist::Group& group = processGroup();
+  if (!args.more_sessions.empty()) {
+    if (group.size() > 1)
+      throw Error("several sessions do not run under mpirun yet: run them in one process");
+    return runSessions(args, settings);
+  }
 
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
-  StagingFolder staging(args.output, args.force);
-  const fs::path& out = staging.path();
+  std::optional<StagingFolder> staging;
+  if (group.root()) staging.emplace(args.output, args.force);
   // One source of the scans for the convention check, the optimization and the picture.
   const io::DatasetScanSource scans(dataset);
   const nlohmann::json conventions =
-      checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset);
+      group.root() ? checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset)
+                   : nlohmann::json();
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
                dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
-  spdlog::info("threads: {}", settings.threads);
+  spdlog::info("threads: {}{}", settings.threads,
+               group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
   const pyramid::HbaResult result =
-      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings, closures);
+      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings, closures, group);
+  if (!group.root()) return;
+  const fs::path& out = staging->path();
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   writeReport(out, reportJson(result, dataset, settings, conventions));
 
   if (!args.no_render)
     writePicture(args, dataset, scans, result, settings.scan_voxel, dataset.trajectory().poses, out);
-  staging.commit();
+  staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
-               staging.destination().string());
+               staging->destination().string());
   spdlog::info("wrote {}, report.json{}", fmt::format("{}", fmt::join(written, ", ")),
                args.no_render ? "" : ", before_after.png");
 }

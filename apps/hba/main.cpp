@@ -15,6 +15,7 @@
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
 #include "number_checks.hpp"
+#include "process_group.hpp"
 #include "progress_display.hpp"
 #include "usage_errors.hpp"
 #include "version_text.hpp"
@@ -46,9 +47,30 @@ void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
 
 }  // namespace
 
+namespace {
+
+int run(int argc, char** argv);
+
+}  // namespace
+
 int main(int argc, char** argv) {
   // Before any thread starts: Ctrl-C then removes unfinished outputs.
   hba::startInterruptWatcher();
+  try {
+    hba::cli::startProcessGroup(argc, argv);  // MPI, under mpirun
+  } catch (const hba::Error& e) {
+    setUpLogging(false, false, "");
+    spdlog::error("{}", e.what());
+    return hba::cli::kExitFailure;
+  }
+  // Under mpirun a member that fails ends every member (no one waits).
+  return hba::cli::endProcessGroup(run(argc, argv));
+}
+
+namespace {
+
+int run(int argc, char** argv) {
+  const hba::dist::Group& group = hba::cli::processGroup();
   CLI::App app{
       "hba: turns a drifting LiDAR sequence into a globally consistent map\n"
       "(Hierarchical LiDAR Bundle Adjustment, Liu et al., RA-L 2023)"};
@@ -80,7 +102,14 @@ int main(int argc, char** argv) {
   // Threads and log level must be set before any subcommand callback runs.
   std::unique_ptr<tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
+    // Under mpirun the members log alike: the first speaks for all, the
+    // others report their errors only.
     setUpLogging(verbose, quiet, log_file);
+    if (!group.root()) spdlog::default_logger()->sinks().front()->set_level(spdlog::level::err);
+    if (group.size() > 1 && !app.got_subcommand("optimize")) {
+      throw hba::Error("under mpirun only `hba optimize` runs (" + std::to_string(group.size()) +
+                       " processes would each do the same work and write the same files)");
+    }
     hba::cli::installProgressDisplay(!quiet && ::isatty(STDERR_FILENO) != 0);
     if (threads > 0) {
       thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -110,3 +139,5 @@ int main(int argc, char** argv) {
   }
   return hba::cli::kExitSuccess;
 }
+
+}  // namespace

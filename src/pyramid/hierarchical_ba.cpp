@@ -306,6 +306,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
                            closures.session_starts, group);
   });
   result.report.threads = resolved.threads;
+  result.report.processes = group.size();
   result.poses = translated(result.poses, origin + shift);
   if (layer_one->kept())
     result.scans = std::shared_ptr<const io::ScanSource>(layer_one, &layer_one->source());

@@ -114,6 +114,7 @@ nlohmann::json reportToJson(const HbaReport& r) {
         {"regions", regions}}},
       {"layers", r.layers},
       {"threads", r.threads},
+      {"processes", r.processes},
       // "converged: false" read as a failure after the default single pass.
       {"outer_iterations",
        {{"run", r.iterations.size()}, {"stopped", r.poses_settled ? "poses settled" : "iteration limit"}}},

@@ -113,8 +113,9 @@ WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size)
   return {static_cast<std::size_t>(lo - members.begin()), static_cast<std::size_t>(hi - members.begin())};
 }
 
-std::size_t shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                         const KeyframeStore* next, const StreamedClouds& streamed) {
+std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
+                         std::vector<WindowSummary>& summaries, const KeyframeStore* next,
+                         const StreamedClouds& streamed) {
   dist::ByteWriter out;
   out.put<std::uint64_t>(mine.first);
   out.put<std::uint64_t>(mine.end);
@@ -137,7 +138,8 @@ std::size_t shareWindows(const dist::Group& group, const WindowRange& mine, std:
     const auto end = in.get<std::uint64_t>();
     if (first > end || end > summaries.size()) {
       throw Error("exchange between processes: member " + std::to_string(member) + " sent windows " +
-                  std::to_string(first) + "-" + std::to_string(end) + " of " + std::to_string(summaries.size()));
+                  std::to_string(first) + "-" + std::to_string(end) + " of " +
+                  std::to_string(summaries.size()));
     }
     const bool own = static_cast<int>(member) == group.rank();
     for (std::size_t w = first; w < end; ++w) {
@@ -152,7 +154,8 @@ std::size_t shareWindows(const dist::Group& group, const WindowRange& mine, std:
       const auto frame = in.get<std::uint64_t>();
       points_of[frame] = in.get<std::uint64_t>();
     }
-    if (!in.done()) throw Error("exchange between processes: member " + std::to_string(member) + " sent more than read");
+    if (!in.done())
+      throw Error("exchange between processes: member " + std::to_string(member) + " sent more than read");
   }
   std::size_t points = 0;
   for (const auto& [frame, n] : points_of) points += n;

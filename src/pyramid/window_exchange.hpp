@@ -27,7 +27,8 @@ WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size)
 // layer makes them) to every member and takes theirs into `summaries` and
 // `next`. Returns the points of the frames any member loaded, each frame
 // once (the layer report's cloud_points). A collective: every member calls it.
-std::size_t shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                         const KeyframeStore* next, const StreamedClouds& streamed);
+std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
+                         std::vector<WindowSummary>& summaries, const KeyframeStore* next,
+                         const StreamedClouds& streamed);
 
 }  // namespace hba::pyramid

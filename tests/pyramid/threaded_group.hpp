@@ -23,7 +23,9 @@ class ThreadedGroups {
     Member(ThreadedGroups& all, int rank) : all_(all), rank_(rank) {}
     int rank() const override { return rank_; }
     int size() const override { return all_.size(); }
-    std::vector<dist::Bytes> allGather(const dist::Bytes& mine) const override { return all_.gather(rank_, mine); }
+    std::vector<dist::Bytes> allGather(const dist::Bytes& mine) const override {
+      return all_.gather(rank_, mine);
+    }
 
    private:
     ThreadedGroups& all_;

@@ -17,8 +17,8 @@ namespace hba::dist {
 // vectors and matrices (plain arrays of scalars, though their copy
 // constructors are user-declared).
 template <typename T>
-inline constexpr bool kPackable =
-    std::is_trivially_copyable_v<T> || (std::is_standard_layout_v<T> && std::is_trivially_destructible_v<T>);
+inline constexpr bool kPackable = std::is_trivially_copyable_v<T> ||
+                                  (std::is_standard_layout_v<T> && std::is_trivially_destructible_v<T>);
 
 class ByteWriter {
  public:

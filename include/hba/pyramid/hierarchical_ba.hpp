@@ -138,7 +138,8 @@ struct ClosureReport {
 
 struct HbaReport {
   int layers = 0;
-  int threads = 0;  // that every parallel part ran on, the pose graph included
+  int threads = 0;    // that every parallel part ran on, the pose graph included
+  int processes = 1;  // the group's members the windows were spread over (mpirun's ranks)
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;

@@ -1,0 +1,98 @@
+// With MPI: mpirun's ranks, MPI_COMM_WORLD.
+#include <mpi.h>
+
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "hba/core/error.hpp"
+#include "process_group.hpp"
+
+namespace hba::cli {
+namespace {
+
+// Launchers of Open MPI, MPICH (Hydra) and PMIx-based ones say so in the
+// environment of the processes they start.
+bool startedByALauncher() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"}) {
+    if (std::getenv(name) != nullptr) return true;
+  }
+  return false;
+}
+
+void check(int code, const char* what) {
+  if (code == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  throw Error(std::string("MPI: ") + what + " failed: " + std::string(text, static_cast<std::size_t>(length)));
+}
+
+class MpiGroup final : public dist::Group {
+ public:
+  MpiGroup() {
+    check(MPI_Comm_rank(MPI_COMM_WORLD, &rank_), "MPI_Comm_rank");
+    check(MPI_Comm_size(MPI_COMM_WORLD, &size_), "MPI_Comm_size");
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+
+  std::vector<dist::Bytes> allGather(const dist::Bytes& mine) const override {
+    if (mine.size() > static_cast<std::size_t>(INT_MAX)) {
+      throw Error("MPI: rank " + std::to_string(rank_) + " would send " + std::to_string(mine.size()) +
+                  " bytes at once, beyond MPI's 2 GiB a message");
+    }
+    const int count = static_cast<int>(mine.size());
+    std::vector<int> counts(static_cast<std::size_t>(size_));
+    check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+    std::vector<int> offsets(counts.size());
+    long long total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      offsets[r] = static_cast<int>(total);
+      total += counts[r];
+    }
+    if (total > INT_MAX) throw Error("MPI: an exchange of " + std::to_string(total) + " bytes, beyond 2 GiB");
+    dist::Bytes joined(static_cast<std::size_t>(total));
+    check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(), MPI_BYTE,
+                         MPI_COMM_WORLD),
+          "MPI_Allgatherv");
+    std::vector<dist::Bytes> all(counts.size());
+    for (std::size_t r = 0; r < counts.size(); ++r) {
+      all[r].assign(joined.begin() + offsets[r], joined.begin() + offsets[r] + counts[r]);
+    }
+    return all;
+  }
+
+ private:
+  int rank_ = 0;
+  int size_ = 1;
+};
+
+std::unique_ptr<MpiGroup> world;
+
+}  // namespace
+
+const dist::Group& startProcessGroup(int& argc, char**& argv) {
+  if (world || !startedByALauncher()) return processGroup();
+  // Only the main thread calls MPI (the windows' threads never do).
+  int provided = 0;
+  check(MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+  world = std::make_unique<MpiGroup>();
+  return *world;
+}
+
+const dist::Group& processGroup() {
+  return world ? static_cast<const dist::Group&>(*world) : dist::singleProcess();
+}
+
+int endProcessGroup(int code) {
+  if (!world) return code;
+  if (code != 0 && world->size() > 1) MPI_Abort(MPI_COMM_WORLD, code);
+  world.reset();
+  MPI_Finalize();
+  return code;
+}
+
+}  // namespace hba::cli
