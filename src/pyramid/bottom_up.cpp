@@ -86,13 +86,19 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
   times.load_parts.read += loaded_after.read - loaded_before.read;
   times.load_parts.downsample += loaded_after.downsample - loaded_before.downsample;
 
-  const std::size_t cloud_points =
-      group.size() > 1 ? shareWindows(group, mine, summaries, next, streamed) : streamed.pointsLoaded();
+  Shared shared;
+  if (group.size() > 1) {
+    shared = shareWindows(group, mine, summaries, next, streamed);
+  } else {
+    shared.cloud_points = streamed.pointsLoaded();
+  }
 
   LayerOutcome outcome;
   outcome.report = sumLayerReport(summaries);
   outcome.report.frames = layer.poses.size();
-  outcome.report.cloud_points = cloud_points;
+  outcome.report.cloud_points = shared.cloud_points;
+  outcome.report.exchange_bytes = shared.bytes;
+  outcome.report.exchange_bytes_largest = shared.largest;
   outcome.windows.reserve(summaries.size());
   for (WindowSummary& summary : summaries) outcome.windows.push_back(std::move(summary.outcome));
   return outcome;

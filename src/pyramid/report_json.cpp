@@ -15,6 +15,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
                       {"planes", l.planes},
                       {"plane_points", l.plane_points},
                       {"cloud_points", l.cloud_points},
+                      {"exchange_bytes", l.exchange_bytes},
+                      {"exchange_bytes_largest", l.exchange_bytes_largest},
                       {"lm_iterations", l.lm_iterations},
                       {"association_rounds", l.association_rounds},
                       {"cost_before", l.cost_before},

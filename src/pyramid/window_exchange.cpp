@@ -113,9 +113,8 @@ WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size)
   return {static_cast<std::size_t>(lo - members.begin()), static_cast<std::size_t>(hi - members.begin())};
 }
 
-std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
-                         std::vector<WindowSummary>& summaries, const KeyframeStore* next,
-                         const StreamedClouds& streamed) {
+Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
+                    const KeyframeStore* next, const StreamedClouds& streamed) {
   dist::ByteWriter out;
   out.put<std::uint64_t>(mine.first);
   out.put<std::uint64_t>(mine.end);
@@ -131,8 +130,11 @@ std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
   }
   const std::vector<dist::Bytes> all = group.allGather(out.take());
 
+  Shared shared;
   std::map<std::size_t, std::size_t> points_of;  // every member's frames, each once
   for (std::size_t member = 0; member < all.size(); ++member) {
+    shared.bytes += all[member].size();
+    shared.largest = std::max(shared.largest, all[member].size());
     dist::ByteReader in(all[member]);
     const auto first = in.get<std::uint64_t>();
     const auto end = in.get<std::uint64_t>();
@@ -157,9 +159,8 @@ std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
     if (!in.done())
       throw Error("exchange between processes: member " + std::to_string(member) + " sent more than read");
   }
-  std::size_t points = 0;
-  for (const auto& [frame, n] : points_of) points += n;
-  return points;
+  for (const auto& [frame, n] : points_of) shared.cloud_points += n;
+  return shared;
 }
 
 }  // namespace hba::pyramid

@@ -23,12 +23,16 @@ struct WindowRange {
 // layer's work (one value per window, >= 0) as evenly as whole windows allow.
 WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size);
 
+struct Shared {
+  std::size_t cloud_points = 0;  // of the frames any member loaded, each frame once
+  std::size_t bytes = 0;         // every member's message, summed
+  std::size_t largest = 0;       // the largest member's message
+};
+
 // Sends `mine` (the summaries, and the keyframes stored in `next` when the
 // layer makes them) to every member and takes theirs into `summaries` and
-// `next`. Returns the points of the frames any member loaded, each frame
-// once (the layer report's cloud_points). A collective: every member calls it.
-std::size_t shareWindows(const dist::Group& group, const WindowRange& mine,
-                         std::vector<WindowSummary>& summaries, const KeyframeStore* next,
-                         const StreamedClouds& streamed);
+// `next`. A collective: every member calls it.
+Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
+                    const KeyframeStore* next, const StreamedClouds& streamed);
 
 }  // namespace hba::pyramid

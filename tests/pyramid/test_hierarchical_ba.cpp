@@ -127,6 +127,9 @@ TEST(HierarchicalBa, MembersOfAGroupGetThePosesOfOneProcess) {
         EXPECT_EQ(b.planes, a.planes);
         EXPECT_EQ(b.cloud_points, a.cloud_points) << "layer " << l + 1;
         EXPECT_EQ(b.cost_after, a.cost_after) << "layer " << l + 1;
+        EXPECT_EQ(a.exchange_bytes, 0u);  // one process sends nothing
+        EXPECT_GT(b.exchange_bytes, b.exchange_bytes_largest);
+        EXPECT_GT(b.exchange_bytes_largest, 0u);
       }
     }
   }

@@ -26,9 +26,13 @@ struct LayerReport {
   // Windows whose BA made the planes found at their input poses blurrier:
   // they keep their input poses (trust check, docs/pyramid.md).
   std::size_t windows_untrusted = 0;
-  std::size_t planes = 0;              // summed over windows
-  std::size_t plane_points = 0;        // summed over windows
-  std::size_t cloud_points = 0;        // points in this layer's clouds (after downsampling)
+  std::size_t planes = 0;        // summed over windows
+  std::size_t plane_points = 0;  // summed over windows
+  std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
+  // Bytes the processes sent each other after this layer (every member's
+  // message once; 0 in one process), and the largest one member sent.
+  std::size_t exchange_bytes = 0;
+  std::size_t exchange_bytes_largest = 0;
   std::size_t lm_iterations = 0;       // summed over windows
   std::size_t association_rounds = 0;  // summed over windows
   double cost_before = 0.0;            // summed BA cost over windows
