@@ -45,7 +45,9 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
   const auto threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
   const bool scans = layer.keyframes == nullptr;
   // This process's windows: all of them, or its range of a group's.
-  const WindowRange mine = windowsOfMember(windowWork(layer, windows), group.rank(), group.size());
+  const WindowRange mine = group.size() > 1
+                               ? windowsOfMember(windowWork(layer, windows), group.rank(), group.size())
+                               : WindowRange{0, windows.size()};
   const std::vector<Window> my_windows(windows.begin() + static_cast<long>(mine.first),
                                        windows.begin() + static_cast<long>(mine.end));
 
