@@ -9,6 +9,11 @@ mpiexec="$2"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 launch=("$mpiexec" --oversubscribe)
+# Open MPI's shared-memory transport copies large messages across processes
+# with ptrace-like calls, which containers often forbid: plain copies.
+if "$mpiexec" --version 2>&1 | grep -q "Open MPI"; then
+  launch+=(--mca btl_vader_single_copy_mechanism none)
+fi
 # Open MPI refuses root unless told (containers, CI).
 if [ "$(id -u)" -eq 0 ]; then launch+=(--allow-run-as-root); fi
 
