@@ -40,6 +40,44 @@ class MpiGroup final : public dist::Group {
   int rank() const override { return rank_; }
   int size() const override { return size_; }
 
+  std::vector<dist::Bytes> allToAll(const std::vector<dist::Bytes>& to_each) const override {
+    if (to_each.size() != static_cast<std::size_t>(size_))
+      throw Error("MPI: a message for each rank is needed");
+    std::vector<int> send_counts(to_each.size()), send_offsets(to_each.size());
+    long long sent = 0;
+    for (std::size_t r = 0; r < to_each.size(); ++r) {
+      send_offsets[r] = static_cast<int>(sent);
+      sent += static_cast<long long>(to_each[r].size());
+      send_counts[r] = static_cast<int>(to_each[r].size());
+    }
+    if (sent > INT_MAX)
+      throw Error("MPI: rank " + std::to_string(rank_) + " would send " + std::to_string(sent) +
+                  " bytes at once, beyond MPI's 2 GiB a message");
+    dist::Bytes joined;
+    joined.reserve(static_cast<std::size_t>(sent));
+    for (const dist::Bytes& part : to_each) joined.insert(joined.end(), part.begin(), part.end());
+    std::vector<int> receive_counts(to_each.size()), receive_offsets(to_each.size());
+    check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
+          "MPI_Alltoall");
+    long long received = 0;
+    for (std::size_t r = 0; r < receive_counts.size(); ++r) {
+      receive_offsets[r] = static_cast<int>(received);
+      received += receive_counts[r];
+    }
+    if (received > INT_MAX)
+      throw Error("MPI: an exchange of " + std::to_string(received) + " bytes, beyond 2 GiB");
+    dist::Bytes incoming(static_cast<std::size_t>(received));
+    check(MPI_Alltoallv(joined.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, incoming.data(),
+                        receive_counts.data(), receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD),
+          "MPI_Alltoallv");
+    std::vector<dist::Bytes> from_each(receive_counts.size());
+    for (std::size_t r = 0; r < receive_counts.size(); ++r) {
+      from_each[r].assign(incoming.begin() + receive_offsets[r],
+                          incoming.begin() + receive_offsets[r] + receive_counts[r]);
+    }
+    return from_each;
+  }
+
   std::vector<dist::Bytes> allGather(const dist::Bytes& mine) const override {
     if (mine.size() > static_cast<std::size_t>(INT_MAX)) {
       throw Error("MPI: rank " + std::to_string(rank_) + " would send " + std::to_string(mine.size()) +

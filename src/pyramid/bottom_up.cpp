@@ -18,19 +18,11 @@ namespace hba::pyramid {
 namespace {
 
 // Each window's share of a layer's work: its points where they are known
-// without reading (the stored keyframes of an upper layer), else its frames
-// (the scans of one sensor are much alike).
+// without reading (an upper layer's keyframes), else its frames (the scans
+// of one sensor are much alike).
 std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& windows) {
-  std::vector<double> work;
-  work.reserve(windows.size());
-  for (const Window& window : windows) {
-    double points = 0.0;
-    for (std::size_t k = 0; k < window.count; ++k) {
-      points += layer.keyframes ? static_cast<double>(layer.keyframes->points(window.first + k)) : 1.0;
-    }
-    work.push_back(points);
-  }
-  return work;
+  if (!layer.keyframe_points.empty()) return workOf(windows, layer.keyframe_points);
+  return workOf(windows, std::vector<std::size_t>(layer.poses.size(), 1));
 }
 
 }  // namespace
@@ -38,7 +30,8 @@ std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& wi
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
                            const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
-                           const std::string& progress_label, const dist::Group& group) {
+                           const std::string& progress_label, const dist::Group& group,
+                           const std::vector<Window>& next_windows) {
   checkWindowPlan(windows, layer.poses.size());
   std::vector<WindowSummary> summaries(windows.size());
   StreamedClouds streamed(clouds.source());
@@ -90,9 +83,11 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
 
   Shared shared;
   if (group.size() > 1) {
-    shared = shareWindows(group, mine, summaries, next, streamed);
+    shared = shareWindows(group, mine, summaries, next, next_windows, streamed);
   } else {
     shared.cloud_points = streamed.pointsLoaded();
+    for (std::size_t w = 0; next && w < windows.size(); ++w)
+      shared.keyframe_points.push_back(next->points(w));
   }
 
   LayerOutcome outcome;
@@ -101,6 +96,7 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
   outcome.report.cloud_points = shared.cloud_points;
   outcome.report.exchange_bytes = shared.bytes;
   outcome.report.exchange_bytes_largest = shared.largest;
+  outcome.keyframe_points = std::move(shared.keyframe_points);
   outcome.windows.reserve(summaries.size());
   for (WindowSummary& summary : summaries) outcome.windows.push_back(std::move(summary.outcome));
   return outcome;

@@ -28,12 +28,14 @@ struct StageTimes {
 // worth of clouds. With `next` set, each window's plane points, downsampled
 // to `keyframe_voxel`, are stored there as keyframe j of the next layer.
 // In a group of processes each runs its range of the windows (reading only
-// their clouds) and then has every window's (window_exchange.hpp); every
-// member must call it, for the same layer.
+// their clouds), then has every window's summary and the keyframes its
+// windows of the next layer (`next_windows`, the next layer's plan) read
+// (window_exchange.hpp); every member must call it, for the same layer.
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
                            const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
                            const std::string& progress_label,
-                           const dist::Group& group = dist::singleProcess());
+                           const dist::Group& group = dist::singleProcess(),
+                           const std::vector<Window>& next_windows = {});
 
 }  // namespace hba::pyramid

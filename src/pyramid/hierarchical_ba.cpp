@@ -117,9 +117,13 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     std::unique_ptr<TimedClouds> stored;
     const TimedClouds& clouds = cloudsOf(layer, scans, stored);
     auto keyframes = std::make_unique<KeyframeStore>(windows.size());
-    LayerOutcome outcome =
-        optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings, keyframes.get(),
-                      keyframeVoxel(settings, level + 1), times, "layer " + std::to_string(level), group);
+    // The next layer reads the keyframes: by its own windows, or all in the top one.
+    const std::vector<Window> next_windows =
+        level + 1 < layers ? planWindows(windows.size(), settings.window, settings.stride)
+                           : std::vector<Window>{Window{0, windows.size()}};
+    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level), settings,
+                                         keyframes.get(), keyframeVoxel(settings, level + 1), times,
+                                         "layer " + std::to_string(level), group, next_windows);
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.seconds = secondsSince(start);

@@ -22,6 +22,9 @@ struct Layer {
   // frame: how far apart two frames are, for the motion prior.
   std::vector<double> distance_m;
   std::unique_ptr<KeyframeStore> keyframes;  // null for layer 1
+  // The points of every keyframe, also of those stored by other processes
+  // only (a group spreads the windows by them); empty for layer 1.
+  std::vector<std::size_t> keyframe_points;
 };
 
 // Layer 1: the input frames at `poses`, each anchored at itself, with the
@@ -40,6 +43,7 @@ struct WindowOutcome {
 struct LayerOutcome {
   std::vector<WindowOutcome> windows;
   LayerReport report;
+  std::vector<std::size_t> keyframe_points;  // of each window's keyframe, when it made them
 };
 
 // The plan a layer's windows followed.

@@ -26,6 +26,7 @@ Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
     }
   }
   upper.keyframes = std::move(keyframes);
+  upper.keyframe_points = outcome.keyframe_points;
   return upper;
 }
 

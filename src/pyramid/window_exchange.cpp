@@ -113,14 +113,36 @@ WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size)
   return {static_cast<std::size_t>(lo - members.begin()), static_cast<std::size_t>(hi - members.begin())};
 }
 
+WindowRange framesOf(const std::vector<Window>& windows, const WindowRange& range) {
+  if (range.first >= range.end) return {0, 0};
+  WindowRange frames{windows[range.first].first, windows[range.first].first};
+  for (std::size_t w = range.first; w < range.end; ++w) {
+    frames.end = std::max(frames.end, windows[w].first + windows[w].count);
+  }
+  return frames;
+}
+
+std::vector<double> workOf(const std::vector<Window>& windows, const std::vector<std::size_t>& points) {
+  std::vector<double> work;
+  work.reserve(windows.size());
+  for (const Window& window : windows) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < window.count; ++k) sum += static_cast<double>(points.at(window.first + k));
+    work.push_back(sum);
+  }
+  return work;
+}
+
 Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                    const KeyframeStore* next, const StreamedClouds& streamed) {
+                    const KeyframeStore* next, const std::vector<Window>& next_windows,
+                    const StreamedClouds& streamed) {
+  // First every window's summary and keyframe size, to every member.
   dist::ByteWriter out;
   out.put<std::uint64_t>(mine.first);
   out.put<std::uint64_t>(mine.end);
   for (std::size_t w = mine.first; w < mine.end; ++w) {
     putSummary(out, summaries[w]);
-    if (next) putCloud(out, next->load(w));
+    out.put<std::uint64_t>(next ? next->points(w) : 0);
   }
   const std::vector<std::pair<std::size_t, std::size_t>> loaded = streamed.framesLoaded();
   out.put<std::uint64_t>(loaded.size());
@@ -131,10 +153,10 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
   const std::vector<dist::Bytes> all = group.allGather(out.take());
 
   Shared shared;
+  shared.keyframe_points.assign(summaries.size(), 0);
   std::map<std::size_t, std::size_t> points_of;  // every member's frames, each once
   for (std::size_t member = 0; member < all.size(); ++member) {
     shared.bytes += all[member].size();
-    shared.largest = std::max(shared.largest, all[member].size());
     dist::ByteReader in(all[member]);
     const auto first = in.get<std::uint64_t>();
     const auto end = in.get<std::uint64_t>();
@@ -146,10 +168,8 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
     const bool own = static_cast<int>(member) == group.rank();
     for (std::size_t w = first; w < end; ++w) {
       WindowSummary summary = getSummary(in);
-      PointCloud keyframe = next ? getCloud(in) : PointCloud{};
-      if (own) continue;  // already here, as found
-      summaries[w] = std::move(summary);
-      if (next) next->store(w, keyframe);
+      shared.keyframe_points[w] = in.get<std::uint64_t>();
+      if (!own) summaries[w] = std::move(summary);  // one's own are here already, as found
     }
     const auto frames = in.get<std::uint64_t>();
     for (std::uint64_t k = 0; k < frames; ++k) {
@@ -160,6 +180,55 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
       throw Error("exchange between processes: member " + std::to_string(member) + " sent more than read");
   }
   for (const auto& [frame, n] : points_of) shared.cloud_points += n;
+  std::size_t my_bytes = all[static_cast<std::size_t>(group.rank())].size();
+
+  if (next) {
+    // Then each keyframe to the members whose next windows read it.
+    if (next_windows.empty())
+      throw Error("exchange between processes: the next layer's windows are not known");
+    const std::vector<double> work = workOf(next_windows, shared.keyframe_points);
+    std::vector<dist::Bytes> to_each(all.size());
+    for (int member = 0; member < group.size(); ++member) {
+      if (member == group.rank()) continue;
+      const WindowRange reads = framesOf(next_windows, windowsOfMember(work, member, group.size()));
+      dist::ByteWriter part;
+      for (std::size_t w = std::max(mine.first, reads.first); w < std::min(mine.end, reads.end); ++w) {
+        part.put<std::uint64_t>(w);
+        putCloud(part, next->load(w));
+      }
+      to_each[static_cast<std::size_t>(member)] = part.take();
+      my_bytes += to_each[static_cast<std::size_t>(member)].size();
+    }
+    const std::vector<dist::Bytes> from_each = group.allToAll(to_each);
+    for (const dist::Bytes& bytes : from_each) {
+      dist::ByteReader in(bytes);
+      while (!in.done()) {
+        const auto w = in.get<std::uint64_t>();
+        if (w >= summaries.size())
+          throw Error("exchange between processes: keyframe " + std::to_string(w) + " of " +
+                      std::to_string(summaries.size()));
+        next->store(w, getCloud(in));
+      }
+    }
+    const WindowRange reads = framesOf(next_windows, windowsOfMember(work, group.rank(), group.size()));
+    for (std::size_t w = reads.first; w < reads.end; ++w) {
+      if (next->points(w) != shared.keyframe_points[w]) {
+        throw Error("exchange between processes: keyframe " + std::to_string(w) + " did not come (" +
+                    std::to_string(next->points(w)) + " of " + std::to_string(shared.keyframe_points[w]) +
+                    " points)");
+      }
+    }
+  }
+  // What each member sent, summed and at most.
+  dist::ByteWriter sent;
+  sent.put<std::uint64_t>(my_bytes);
+  shared.bytes = 0;
+  for (const dist::Bytes& bytes : group.allGather(sent.take())) {
+    dist::ByteReader in(bytes);
+    const auto n = static_cast<std::size_t>(in.get<std::uint64_t>());
+    shared.bytes += n;
+    shared.largest = std::max(shared.largest, n);
+  }
   return shared;
 }
 

@@ -24,15 +24,26 @@ struct WindowRange {
 WindowRange windowsOfMember(const std::vector<double>& work, int rank, int size);
 
 struct Shared {
-  std::size_t cloud_points = 0;  // of the frames any member loaded, each frame once
-  std::size_t bytes = 0;         // every member's message, summed
-  std::size_t largest = 0;       // the largest member's message
+  std::size_t cloud_points = 0;              // of the frames any member loaded, each frame once
+  std::size_t bytes = 0;                     // every member's messages, summed
+  std::size_t largest = 0;                   // the most one member sent
+  std::vector<std::size_t> keyframe_points;  // of every window's keyframe, when the layer makes them
 };
 
-// Sends `mine` (the summaries, and the keyframes stored in `next` when the
-// layer makes them) to every member and takes theirs into `summaries` and
-// `next`. A collective: every member calls it.
+// Sends every member the summaries of `mine` and takes theirs into
+// `summaries`; when the layer makes keyframes (`next`), sends each of its
+// keyframes to the members whose windows of the next layer (`next_windows`,
+// split as windowsOfMember splits them) read it, and stores those it gets.
+// A collective: every member calls it. Throws hba::Error if a keyframe this
+// member's next windows read did not come.
 Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                    const KeyframeStore* next, const StreamedClouds& streamed);
+                    const KeyframeStore* next, const std::vector<Window>& next_windows,
+                    const StreamedClouds& streamed);
+
+// The frames [first, end) the windows of `range` read.
+WindowRange framesOf(const std::vector<Window>& windows, const WindowRange& range);
+
+// Each window's share of the work of a layer whose frames have `points`.
+std::vector<double> workOf(const std::vector<Window>& windows, const std::vector<std::size_t>& points);
 
 }  // namespace hba::pyramid

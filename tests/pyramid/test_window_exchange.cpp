@@ -49,6 +49,22 @@ TEST(WindowExchange, MembersSplitTheWorkInConsecutiveRanges) {
   EXPECT_THROW(windowsOfMember({1.0}, 0, 0), Error);
 }
 
+// The next layer's windows of a member read the frames they cover: the
+// keyframes sent to it, and only those.
+TEST(WindowExchange, AMembersWindowsReadTheFramesTheyCover) {
+  const std::vector<Window> plan{{0, 10}, {5, 10}, {10, 10}, {15, 7}};
+  EXPECT_EQ(framesOf(plan, {0, 1}).first, 0u);
+  EXPECT_EQ(framesOf(plan, {0, 1}).end, 10u);
+  EXPECT_EQ(framesOf(plan, {1, 4}).first, 5u);
+  EXPECT_EQ(framesOf(plan, {1, 4}).end, 22u);
+  EXPECT_EQ(framesOf(plan, {2, 2}).end, 0u);  // no window, no frame
+  std::vector<std::size_t> points(22, 1);
+  points[0] = 100;
+  const std::vector<double> work = workOf(plan, points);
+  EXPECT_EQ(work, (std::vector<double>{109, 10, 10, 7}));
+  EXPECT_THROW(workOf({{20, 5}}, points), std::out_of_range);
+}
+
 TEST(WindowExchange, BytesComeBackAndAShortMessageIsRefused) {
   dist::ByteWriter out;
   out.put(3.25);

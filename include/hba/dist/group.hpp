@@ -19,6 +19,9 @@ class Group {
   // Every member's `mine`, in rank order. Every member calls it, the same
   // number of times in the same order (a collective). Throws hba::Error.
   virtual std::vector<Bytes> allGather(const Bytes& mine) const = 0;
+  // What every member sent this one: `to_each[r]` goes to member r, and
+  // the result's [r] came from member r. A collective, like allGather.
+  virtual std::vector<Bytes> allToAll(const std::vector<Bytes>& to_each) const = 0;
 };
 
 // This process alone: rank 0 of 1, and a gather hands back `mine`.
