@@ -1,11 +1,14 @@
 // With MPI: mpirun's ranks, MPI_COMM_WORLD.
 #include <mpi.h>
 
+#include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "hba/core/error.hpp"
 #include "process_group.hpp"
@@ -29,6 +32,19 @@ void check(int code, const char* what) {
   MPI_Error_string(code, text, &length);
   throw Error(std::string("MPI: ") + what +
               " failed: " + std::string(text, static_cast<std::size_t>(length)));
+}
+
+// Waits for `request` without spinning: a member waiting for the first one's
+// refinement would otherwise keep a core busy that the first one needs.
+void wait(MPI_Request& request, const char* what) {
+  auto pause = std::chrono::microseconds(50);
+  for (;;) {
+    int done = 0;
+    check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), what);
+    if (done) return;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(20000));
+  }
 }
 
 class MpiGroup final : public dist::Group {
@@ -57,8 +73,11 @@ class MpiGroup final : public dist::Group {
     joined.reserve(static_cast<std::size_t>(sent));
     for (const dist::Bytes& part : to_each) joined.insert(joined.end(), part.begin(), part.end());
     std::vector<int> receive_counts(to_each.size()), receive_offsets(to_each.size());
-    check(MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD),
-          "MPI_Alltoall");
+    MPI_Request request;
+    check(MPI_Ialltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD,
+                        &request),
+          "MPI_Ialltoall");
+    wait(request, "MPI_Ialltoall");
     long long received = 0;
     for (std::size_t r = 0; r < receive_counts.size(); ++r) {
       receive_offsets[r] = static_cast<int>(received);
@@ -67,9 +86,10 @@ class MpiGroup final : public dist::Group {
     if (received > INT_MAX)
       throw Error("MPI: an exchange of " + std::to_string(received) + " bytes, beyond 2 GiB");
     dist::Bytes incoming(static_cast<std::size_t>(received));
-    check(MPI_Alltoallv(joined.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, incoming.data(),
-                        receive_counts.data(), receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD),
-          "MPI_Alltoallv");
+    check(MPI_Ialltoallv(joined.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, incoming.data(),
+                         receive_counts.data(), receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD, &request),
+          "MPI_Ialltoallv");
+    wait(request, "MPI_Ialltoallv");
     std::vector<dist::Bytes> from_each(receive_counts.size());
     for (std::size_t r = 0; r < receive_counts.size(); ++r) {
       from_each[r].assign(incoming.begin() + receive_offsets[r],
@@ -85,7 +105,10 @@ class MpiGroup final : public dist::Group {
     }
     const int count = static_cast<int>(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(size_));
-    check(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Allgather");
+    MPI_Request request;
+    check(MPI_Iallgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request),
+          "MPI_Iallgather");
+    wait(request, "MPI_Iallgather");
     std::vector<int> offsets(counts.size());
     long long total = 0;
     for (std::size_t r = 0; r < counts.size(); ++r) {
@@ -94,9 +117,10 @@ class MpiGroup final : public dist::Group {
     }
     if (total > INT_MAX) throw Error("MPI: an exchange of " + std::to_string(total) + " bytes, beyond 2 GiB");
     dist::Bytes joined(static_cast<std::size_t>(total));
-    check(MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(), MPI_BYTE,
-                         MPI_COMM_WORLD),
-          "MPI_Allgatherv");
+    check(MPI_Iallgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
+                          MPI_BYTE, MPI_COMM_WORLD, &request),
+          "MPI_Iallgatherv");
+    wait(request, "MPI_Iallgatherv");
     std::vector<dist::Bytes> all(counts.size());
     for (std::size_t r = 0; r < counts.size(); ++r) {
       all[r].assign(joined.begin() + offsets[r], joined.begin() + offsets[r] + counts[r]);

@@ -13,6 +13,11 @@ class SingleProcess final : public Group {
 
 }  // namespace
 
+Bytes fromRoot(const Group& group, const Bytes& mine) {
+  if (group.size() == 1) return mine;
+  return group.allGather(group.root() ? mine : Bytes{}).front();
+}
+
 const Group& singleProcess() {
   static const SingleProcess group;
   return group;

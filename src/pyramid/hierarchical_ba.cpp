@@ -16,6 +16,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/core/stopwatch.hpp"
+#include "hba/dist/bytes.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "refine_stage.hpp"
@@ -185,6 +186,54 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
   return solved.poses;
 }
 
+// The first member's poses, in every member (a collective).
+std::vector<Pose> posesFromRoot(const dist::Group& group, const std::vector<Pose>& mine) {
+  dist::ByteWriter out;
+  if (group.root()) dist::putPoses(out, mine);
+  const dist::Bytes bytes = dist::fromRoot(group, out.take());
+  dist::ByteReader in(bytes);
+  return dist::getPoses(in);
+}
+
+// The first member's closure outcome (start, loops, priors; its report
+// stays there), in every member.
+void shareClosures(const dist::Group& group, ClosureOutcome& closed) {
+  dist::ByteWriter out;
+  if (group.root()) {
+    dist::putPoses(out, closed.start);
+    out.put<std::uint64_t>(closed.loops.size());
+    for (const graph::LoopClosureFactor& loop : closed.loops) {
+      out.put<std::uint64_t>(loop.from);
+      out.put<std::uint64_t>(loop.to);
+      dist::putPose(out, loop.measurement);
+      out.put(loop.information);
+    }
+    out.put<std::uint64_t>(closed.priors.size());
+    for (const graph::PositionPriorFactor& prior : closed.priors) {
+      out.put<std::uint64_t>(prior.node);
+      out.put(prior.position);
+      out.put(prior.information);
+    }
+  }
+  const dist::Bytes bytes = dist::fromRoot(group, out.take());
+  if (group.root()) return;
+  dist::ByteReader in(bytes);
+  closed.start = dist::getPoses(in);
+  closed.loops.resize(in.get<std::uint64_t>());
+  for (graph::LoopClosureFactor& loop : closed.loops) {
+    loop.from = in.get<std::uint64_t>();
+    loop.to = in.get<std::uint64_t>();
+    loop.measurement = dist::getPose(in);
+    loop.information = in.get<Mat6>();
+  }
+  closed.priors.resize(in.get<std::uint64_t>());
+  for (graph::PositionPriorFactor& prior : closed.priors) {
+    prior.node = in.get<std::uint64_t>();
+    prior.position = in.get<Vec3>();
+    prior.information = in.get<Mat3>();
+  }
+}
+
 // The whole method, on poses near the origin.
 HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initial,
                         const HbaSettings& settings, const ClosureOutcome& closed,
@@ -227,6 +276,13 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     }
   }
 
+  // What follows the hierarchy runs in the first process (the refinement
+  // reads every scan), which sends the others its poses.
+  if (!group.root()) {
+    result.poses = posesFromRoot(group, {});
+    report.seconds_total = secondsSince(start);
+    return result;
+  }
   // The refinement's motion prior and self-check take the closed start as
   // the input: its steps are the input's, its loops closed.
   result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report, closed.priors,
@@ -262,6 +318,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     result.poses = initial;
   }
   report.seconds_total = secondsSince(start) + closed.report.seconds;
+  if (group.size() > 1) posesFromRoot(group, result.poses);
   return result;
 }
 
@@ -300,7 +357,11 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   HbaResult result;
   Vec3 shift = Vec3::Zero();
   arena.execute([&] {
-    ClosureOutcome closed = runClosureStage(layer_one->source(), near_initial, near_closures, resolved);
+    // The closure stage in the first process, its outcome sent to the others.
+    ClosureOutcome closed = group.root()
+                                ? runClosureStage(layer_one->source(), near_initial, near_closures, resolved)
+                                : ClosureOutcome{};
+    if (group.size() > 1) shareClosures(group, closed);
     // Priors may put the start far from the input (UTM coordinates): the
     // hierarchy works near the start's first pose instead.
     shift = closed.start.front().t;

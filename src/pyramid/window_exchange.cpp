@@ -11,17 +11,8 @@
 namespace hba::pyramid {
 namespace {
 
-void putPose(dist::ByteWriter& out, const Pose& pose) {
-  out.put(pose.q.coeffs());
-  out.put(pose.t);
-}
-
-Pose getPose(dist::ByteReader& in) {
-  Pose pose;
-  pose.q.coeffs() = in.get<Eigen::Vector4d>();
-  pose.t = in.get<Vec3>();
-  return pose;
-}
+using dist::getPose;
+using dist::putPose;
 
 void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   const WindowOutcome& o = s.outcome;

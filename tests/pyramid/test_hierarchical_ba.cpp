@@ -99,8 +99,19 @@ TEST(HierarchicalBa, MembersOfAGroupGetThePosesOfOneProcess) {
   settings.window = 6;  // three layers of 40 frames: upper layers are spread too
   settings.stride = 3;
   settings.layers = 3;
+  settings.outer_iterations = 2;  // the second starts from the pose graph, which holds the priors
   const io::MemoryScanSource source(simulated().scans);
-  const HbaResult alone = runHierarchicalBa(source, simulated().initial, settings);
+  // Position priors on three frames (the truth, 1 m off the input's frame):
+  // the closure stage's outcome is shared by the first member.
+  ClosureInputs closures;
+  for (const std::size_t frame : {std::size_t{0}, std::size_t{20}, std::size_t{39}}) {
+    graph::PositionPriorFactor prior;
+    prior.node = frame;
+    prior.position = simulated().truth.poses[frame].t + Vec3(1.0, 0.0, 0.0);
+    prior.information = Mat3::Identity() * 100.0;
+    closures.priors.push_back(prior);
+  }
+  const HbaResult alone = runHierarchicalBa(source, simulated().initial, settings, closures);
   ASSERT_EQ(alone.report.layers, 3);
   for (const int size : {2, 3}) {
     hba::test::ThreadedGroups groups(size);
@@ -109,7 +120,7 @@ TEST(HierarchicalBa, MembersOfAGroupGetThePosesOfOneProcess) {
     for (int rank = 0; rank < size; ++rank) {
       members.emplace_back([&, rank] {
         results[static_cast<std::size_t>(rank)] =
-            runHierarchicalBa(source, simulated().initial, settings, {}, groups.member(rank));
+            runHierarchicalBa(source, simulated().initial, settings, closures, groups.member(rank));
       });
     }
     for (std::thread& member : members) member.join();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hba/core/error.hpp"
+#include "hba/core/pose.hpp"
 #include "hba/dist/group.hpp"
 
 namespace hba::dist {
@@ -76,5 +77,28 @@ class ByteReader {
   const Bytes& bytes_;
   std::size_t at_ = 0;
 };
+
+inline void putPose(ByteWriter& out, const Pose& pose) {
+  out.put(pose.q.coeffs());
+  out.put(pose.t);
+}
+
+inline Pose getPose(ByteReader& in) {
+  Pose pose;
+  pose.q.coeffs() = in.get<Eigen::Vector4d>();
+  pose.t = in.get<Vec3>();
+  return pose;
+}
+
+inline void putPoses(ByteWriter& out, const std::vector<Pose>& poses) {
+  out.put<std::uint64_t>(poses.size());
+  for (const Pose& pose : poses) putPose(out, pose);
+}
+
+inline std::vector<Pose> getPoses(ByteReader& in) {
+  std::vector<Pose> poses(in.get<std::uint64_t>());
+  for (Pose& pose : poses) pose = getPose(in);
+  return poses;
+}
 
 }  // namespace hba::dist

@@ -27,4 +27,8 @@ class Group {
 // This process alone: rank 0 of 1, and a gather hands back `mine`.
 const Group& singleProcess();
 
+// The first member's `mine`, in every member (the others' are not sent).
+// A collective.
+Bytes fromRoot(const Group& group, const Bytes& mine);
+
 }  // namespace hba::dist
