@@ -265,6 +265,9 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
     std::vector<Pose> updated =
         iterate(scans, result.poses, settings, closed, report.layers, iteration, report, group);
+    // The first process's pose graph speaks for all: members with other
+    // thread counts (other machines) then still stop at the same iteration.
+    if (group.size() > 1) updated = posesFromRoot(group, updated);
     const PoseChange u = largestChange(result.poses, updated);
     report.iterations.back().max_translation_update = u.translation_m;
     report.iterations.back().max_rotation_update = u.rotation_deg;
