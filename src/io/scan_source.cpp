@@ -1,6 +1,7 @@
 #include "hba/io/scan_source.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include "hba/core/error.hpp"
@@ -23,6 +24,12 @@ PointCloud DatasetScanSource::load(std::size_t i) const {
   return dataset_.loadScan(i);
 }
 
+double DatasetScanSource::sizeHint(std::size_t i) const {
+  std::error_code error;
+  const auto bytes = std::filesystem::file_size(dataset_.scanPath(i), error);
+  return error ? 1.0 : static_cast<double>(bytes);
+}
+
 PointCloud MemoryScanSource::load(std::size_t i) const {
   if (i >= scans_.size()) outOfRange(i, scans_.size(), "scans in memory");
   return scans_[i];
@@ -35,10 +42,20 @@ ConcatenatedScanSource::ConcatenatedScanSource(std::vector<const ScanSource*> pa
 
 PointCloud ConcatenatedScanSource::load(std::size_t i) const {
   if (i >= size()) outOfRange(i, size(), "sessions");
+  const std::size_t part = partOf(i);
+  return parts_[part]->load(i - starts_[part]);
+}
+
+double ConcatenatedScanSource::sizeHint(std::size_t i) const {
+  if (i >= size()) outOfRange(i, size(), "sessions");
+  const std::size_t part = partOf(i);
+  return parts_[part]->sizeHint(i - starts_[part]);
+}
+
+std::size_t ConcatenatedScanSource::partOf(std::size_t i) const {
   // The last start not after i; empty parts share a start with the next.
   const auto after = std::upper_bound(starts_.begin(), starts_.end(), i);
-  const std::size_t part = static_cast<std::size_t>(after - starts_.begin()) - 1;
-  return parts_[part]->load(i - starts_[part]);
+  return static_cast<std::size_t>(after - starts_.begin()) - 1;
 }
 
 }  // namespace hba::io

@@ -18,11 +18,19 @@ namespace hba::pyramid {
 namespace {
 
 // Each window's share of a layer's work: its points where they are known
-// without reading (an upper layer's keyframes), else its frames (the scans
-// of one sensor are much alike).
-std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& windows) {
+// without reading (an upper layer's keyframes), else its scans' sizes as
+// their source tells them (file bytes; 1 each where it cannot).
+std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& windows,
+                               const io::ScanSource& clouds) {
   if (!layer.keyframe_points.empty()) return workOf(windows, layer.keyframe_points);
-  return workOf(windows, std::vector<std::size_t>(layer.poses.size(), 1));
+  std::vector<double> work;
+  work.reserve(windows.size());
+  for (const Window& window : windows) {
+    double sum = 0.0;
+    for (std::size_t k = 0; k < window.count; ++k) sum += clouds.sizeHint(window.first + k);
+    work.push_back(sum);
+  }
+  return work;
 }
 
 }  // namespace
@@ -38,9 +46,9 @@ LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const 
   const auto threads = static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
   const bool scans = layer.keyframes == nullptr;
   // This process's windows: all of them, or its range of a group's.
-  const WindowRange mine = group.size() > 1
-                               ? windowsOfMember(windowWork(layer, windows), group.rank(), group.size())
-                               : WindowRange{0, windows.size()};
+  const WindowRange mine = group.size() > 1 ? windowsOfMember(windowWork(layer, windows, clouds.source()),
+                                                              group.rank(), group.size())
+                                            : WindowRange{0, windows.size()};
   const std::vector<Window> my_windows(windows.begin() + static_cast<long>(mine.first),
                                        windows.begin() + static_cast<long>(mine.end));
 

@@ -21,6 +21,7 @@ class SpilledScanSource : public io::ScanSource {
   std::size_t size() const override { return inner_.size(); }
   // Thread-safe. Throws hba::Error (a full disk).
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override { return inner_.sizeHint(i); }
 
  private:
   enum : int { kNotKept = 0, kKeeping = 1, kKept = 2 };

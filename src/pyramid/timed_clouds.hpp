@@ -36,6 +36,7 @@ class TimedScanSource : public io::ScanSource {
   TimedScanSource(const io::ScanSource& inner, ThreadSeconds& seconds) : inner_(inner), seconds_(seconds) {}
   std::size_t size() const override { return inner_.size(); }
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override { return inner_.sizeHint(i); }
 
  private:
   const io::ScanSource& inner_;

@@ -121,5 +121,24 @@ TEST(ConcatenatedScanSource, GivesEachPartsScansInTurn) {
   test::expectErrorMentioning([&] { whole.load(3); }, {"sessions", "scan 3", "3 scans"});
 }
 
+// How large each scan is, cheaply, to share work out by: a dataset's file
+// bytes, memory's points, a concatenation its part's.
+TEST(ScanSources, TellHowLargeEachScanIs) {
+  test::TempDir dir;
+  writeThreeScans(dir.path(), threePoses(), false);
+  const Dataset dataset = Dataset::open(dir.path());
+  const DatasetScanSource source(dataset);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(source.sizeHint(i), static_cast<double>(fs::file_size(dataset.scanPath(i))));
+  }
+  EXPECT_LT(source.sizeHint(1), source.sizeHint(0));  // no intensity: fewer bytes
+  const MemoryScanSource memory({test::makeCloud(10, true), PointCloud()});
+  EXPECT_EQ(memory.sizeHint(0), 10.0);
+  EXPECT_EQ(memory.sizeHint(1), 0.0);
+  const ConcatenatedScanSource whole({&memory, &source});
+  EXPECT_EQ(whole.sizeHint(0), 10.0);
+  EXPECT_EQ(whole.sizeHint(4), source.sizeHint(2));
+}
+
 }  // namespace
 }  // namespace hba::io

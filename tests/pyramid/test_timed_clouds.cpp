@@ -6,6 +6,7 @@
 #include <thread>
 #include <vector>
 
+#include "hba/io/scan_source.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "timed_clouds.hpp"
 
@@ -55,6 +56,20 @@ TEST(TimedClouds, StoredCloudsAreOnlyRead) {
   EXPECT_EQ(clouds.source().load(1).size(), 20000u);
   EXPECT_GE(clouds.seconds().read, 0.005);
   EXPECT_EQ(clouds.seconds().downsample, 0.0);
+}
+
+// A layer's wrapped source (timed, downsampled, kept on disk) tells the
+// scans' sizes as the source it wraps does: the windows are shared out by them.
+TEST(TimedClouds, TellTheScansSizesAsTheirSourceDoes) {
+  std::vector<PointCloud> scans(3);
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    for (std::size_t k = 0; k < 10 * (i + 1); ++k) scans[i].add(Vec3f(static_cast<float>(k), 0.0f, 0.0f));
+  }
+  const io::MemoryScanSource source(scans);
+  for (const bool keep : {false, true}) {
+    const TimedClouds clouds(source, 0.5, keep);
+    for (std::size_t i = 0; i < scans.size(); ++i) EXPECT_EQ(clouds.source().sizeHint(i), 10.0 * (i + 1));
+  }
 }
 
 }  // namespace

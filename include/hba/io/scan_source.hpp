@@ -20,6 +20,9 @@ class ScanSource {
   // Scan i in its sensor frame. Thread-safe. Throws hba::Error (an index
   // out of range, an unreadable scan).
   virtual PointCloud load(std::size_t i) const = 0;
+  // How large scan i is, cheaply and roughly (its file's bytes, its points
+  // in memory), to share work out by; 1 where a source cannot tell.
+  virtual double sizeHint(std::size_t /*i*/) const { return 1.0; }
 };
 
 // The scans of a dataset, as Dataset::loadScan reads them (scans saved in
@@ -30,6 +33,7 @@ class DatasetScanSource : public ScanSource {
   explicit DatasetScanSource(const Dataset& dataset) : dataset_(dataset) {}
   std::size_t size() const override;
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override;  // the scan file's bytes
 
  private:
   const Dataset& dataset_;
@@ -41,6 +45,7 @@ class MemoryScanSource : public ScanSource {
   explicit MemoryScanSource(std::vector<PointCloud> scans) : scans_(std::move(scans)) {}
   std::size_t size() const override { return scans_.size(); }
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override { return static_cast<double>(scans_.at(i).size()); }
 
  private:
   std::vector<PointCloud> scans_;
@@ -54,10 +59,12 @@ class ConcatenatedScanSource : public ScanSource {
   explicit ConcatenatedScanSource(std::vector<const ScanSource*> parts);
   std::size_t size() const override { return starts_.back(); }
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override;
   // The index of each part's first scan in the whole, and the total at the end.
   const std::vector<std::size_t>& starts() const { return starts_; }
 
  private:
+  std::size_t partOf(std::size_t i) const;
   std::vector<const ScanSource*> parts_;
   std::vector<std::size_t> starts_;
 };

@@ -14,6 +14,7 @@ class DownsampledScanSource : public io::ScanSource {
   DownsampledScanSource(const io::ScanSource& inner, double voxel) : inner_(inner), voxel_(voxel) {}
   std::size_t size() const override { return inner_.size(); }
   PointCloud load(std::size_t i) const override;
+  double sizeHint(std::size_t i) const override { return inner_.sizeHint(i); }
 
  private:
   const io::ScanSource& inner_;
