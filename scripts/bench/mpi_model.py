@@ -52,6 +52,15 @@ def measured_layers(one, many):
     return out
 
 
+def layer_sent(layer, k, feeds_top):
+    """The bytes a process sends after a layer on k processes: its windows'
+    summaries to every other, its keyframes that others read."""
+    if k == 1:
+        return 0.0
+    mine = math.ceil(layer["windows"] / k)
+    return (k - 1) * mine * layer["summary"] + (mine if feeds_top else layer["crossing"]) * layer["keyframe"]
+
+
 def layer_time(layer, k, feeds_top, bandwidth):
     """Seconds of a layer on k processes, and the bytes its busiest process receives."""
     t = math.ceil(layer["windows"] / k) * layer["per_window"]
@@ -124,15 +133,17 @@ def main():
     big = extrapolate(layers, args.frames, window, stride)
     rest_big = rest / n1 * args.frames
     print(f"\nN = {args.frames} frames: {len(big)} layers, windows " + ", ".join(str(l["windows"]) for l in big))
-    print("| processes | layers (s) | the rest (s) | total (h) | speed-up | the busiest process receives (GB) |")
-    print("|---|---|---|---|---|---|")
+    print("| processes | layers (s) | the rest (s) | total (h) | speed-up | a process sends (GB) | "
+          "the busiest receives (GB) |")
+    print("|---|---|---|---|---|---|---|")
     base = None
     for k in [int(x) for x in args.processes.split(",")]:
         times, received = model(big, k, args.bandwidth)
         total = sum(times) + rest_big
         base = base or total
+        sent = sum(layer_sent(l, k, i + 2 == len(big)) for i, l in enumerate(big))
         print(f"| {k} | {sum(times):.0f} | {rest_big:.0f} | {total / 3600:.2f} | {base / total:.2f}x | "
-              f"{sum(received) / 1e9:.1f} |")
+              f"{sent / 1e9:.2f} | {sum(received) / 1e9:.1f} |")
 
 
 if __name__ == "__main__":
