@@ -47,6 +47,34 @@ void wait(MPI_Request& request, const char* what) {
   }
 }
 
+// MPI counts bytes in int: one exchange stays under 2 GiB.
+int byteCount(std::size_t bytes) {
+  if (bytes > static_cast<std::size_t>(INT_MAX)) {
+    throw Error("MPI: a message of " + std::to_string(bytes) + " bytes, beyond MPI's 2 GiB");
+  }
+  return static_cast<int>(bytes);
+}
+
+// Where each part starts in the parts laid end to end, and (last) their total.
+std::vector<int> offsetsOf(const std::vector<int>& counts) {
+  std::vector<int> offsets{0};
+  std::size_t total = 0;
+  for (const int count : counts) {
+    total += static_cast<std::size_t>(count);
+    offsets.push_back(byteCount(total));
+  }
+  return offsets;
+}
+
+std::vector<dist::Bytes> split(const dist::Bytes& joined, const std::vector<int>& counts,
+                               const std::vector<int>& offsets) {
+  std::vector<dist::Bytes> parts(counts.size());
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    parts[r].assign(joined.begin() + offsets[r], joined.begin() + offsets[r] + counts[r]);
+  }
+  return parts;
+}
+
 class MpiGroup final : public dist::Group {
  public:
   MpiGroup() {
@@ -59,73 +87,40 @@ class MpiGroup final : public dist::Group {
   std::vector<dist::Bytes> allToAll(const std::vector<dist::Bytes>& to_each) const override {
     if (to_each.size() != static_cast<std::size_t>(size_))
       throw Error("MPI: a message for each rank is needed");
-    std::vector<int> send_counts(to_each.size()), send_offsets(to_each.size());
-    long long sent = 0;
-    for (std::size_t r = 0; r < to_each.size(); ++r) {
-      send_offsets[r] = static_cast<int>(sent);
-      sent += static_cast<long long>(to_each[r].size());
-      send_counts[r] = static_cast<int>(to_each[r].size());
-    }
-    if (sent > INT_MAX)
-      throw Error("MPI: rank " + std::to_string(rank_) + " would send " + std::to_string(sent) +
-                  " bytes at once, beyond MPI's 2 GiB a message");
+    std::vector<int> send_counts;
+    for (const dist::Bytes& part : to_each) send_counts.push_back(byteCount(part.size()));
+    const std::vector<int> send_offsets = offsetsOf(send_counts);
     dist::Bytes joined;
-    joined.reserve(static_cast<std::size_t>(sent));
     for (const dist::Bytes& part : to_each) joined.insert(joined.end(), part.begin(), part.end());
-    std::vector<int> receive_counts(to_each.size()), receive_offsets(to_each.size());
+    std::vector<int> receive_counts(to_each.size());
     MPI_Request request;
     check(MPI_Ialltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD,
                         &request),
           "MPI_Ialltoall");
     wait(request, "MPI_Ialltoall");
-    long long received = 0;
-    for (std::size_t r = 0; r < receive_counts.size(); ++r) {
-      receive_offsets[r] = static_cast<int>(received);
-      received += receive_counts[r];
-    }
-    if (received > INT_MAX)
-      throw Error("MPI: an exchange of " + std::to_string(received) + " bytes, beyond 2 GiB");
-    dist::Bytes incoming(static_cast<std::size_t>(received));
+    const std::vector<int> receive_offsets = offsetsOf(receive_counts);
+    dist::Bytes incoming(static_cast<std::size_t>(receive_offsets.back()));
     check(MPI_Ialltoallv(joined.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, incoming.data(),
                          receive_counts.data(), receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD, &request),
           "MPI_Ialltoallv");
     wait(request, "MPI_Ialltoallv");
-    std::vector<dist::Bytes> from_each(receive_counts.size());
-    for (std::size_t r = 0; r < receive_counts.size(); ++r) {
-      from_each[r].assign(incoming.begin() + receive_offsets[r],
-                          incoming.begin() + receive_offsets[r] + receive_counts[r]);
-    }
-    return from_each;
+    return split(incoming, receive_counts, receive_offsets);
   }
 
   std::vector<dist::Bytes> allGather(const dist::Bytes& mine) const override {
-    if (mine.size() > static_cast<std::size_t>(INT_MAX)) {
-      throw Error("MPI: rank " + std::to_string(rank_) + " would send " + std::to_string(mine.size()) +
-                  " bytes at once, beyond MPI's 2 GiB a message");
-    }
-    const int count = static_cast<int>(mine.size());
+    const int count = byteCount(mine.size());
     std::vector<int> counts(static_cast<std::size_t>(size_));
     MPI_Request request;
     check(MPI_Iallgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD, &request),
           "MPI_Iallgather");
     wait(request, "MPI_Iallgather");
-    std::vector<int> offsets(counts.size());
-    long long total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-      offsets[r] = static_cast<int>(total);
-      total += counts[r];
-    }
-    if (total > INT_MAX) throw Error("MPI: an exchange of " + std::to_string(total) + " bytes, beyond 2 GiB");
-    dist::Bytes joined(static_cast<std::size_t>(total));
+    const std::vector<int> offsets = offsetsOf(counts);
+    dist::Bytes joined(static_cast<std::size_t>(offsets.back()));
     check(MPI_Iallgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), offsets.data(),
                           MPI_BYTE, MPI_COMM_WORLD, &request),
           "MPI_Iallgatherv");
     wait(request, "MPI_Iallgatherv");
-    std::vector<dist::Bytes> all(counts.size());
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-      all[r].assign(joined.begin() + offsets[r], joined.begin() + offsets[r] + counts[r]);
-    }
-    return all;
+    return split(joined, counts, offsets);
   }
 
  private:

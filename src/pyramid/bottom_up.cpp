@@ -22,15 +22,10 @@ namespace {
 // their source tells them (file bytes; 1 each where it cannot).
 std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& windows,
                                const io::ScanSource& clouds) {
-  if (!layer.keyframe_points.empty()) return workOf(windows, layer.keyframe_points);
-  std::vector<double> work;
-  work.reserve(windows.size());
-  for (const Window& window : windows) {
-    double sum = 0.0;
-    for (std::size_t k = 0; k < window.count; ++k) sum += clouds.sizeHint(window.first + k);
-    work.push_back(sum);
+  if (!layer.keyframe_points.empty()) {
+    return workOf(windows, [&](std::size_t i) { return static_cast<double>(layer.keyframe_points.at(i)); });
   }
-  return work;
+  return workOf(windows, [&](std::size_t i) { return clouds.sizeHint(i); });
 }
 
 }  // namespace

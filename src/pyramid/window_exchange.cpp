@@ -113,12 +113,13 @@ WindowRange framesOf(const std::vector<Window>& windows, const WindowRange& rang
   return frames;
 }
 
-std::vector<double> workOf(const std::vector<Window>& windows, const std::vector<std::size_t>& points) {
+std::vector<double> workOf(const std::vector<Window>& windows,
+                           const std::function<double(std::size_t)>& frame_work) {
   std::vector<double> work;
   work.reserve(windows.size());
   for (const Window& window : windows) {
     double sum = 0.0;
-    for (std::size_t k = 0; k < window.count; ++k) sum += static_cast<double>(points.at(window.first + k));
+    for (std::size_t k = 0; k < window.count; ++k) sum += frame_work(window.first + k);
     work.push_back(sum);
   }
   return work;
@@ -177,7 +178,8 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
     // Then each keyframe to the members whose next windows read it.
     if (next_windows.empty())
       throw Error("exchange between processes: the next layer's windows are not known");
-    const std::vector<double> work = workOf(next_windows, shared.keyframe_points);
+    const std::vector<double> work = workOf(
+        next_windows, [&](std::size_t i) { return static_cast<double>(shared.keyframe_points.at(i)); });
     std::vector<dist::Bytes> to_each(all.size());
     for (int member = 0; member < group.size(); ++member) {
       if (member == group.rank()) continue;

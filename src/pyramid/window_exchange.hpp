@@ -5,6 +5,7 @@
 // layer. Each window's result does not depend on which member found it, so
 // the poses are those of one process.
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "hba/dist/group.hpp"
@@ -43,7 +44,8 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
 // The frames [first, end) the windows of `range` read.
 WindowRange framesOf(const std::vector<Window>& windows, const WindowRange& range);
 
-// Each window's share of the work of a layer whose frames have `points`.
-std::vector<double> workOf(const std::vector<Window>& windows, const std::vector<std::size_t>& points);
+// Each window's share of a layer's work: the sum of its frames' work.
+std::vector<double> workOf(const std::vector<Window>& windows,
+                           const std::function<double(std::size_t)>& frame_work);
 
 }  // namespace hba::pyramid

@@ -60,9 +60,9 @@ TEST(WindowExchange, AMembersWindowsReadTheFramesTheyCover) {
   EXPECT_EQ(framesOf(plan, {2, 2}).end, 0u);  // no window, no frame
   std::vector<std::size_t> points(22, 1);
   points[0] = 100;
-  const std::vector<double> work = workOf(plan, points);
-  EXPECT_EQ(work, (std::vector<double>{109, 10, 10, 7}));
-  EXPECT_THROW(workOf({{20, 5}}, points), std::out_of_range);
+  const auto frame_work = [&](std::size_t i) { return static_cast<double>(points.at(i)); };
+  EXPECT_EQ(workOf(plan, frame_work), (std::vector<double>{109, 10, 10, 7}));
+  EXPECT_THROW(workOf({{20, 5}}, frame_work), std::out_of_range);
 }
 
 TEST(WindowExchange, BytesComeBackAndAShortMessageIsRefused) {
