@@ -34,8 +34,9 @@ void run(const Args& args) {
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
   settings.threads = pyramid::resolvedThreadCount(settings);
-  // Under mpirun: the windows spread over the processes, which all read the
-  // input; the first alone checks the conventions and writes the outputs.
+  // Under mpirun: each layer's windows spread over the processes (each reads
+  // its own windows' scans); the first alone checks the conventions, runs
+  // the closure stage and the refinement, and writes the outputs.
   const dist::Group& group = processGroup();
   if (!args.more_sessions.empty()) {
     if (group.size() > 1)
