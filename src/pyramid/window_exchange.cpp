@@ -148,7 +148,6 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
   shared.keyframe_points.assign(summaries.size(), 0);
   std::map<std::size_t, std::size_t> points_of;  // every member's frames, each once
   for (std::size_t member = 0; member < all.size(); ++member) {
-    shared.bytes += all[member].size();
     dist::ByteReader in(all[member]);
     const auto first = in.get<std::uint64_t>();
     const auto end = in.get<std::uint64_t>();
@@ -215,7 +214,6 @@ Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vect
   // What each member sent, summed and at most.
   dist::ByteWriter sent;
   sent.put<std::uint64_t>(my_bytes);
-  shared.bytes = 0;
   for (const dist::Bytes& bytes : group.allGather(sent.take())) {
     dist::ByteReader in(bytes);
     const auto n = static_cast<std::size_t>(in.get<std::uint64_t>());
