@@ -45,30 +45,7 @@ void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
   spdlog::set_default_logger(logger);
 }
 
-}  // namespace
-
-namespace {
-
-int run(int argc, char** argv);
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  // Before any thread starts: Ctrl-C then removes unfinished outputs.
-  hba::startInterruptWatcher();
-  try {
-    hba::cli::startProcessGroup(argc, argv);  // MPI, under mpirun
-  } catch (const hba::Error& e) {
-    setUpLogging(false, false, "");
-    spdlog::error("{}", e.what());
-    return hba::cli::kExitFailure;
-  }
-  // Under mpirun a member that fails ends every member (no one waits).
-  return hba::cli::endProcessGroup(run(argc, argv));
-}
-
-namespace {
-
+// The tool's work once MPI (under mpirun) has started; the exit code.
 int run(int argc, char** argv) {
   const hba::dist::Group& group = hba::cli::processGroup();
   CLI::App app{
@@ -141,3 +118,17 @@ int run(int argc, char** argv) {
 }
 
 }  // namespace
+
+int main(int argc, char** argv) {
+  // Before any thread starts: Ctrl-C then removes unfinished outputs.
+  hba::startInterruptWatcher();
+  try {
+    hba::cli::startProcessGroup(argc, argv);  // MPI, under mpirun
+  } catch (const hba::Error& e) {
+    setUpLogging(false, false, "");
+    spdlog::error("{}", e.what());
+    return hba::cli::kExitFailure;
+  }
+  // Under mpirun a member that fails ends every member (no one waits).
+  return hba::cli::endProcessGroup(run(argc, argv));
+}

@@ -16,10 +16,10 @@
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/core/stopwatch.hpp"
-#include "hba/dist/bytes.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "refine_stage.hpp"
+#include "shared_outcomes.hpp"
 #include "timed_clouds.hpp"
 #include "top_down.hpp"
 #include "upper_layer.hpp"
@@ -184,54 +184,6 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
                graph.size(), solved.initial_cost, solved.final_cost, iteration_report.seconds_graph);
   report.iterations.push_back(iteration_report);
   return solved.poses;
-}
-
-// The first member's poses, in every member (a collective).
-std::vector<Pose> posesFromRoot(const dist::Group& group, const std::vector<Pose>& mine) {
-  dist::ByteWriter out;
-  if (group.root()) dist::putPoses(out, mine);
-  const dist::Bytes bytes = dist::fromRoot(group, out.take());
-  dist::ByteReader in(bytes);
-  return dist::getPoses(in);
-}
-
-// The first member's closure outcome (start, loops, priors; its report
-// stays there), in every member.
-void shareClosures(const dist::Group& group, ClosureOutcome& closed) {
-  dist::ByteWriter out;
-  if (group.root()) {
-    dist::putPoses(out, closed.start);
-    out.put<std::uint64_t>(closed.loops.size());
-    for (const graph::LoopClosureFactor& loop : closed.loops) {
-      out.put<std::uint64_t>(loop.from);
-      out.put<std::uint64_t>(loop.to);
-      dist::putPose(out, loop.measurement);
-      out.put(loop.information);
-    }
-    out.put<std::uint64_t>(closed.priors.size());
-    for (const graph::PositionPriorFactor& prior : closed.priors) {
-      out.put<std::uint64_t>(prior.node);
-      out.put(prior.position);
-      out.put(prior.information);
-    }
-  }
-  const dist::Bytes bytes = dist::fromRoot(group, out.take());
-  if (group.root()) return;
-  dist::ByteReader in(bytes);
-  closed.start = dist::getPoses(in);
-  closed.loops.resize(in.get<std::uint64_t>());
-  for (graph::LoopClosureFactor& loop : closed.loops) {
-    loop.from = in.get<std::uint64_t>();
-    loop.to = in.get<std::uint64_t>();
-    loop.measurement = dist::getPose(in);
-    loop.information = in.get<Mat6>();
-  }
-  closed.priors.resize(in.get<std::uint64_t>());
-  for (graph::PositionPriorFactor& prior : closed.priors) {
-    prior.node = in.get<std::uint64_t>();
-    prior.position = in.get<Vec3>();
-    prior.information = in.get<Mat3>();
-  }
 }
 
 // The whole method, on poses near the origin.

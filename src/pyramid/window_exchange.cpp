@@ -7,26 +7,17 @@
 
 #include "hba/core/error.hpp"
 #include "hba/dist/bytes.hpp"
+#include "shared_outcomes.hpp"
 
 namespace hba::pyramid {
 namespace {
-
-using dist::getPose;
-using dist::putPose;
 
 void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   const WindowOutcome& o = s.outcome;
   out.put<std::uint64_t>(o.window.first);
   out.put<std::uint64_t>(o.window.count);
-  out.put<std::uint64_t>(o.optimized.size());
-  for (const Pose& pose : o.optimized) putPose(out, pose);
-  out.put<std::uint64_t>(o.factors.size());
-  for (const graph::RelativePoseFactor& f : o.factors) {
-    out.put<std::uint64_t>(f.from);
-    out.put<std::uint64_t>(f.to);
-    putPose(out, f.measurement);
-    out.put(f.information);
-  }
+  dist::putPoses(out, o.optimized);
+  putFactors(out, o.factors);
   out.put<std::uint8_t>(o.has_planes);
   out.put(s.cost_before);
   out.put(s.cost_after);
@@ -44,15 +35,8 @@ WindowSummary getSummary(dist::ByteReader& in) {
   WindowOutcome& o = s.outcome;
   o.window.first = in.get<std::uint64_t>();
   o.window.count = in.get<std::uint64_t>();
-  o.optimized.resize(in.get<std::uint64_t>());
-  for (Pose& pose : o.optimized) pose = getPose(in);
-  o.factors.resize(in.get<std::uint64_t>());
-  for (graph::RelativePoseFactor& f : o.factors) {
-    f.from = in.get<std::uint64_t>();
-    f.to = in.get<std::uint64_t>();
-    f.measurement = getPose(in);
-    f.information = in.get<Mat6>();
-  }
+  o.optimized = dist::getPoses(in);
+  o.factors = getFactors<graph::RelativePoseFactor>(in);
   o.has_planes = in.get<std::uint8_t>() != 0;
   s.cost_before = in.get<double>();
   s.cost_after = in.get<double>();
