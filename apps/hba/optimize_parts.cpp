@@ -4,9 +4,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 
 #include <optional>
 
@@ -50,12 +47,6 @@ double peakMemoryMiB() {
 void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
                   const fs::path& out) {
-#ifdef __GLIBC__
-  // The optimization's freed heap stays resident while the picture's large
-  // buffers come as fresh pages: handing it back first keeps the run's peak
-  // memory that of the optimization.
-  malloc_trim(0);
-#endif
   const std::vector<Pose>& optimized = result.poses;
   const std::optional<Trajectory> gt = groundTruth(args, dataset, optimized.size());
   const fs::path png = out / "before_after.png";

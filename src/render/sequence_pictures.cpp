@@ -124,6 +124,10 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
     writePng(out_png, renderPanels(panels, settings).image);
     return;
   }
+  // What the caller freed (an optimization's heap) stays resident while the
+  // picture's buffers come as fresh pages: handed back first, the picture
+  // adds nothing to the caller's peak memory.
+  releaseFreedMemory();
   const std::vector<Image> rows = drawBeforeAfter(scans, poses, std::move(panels), settings);
   std::vector<const Image*> stack;
   for (const Image& row : rows) stack.push_back(&row);
