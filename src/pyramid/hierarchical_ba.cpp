@@ -194,10 +194,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   HbaResult result;
   HbaReport& report = result.report;
   report.frames = initial.size();
-  report.layers =
-      settings.layers > 0
-          ? std::min(settings.layers, maxLayerCount(initial.size(), settings.window, settings.stride))
-          : defaultLayerCount(initial.size(), settings);
+  report.layers = layerCount(initial.size(), settings);
   if (settings.layers > report.layers) {
     report.warnings.push_back("requested " + std::to_string(settings.layers) +
                               " layers; the sequence holds at most " + std::to_string(report.layers));

@@ -53,4 +53,10 @@ int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
   return paperLayerCount(frames, settings.window, settings.stride, kPaperThreads);
 }
 
+int layerCount(std::size_t frames, const HbaSettings& settings) {
+  return settings.layers > 0
+             ? std::min(settings.layers, maxLayerCount(frames, settings.window, settings.stride))
+             : defaultLayerCount(frames, settings);
+}
+
 }  // namespace hba::pyramid

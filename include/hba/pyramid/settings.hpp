@@ -130,6 +130,9 @@ int paperLayerCount(std::size_t frames, int window, int stride, int threads);
 // with its own n = 8 threads, whatever this machine has, so that the same
 // command builds the same pyramid (and gives the same poses) everywhere.
 int defaultLayerCount(std::size_t frames, const HbaSettings& settings);
+// The layers a run of `settings` over `frames` builds: settings.layers, at
+// most what the sequence holds, or (0) the default rule.
+int layerCount(std::size_t frames, const HbaSettings& settings);
 
 }  // namespace hba::pyramid
 
