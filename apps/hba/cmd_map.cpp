@@ -8,6 +8,7 @@
 #include "dataset_args.hpp"
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
@@ -44,8 +45,16 @@ void run(MapArgs& args) {
   // LAS has a field for the scan index (point source ID), so it gets one
   // beside the intensity whatever --color chose.
   io::LasPointExtras las_extras;
-  const PointCloud map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings,
-                                              extension == ".las" ? &las_extras.scan_index : nullptr);
+  // The map's size is known only once every scan is in: it stops, with
+  // nothing written, before the kernel would kill it.
+  args.settings.budget = MemoryBudget::ofAvailableMemory();
+  PointCloud map;
+  try {
+    map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings,
+                               extension == ".las" ? &las_extras.scan_index : nullptr);
+  } catch (const MemoryExceeded& e) {
+    failAt(output, std::string("not written: ") + e.what() + "; a larger --voxel keeps fewer points");
+  }
   if (extension == ".pcd") {
     io::writePcd(output, map);
   } else if (extension == ".las") {

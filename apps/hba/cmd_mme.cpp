@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
@@ -45,7 +46,12 @@ void run(MmeArgs& args) {
     const io::Dataset dataset = args.data.open();
     spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
     const io::DatasetScanSource scans(dataset);
-    map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.map);
+    args.map.budget = MemoryBudget::ofAvailableMemory();
+    try {
+      map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.map);
+    } catch (const MemoryExceeded& e) {
+      throw Error(std::string(e.what()) + "; a larger --voxel keeps fewer points");
+    }
   }
   const double merge_seconds = secondsSince(start);
   const eval::MmeResult result = eval::meanMapEntropy(map, args.entropy);

@@ -13,6 +13,7 @@
 #include "hba/core/staging_folder.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "memory_check.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 #include "process_group.hpp"
@@ -47,12 +48,15 @@ void run(const Args& args) {
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
+  // One source of the scans for the memory estimate, the convention check,
+  // the optimization and the picture.
+  const io::DatasetScanSource scans(dataset);
+  // A run that cannot fit is refused before any output or heavy work.
+  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
   std::optional<StagingFolder> staging;
   if (group.root()) staging.emplace(args.output, args.force);
-  // One source of the scans for the convention check, the optimization and the picture.
-  const io::DatasetScanSource scans(dataset);
   const nlohmann::json conventions =
       group.root() ? checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset)
                    : nlohmann::json();
@@ -68,15 +72,17 @@ void run(const Args& args) {
   const fs::path& out = staging->path();
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
-  writeReport(out, reportJson(result, dataset, settings, conventions));
+  nlohmann::json report = reportJson(result, dataset, settings, conventions);
+  report["memory_estimate"] = memory;
+  writeReport(out, report);
 
-  if (!args.no_render)
-    writePicture(args, dataset, scans, result, settings.scan_voxel, dataset.trajectory().poses, out);
+  const bool drawn = !args.no_render && writePicture(args, dataset, scans, result, settings.scan_voxel,
+                                                     dataset.trajectory().poses, out);
   staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging->destination().string());
   spdlog::info("wrote {}, report.json{}", fmt::format("{}", fmt::join(written, ", ")),
-               args.no_render ? "" : ", before_after.png");
+               drawn ? ", before_after.png" : "");
 }
 
 }  // namespace
@@ -122,6 +128,9 @@ void registerOptimizeCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
+  command->add_flag("--no-memory-check", args->no_memory_check,
+                    "Run even when the estimated peak memory exceeds what the machine has available "
+                    "(docs/pyramid.md, \"Memory\")");
   command->add_flag("--no-convention-check", args->no_convention_check,
                     "Do not check that the map is crispest with the poses as given (vs inverted, vs none)");
   command->add_option("--config", args->config, "YAML settings file (flags override it)")

@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/render/map_picture.hpp"
@@ -45,11 +46,17 @@ void run(RenderArgs& args) {
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
   const io::DatasetScanSource scans(dataset);
-  if (args.compare.empty()) {
-    render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
-  } else {
-    render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
-                             args.output, args.settings);
+  // Stops, with nothing written, before the kernel would kill it.
+  args.settings.budget = MemoryBudget::ofAvailableMemory();
+  try {
+    if (args.compare.empty()) {
+      render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
+    } else {
+      render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
+                               args.output, args.settings);
+    }
+  } catch (const MemoryExceeded& e) {
+    failAt(args.output, std::string("not written: ") + e.what() + "; a larger --voxel keeps fewer points");
   }
   spdlog::info("wrote {} ({}x{})", args.output, args.settings.width, args.settings.height);
 }

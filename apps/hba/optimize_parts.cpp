@@ -10,6 +10,7 @@
 #include "hba/closure/frame_priors.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/io/loop_file.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/position_prior_file.hpp"
@@ -44,7 +45,7 @@ double peakMemoryMiB() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
-void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
+bool writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
                   const fs::path& out) {
   const std::vector<Pose>& optimized = result.poses;
@@ -54,8 +55,18 @@ void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSo
   render::RenderSettings settings;
   const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
   if (kept) settings.scans_voxel = scan_voxel;
-  render::writeBeforeAfter(kept ? *result.scans : scans, before, optimized, gt ? &gt->poses : nullptr, png,
-                           settings);
+  // The picture is the last step: one that cannot fit is left out, and
+  // the poses and report are kept.
+  settings.budget = MemoryBudget::ofAvailableMemory();
+  try {
+    render::writeBeforeAfter(kept ? *result.scans : scans, before, optimized, gt ? &gt->poses : nullptr, png,
+                             settings);
+  } catch (const MemoryExceeded& e) {
+    spdlog::warn("before_after.png not drawn: {}; `hba render --compare` draws it from the outputs",
+                 e.what());
+    return false;
+  }
+  return true;
 }
 
 // The sensor poses in three formats, and the poses of the frame the input

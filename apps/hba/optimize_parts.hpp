@@ -27,6 +27,7 @@ struct Args {
   double prior_max_gap_s = 0.5;
   bool no_render = false;
   bool no_convention_check = false;
+  bool no_memory_check = false;
   bool force = false;
   bool print_config = false;
 };
@@ -48,8 +49,9 @@ void writeReport(const std::filesystem::path& out, const nlohmann::json& report)
 // before_after.png of `before` and `result.poses` (ground truth drawn when
 // given or found). The scans are read as the optimization kept them (parsed
 // and downsampled once, at `scan_voxel`) when it kept them at least as fine
-// as the picture's voxel; from `scans` otherwise.
-void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
+// as the picture's voxel; from `scans` otherwise. False, with a warning,
+// when the picture would not fit in the memory available: left out.
+bool writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
                   const std::filesystem::path& out);
 

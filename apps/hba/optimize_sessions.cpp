@@ -10,6 +10,7 @@
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "memory_check.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 
@@ -68,6 +69,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   const io::ConcatenatedScanSource scans(parts);
   pyramid::ClosureInputs closures = readClosureInputs(args, nullptr, scans.size());
   for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
+  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
 
   StagingFolder staging(args.output, args.force);
   const fs::path& out = staging.path();
@@ -136,14 +138,16 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   }
   nlohmann::json report = reportJson(result, datasets[0], settings, conventions);
   report["sessions"] = sessions;
+  report["memory_estimate"] = memory;
   report["alignment"] = {
       {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
       {"registered", alignment_report}};
   writeReport(out, report);
-  if (!args.no_render) writePicture(args, datasets[0], scans, result, settings.scan_voxel, initial, out);
+  const bool drawn =
+      !args.no_render && writePicture(args, datasets[0], scans, result, settings.scan_voxel, initial, out);
   staging.commit();
   spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{})", result.report.seconds_total,
-               staging.destination().string(), datasets.size(), args.no_render ? "" : ", before_after.png");
+               staging.destination().string(), datasets.size(), drawn ? ", before_after.png" : "");
 }
 
 }  // namespace hba::cli::optimize

@@ -89,6 +89,12 @@ PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& 
   Progress progress("merging the map", scans.size(), "scans");
   for (std::size_t i = 0; i < scans.size(); ++i) {
     merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
+    // The output cloud is still to come: a point and an intensity a voxel.
+    if (settings.budget.exceeded(merger.voxelCount() * (sizeof(Vec3f) + sizeof(float)))) {
+      throw settings.budget.exceededBy("the merged map (" + std::to_string(merger.voxelCount()) +
+                                       " points after " + std::to_string(i + 1) + " of " +
+                                       std::to_string(scans.size()) + " scans)");
+    }
     progress.advance();
   }
   if (first_scans) *first_scans = merger.firstScans();

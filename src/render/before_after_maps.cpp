@@ -130,7 +130,8 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                  int pixels, double moments_cell, double scans_voxel) {
+                                  int pixels, double moments_cell, double scans_voxel,
+                                  const MemoryBudget& budget) {
   checkSizes(scans, poses);
   BeforeAfterMaps maps;
   maps.overview_voxel = overviewVoxel(poses, sensorReach(scans, voxel, scans_voxel), voxel, pixels);
@@ -160,10 +161,16 @@ BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
     chunk_voxels.store(std::max(local[0].size(), local[1].size()), std::memory_order_relaxed);
     return Part{local[0].take(), local[1].take()};
   };
-  const std::function<void(std::size_t, Part&)> merge = [&](std::size_t, Part& part) {
+  const std::function<void(std::size_t, Part&)> merge = [&](std::size_t chunk, Part& part) {
     // Each map in scan order.
     tbb::parallel_invoke([&] { overview[0].add(part[0], Pose::identity()); },
                          [&] { overview[1].add(part[1], Pose::identity()); });
+    if (budget.exceeded()) {
+      throw budget.exceededBy("the picture's maps (" +
+                              std::to_string(overview[0].size() + overview[1].size()) + " points after " +
+                              std::to_string(std::min(scans.size(), (chunk + 1) * kChunk)) + " of " +
+                              std::to_string(scans.size()) + " scans)");
+    }
   };
   Progress progress("reading the scans for the picture", (scans.size() + kChunk - 1) / kChunk,
                     "chunks of " + std::to_string(kChunk) + " scans");
@@ -182,7 +189,8 @@ BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
 
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                     const Box2& square, double reach, double scans_voxel) {
+                                     const Box2& square, double reach, double scans_voxel,
+                                     const MemoryBudget& budget) {
   checkSizes(scans, poses);
   auto near = [&](const Pose& pose) {
     const double dx = std::max({square.xmin - pose.t.x(), 0.0, pose.t.x() - square.xmax});
@@ -210,6 +218,10 @@ std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
   const std::function<void(std::size_t, Part&)> merge = [&](std::size_t i, Part& part) {
     for (std::size_t k = 0; k < 2; ++k) {
       mergers[k].add(part[k], Pose(Quat::Identity(), corner), static_cast<std::uint32_t>(i));
+    }
+    if (budget.exceeded()) {
+      throw budget.exceededBy("the picture's zoomed maps (" +
+                              std::to_string(mergers[0].voxelCount() + mergers[1].voxelCount()) + " points)");
     }
   };
   Progress progress("reading the scans near the zoomed square", indices.size(), "scans");

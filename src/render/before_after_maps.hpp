@@ -38,14 +38,18 @@ double overviewVoxel(const std::array<const std::vector<Pose>*, 2>& poses, doubl
 // Every scan read once (in parallel batches, merged in scan order: the same
 // maps for any thread count), downsampled to `voxel` in its own frame
 // unless `scans_voxel` (the voxel the scans come downsampled at) is as large.
+// Throws MemoryExceeded once the maps outgrow `budget`.
 BeforeAfterMaps streamBeforeAfter(const io::ScanSource& scans,
                                   const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                  int pixels, double moments_cell, double scans_voxel = 0.0);
+                                  int pixels, double moments_cell, double scans_voxel = 0.0,
+                                  const MemoryBudget& budget = {});
 
 // The points inside `square` of the scans whose pose lies within `reach`
-// (m) of it, merged at `voxel`, for each pose set (`scans_voxel` as above).
+// (m) of it, merged at `voxel`, for each pose set (`scans_voxel` and
+// `budget` as above).
 std::array<PointCloud, 2> squareMaps(const io::ScanSource& scans,
                                      const std::array<const std::vector<Pose>*, 2>& poses, double voxel,
-                                     const Box2& square, double reach, double scans_voxel = 0.0);
+                                     const Box2& square, double reach, double scans_voxel = 0.0,
+                                     const MemoryBudget& budget = {});
 
 }  // namespace hba::render

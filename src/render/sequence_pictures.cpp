@@ -21,6 +21,7 @@ PointCloud mergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses
                      const RenderSettings& settings) {
   eval::MapSettings map;
   map.voxel = settings.voxel;
+  map.budget = settings.budget;
   return eval::buildMergedMap(scans, poses, map);
 }
 
@@ -55,7 +56,7 @@ std::optional<Image> thicknessZoom(const io::ScanSource& scans,
   // Scans within a few tens of metres give the square its dense points.
   constexpr double kReach = 40.0;
   std::array<PointCloud, 2> fine =
-      squareMaps(scans, poses, settings.voxel, *region, kReach, settings.scans_voxel);
+      squareMaps(scans, poses, settings.voxel, *region, kReach, settings.scans_voxel, settings.budget);
   std::vector<MapPanel> zoom(2);
   for (std::size_t k = 0; k < 2; ++k) {
     zoom[k].values = (k == 0 ? before : after).perPoint(fine[k]);
@@ -83,7 +84,7 @@ std::vector<Image> drawBeforeAfter(const io::ScanSource& scans,
   constexpr double kThicknessCell = 1.0;  // m: a patch of wall
   // Two panels side by side: each about half the picture's width.
   BeforeAfterMaps maps = streamBeforeAfter(scans, poses, settings.voxel, settings.width / 2, kThicknessCell,
-                                           settings.scans_voxel);
+                                           settings.scans_voxel, settings.budget);
   for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(maps.overview[k]);
   // The scans' chunks were made and freed on several threads, each in its
   // own heap: handed back, so that the drawing's buffers do not stack on them.
@@ -119,7 +120,7 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
   if (settings.crop) {  // one region at full resolution, no zoom row
     std::array<PointCloud, 2> fine =
         squareMaps(scans, poses, settings.voxel, *settings.crop, std::numeric_limits<double>::infinity(),
-                   settings.scans_voxel);
+                   settings.scans_voxel, settings.budget);
     for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
     writePng(out_png, renderPanels(panels, settings).image);
     return;

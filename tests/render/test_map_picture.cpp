@@ -4,10 +4,12 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
 
 #include "../eval/synthetic_scans.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/render/colormap.hpp"
@@ -231,6 +233,43 @@ TEST(MapChange, DoubledPlanesAreThickAndTheZoomFindsWhereTheyGotThin) {
   EXPECT_GE(region->xmin, 12.0);
   // The same map twice, or moved rigidly: no zoom.
   EXPECT_FALSE(mostThinnedRegion(single, single, 6.0));
+}
+
+// Scans of points scattered through a 40 m box: almost every point a voxel
+// of its own, so that the maps grow by megabytes.
+std::vector<PointCloud> scatteredScans(std::size_t count, std::size_t points) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> coordinate(-20.0f, 20.0f);
+  std::vector<PointCloud> scans(count);
+  for (PointCloud& scan : scans) {
+    for (std::size_t i = 0; i < points; ++i)
+      scan.add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)));
+  }
+  return scans;
+}
+
+// A picture whose maps outgrow their budget stops before its file, with
+// the error a caller can tell apart (hba optimize then leaves the picture
+// out and keeps its results).
+TEST(MapPicture, MapsThatOutgrowTheirBudgetStopBeforeTheFile) {
+  test::TempDir tmp;
+  std::vector<Pose> before, after;
+  for (int i = 0; i < 20; ++i) {
+    before.emplace_back(Quat::Identity(), Vec3(30.0 * i, 0.0, 0.0));
+    after.push_back(before.back());
+  }
+  const io::MemoryScanSource scans(scatteredScans(before.size(), 20000));
+  RenderSettings settings;
+  settings.budget = MemoryBudget(std::size_t{1} << 20, "a test's");
+  EXPECT_THROW(writeBeforeAfter(scans, before, after, nullptr, tmp / "before_after.png", settings),
+               MemoryExceeded);
+  EXPECT_THROW(writeMapPicture(scans, before, nullptr, tmp / "map.png", settings), MemoryExceeded);
+  EXPECT_FALSE(std::filesystem::exists(tmp / "before_after.png"));
+  EXPECT_FALSE(std::filesystem::exists(tmp / "map.png"));
+  // Without a limit both are drawn.
+  settings.budget = MemoryBudget();
+  writeMapPicture(scans, before, nullptr, tmp / "map.png", settings);
+  EXPECT_TRUE(std::filesystem::exists(tmp / "map.png"));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "hba/core/enum_names.hpp"
+#include "hba/core/memory_budget.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/scan_source.hpp"
@@ -35,6 +36,10 @@ struct MapSettings {
   double voxel = 0.1;  // m; <= 0 keeps every point
   VoxelRule rule = VoxelRule::Centroid;
   MapColor color = MapColor::None;
+  // buildMergedMap stops (MemoryExceeded) once the process outgrows it:
+  // how much the scans overlap, and so the map's size, is known only at
+  // the end. No limit by default.
+  MemoryBudget budget;
 };
 
 // Accumulates world points voxel by voxel. Output order is the order in
@@ -71,7 +76,8 @@ class VoxelMerger {
 // scan). When the first pose is more than 10 km out, the map's points are
 // relative to its position (the map's `origin`). When `first_scans` is
 // given, it receives each map point's first scan index (the LAS writer
-// stores it whatever --color says). Throws hba::Error.
+// stores it whatever --color says). Throws hba::Error, and MemoryExceeded
+// when the map outgrows settings.budget.
 PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses,
                           const MapSettings& settings, std::vector<std::uint32_t>* first_scans = nullptr);
 

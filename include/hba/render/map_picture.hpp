@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/memory_budget.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/scan_source.hpp"
@@ -39,6 +40,9 @@ struct RenderSettings {
     std::string low_label, high_label;  // "plane thickness 0 cm", "3 cm"
   };
   std::optional<ValueScale> value_scale;
+  // The maps a picture is drawn from stop (MemoryExceeded) once the
+  // process outgrows it. No limit by default.
+  MemoryBudget budget;
 };
 
 // Distinct trajectory colours, chosen to stand out from the height colours.
