@@ -30,8 +30,9 @@ constexpr double kBaBytesPerPoint = 60.0;
 // freed ones, below its 32 MiB mmap threshold).
 constexpr double kBaDenseCopies = 9.0;
 // The refinement (or with one layer the self-check): clouds, the plane
-// map, per-plane factors and observations.
-constexpr double kRefineBytesPerPoint = 64.0;
+// map, per-plane factors and observations (44-69 bytes a point measured:
+// more where more frames see each plane, as in simulated sequences).
+constexpr double kRefineBytesPerPoint = 80.0;
 // The groups' dense solve: the system, its damped copy and the factor.
 constexpr double kGroupDenseCopies = 3.0;
 
