@@ -97,11 +97,14 @@ void run(const EvalArgs& args) {
   options.rpe_delta = args.delta;
   options.rpe_unit = parseEnum<eval::DeltaUnit>(args.delta_unit);
 
-  if (!args.json.empty()) refuseToReplace(args.json, args.force);
+  std::unique_ptr<OutputLock> json_claim, plot_claim;  // held until written
+  if (!args.json.empty()) json_claim = claimOutputFile(args.json, args.force);
   if (!args.plot.empty()) {
     if (std::filesystem::path(args.plot).extension() != ".png")
       failAt(args.plot, "the plot must be a .png file");
-    refuseToReplace(args.plot, args.force);
+    if (std::filesystem::path(args.plot) == std::filesystem::path(args.json))
+      failAt(args.plot, "is also the --json file; give them two names");
+    plot_claim = claimOutputFile(args.plot, args.force);
   }
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
   const Trajectory est = readTrajectory(args.est, args.est_format);

@@ -37,8 +37,8 @@ void run(MapArgs& args) {
   args.settings.color = parseEnum<eval::MapColor>(args.color);
 
   const io::Dataset dataset = args.data.open();
-  refuseOutputInsideInput(output, dataset);  // hba never writes into its input
-  refuseToReplace(output, args.force);
+  refuseOutputInsideInput(output, dataset);                // hba never writes into its input
+  const auto claim = claimOutputFile(output, args.force);  // held until written
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
   const io::DatasetScanSource scans(dataset);
   // LAS has a field for the scan index (point source ID), so it gets one

@@ -44,13 +44,17 @@ void run(const Args& args) {
     return runSessions(args, settings);
   }
 
+  refuseProtectedFolder(args.output);
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
   std::optional<StagingFolder> staging;
-  if (group.root()) staging.emplace(args.output, args.force);
+  if (group.root()) {
+    staging.emplace(args.output, args.force, "hba optimize");
+    announceReplacement(*staging);
+  }
   // One source of the scans for the convention check, the optimization and the picture.
   const io::DatasetScanSource scans(dataset);
   const nlohmann::json conventions =

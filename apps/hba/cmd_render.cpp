@@ -39,8 +39,8 @@ void run(RenderArgs& args) {
   args.settings.side_view = !args.no_side;
 
   const io::Dataset dataset = args.data.open();
-  refuseOutputInsideInput(args.output, dataset);  // hba never writes into its input
-  refuseToReplace(args.output, args.force);
+  refuseOutputInsideInput(args.output, dataset);                // hba never writes into its input
+  const auto claim = claimOutputFile(args.output, args.force);  // held until written
   std::vector<Pose> gt;
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;

@@ -11,6 +11,7 @@
 #include "hba/sim/sessions.hpp"
 #include "hba/sim/simulation.hpp"
 #include "number_checks.hpp"
+#include "output_dir.hpp"
 
 namespace hba::cli {
 namespace {
@@ -119,6 +120,7 @@ void runSessions(const SimulateArgs& args, const sim::SessionsConfig& sessions) 
 }
 
 void run(const SimulateArgs& args) {
+  refuseReplacingInputs(args.output);  // e.g. the --trajectory file inside the output folder
   const sim::SessionsConfig sessions = sessionsFrom(args);
   if (sessions.count > 1) {
     runSessions(args, sessions);

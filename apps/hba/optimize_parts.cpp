@@ -44,6 +44,12 @@ double peakMemoryMiB() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
 }
 
+void announceReplacement(const StagingFolder& staging) {
+  if (staging.replaces().empty()) return;
+  spdlog::info("--force: {} holds {}; it will be replaced by this run's output when it is complete",
+               staging.destination().string(), staging.replaces());
+}
+
 void writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
                   const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
                   const fs::path& out) {

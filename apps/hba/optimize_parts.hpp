@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dataset_args.hpp"
+#include "hba/core/staging_folder.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
@@ -32,6 +33,8 @@ struct Args {
 };
 
 double peakMemoryMiB();
+// Says, before any work, what --force will replace at the end.
+void announceReplacement(const StagingFolder& staging);
 // Defaults, then the YAML file, then the flags given on the command line.
 pyramid::HbaSettings mergeSettings(const Args& args);
 // --loops (frame indices of `frames`) and --priors (by `dataset`'s stamps), read before any work.

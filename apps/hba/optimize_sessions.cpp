@@ -69,7 +69,8 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   pyramid::ClosureInputs closures = readClosureInputs(args, nullptr, scans.size());
   for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
 
-  StagingFolder staging(args.output, args.force);
+  StagingFolder staging(args.output, args.force, "hba optimize");
+  announceReplacement(staging);
   const fs::path& out = staging.path();
   nlohmann::json conventions = nlohmann::json::array();
   for (std::size_t k = 0; k < datasets.size(); ++k) {
