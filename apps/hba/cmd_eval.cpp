@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "enum_choice.hpp"
+#include "file_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/eval/trajectory_error.hpp"
@@ -152,8 +153,8 @@ void registerEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   auto* command = app.add_subcommand(
       "eval", "Trajectory accuracy: ATE and RPE of an estimate against ground truth (evo's definitions)");
-  command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(CLI::ExistingFile);
-  command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(CLI::ExistingFile);
+  command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(inputFile());
+  command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(inputFile());
   const auto formats = oneOf<io::PoseFormat>();
   command->add_option("--gt-format", args->gt_format, "Format of --gt (default: detected)")->check(formats);
   command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")

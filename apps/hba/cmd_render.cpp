@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
+#include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
@@ -68,9 +69,9 @@ void registerRenderCommand(CLI::App& app) {
   command
       ->add_option("--compare", args->compare,
                    "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
   command->add_option("--width", args->settings.width, "Picture width (px)")
       ->check(CLI::Range(200, 16384))
