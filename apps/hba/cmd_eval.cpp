@@ -13,6 +13,7 @@
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/render/error_plot.hpp"
+#include "json_text.hpp"
 #include "number_checks.hpp"
 #include "output_dir.hpp"
 
@@ -143,7 +144,7 @@ void run(const EvalArgs& args) {
   }
   if (!args.json.empty()) {
     writeFileAtomically(args.json,
-                        [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
+                        [&](std::ostream& out) { out << jsonText(reportJson(args, result), 2) << '\n'; });
   }
 }
 

@@ -15,6 +15,7 @@
 #include "hba/core/temporary_folder.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "json_text.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 #include "process_group.hpp"
@@ -64,7 +65,7 @@ void run(const Args& args) {
                    : nlohmann::json();
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
                dataset.size(), dataset.posesFile().string());
-  spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
+  spdlog::debug("settings: {}", jsonText(pyramid::settingsToJson(settings)));  // also in report.json
   spdlog::info("threads: {}{}", settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 

@@ -18,6 +18,7 @@
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
+#include "json_text.hpp"
 #include "version_text.hpp"
 
 namespace hba::cli::optimize {
@@ -168,7 +169,7 @@ void writeReport(const fs::path& out, const nlohmann::json& report) {
   nlohmann::json with_memory = report;
   with_memory["peak_memory_mib"] = peakMemoryMiB();
   writeFileAtomically(
-      out / "report.json", [&](std::ostream& os) { os << with_memory.dump(2) << '\n'; }, false);
+      out / "report.json", [&](std::ostream& os) { os << jsonText(with_memory, 2) << '\n'; }, false);
 }
 
 }  // namespace hba::cli::optimize
