@@ -19,6 +19,7 @@
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/scan_file_summary.hpp"
+#include "json_text.hpp"
 #include "number_checks.hpp"
 
 namespace hba::cli {
@@ -174,7 +175,7 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"extent_max", {s.extent_max.x(), s.extent_max.y(), s.extent_max.z()}},
       {"duration_s", s.has_duration ? nlohmann::json(s.duration_s) : nlohmann::json(nullptr)},
   };
-  std::cout << out.dump(2) << "\n";
+  std::cout << jsonText(out, 2) << "\n";
 }
 
 void runInfo(const InfoOptions& options) {

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
+#include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/eval/map_entropy.hpp"
@@ -67,7 +68,7 @@ void registerMmeCommand(CLI::App& app) {
   command->get_option("DIR")->required(false);
   command
       ->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin/.las) instead of a dataset")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--voxel", args->map.voxel, "Voxel size of the merged map (m; 0 = keep all)")
       ->check(nonNegative())
       ->capture_default_str();

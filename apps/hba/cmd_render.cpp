@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
+#include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
@@ -45,13 +46,13 @@ void run(RenderArgs& args) {
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
   const io::DatasetScanSource scans(dataset);
-  if (args.compare.empty()) {
-    render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
-  } else {
-    render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
-                             args.output, args.settings);
-  }
-  spdlog::info("wrote {} ({}x{})", args.output, args.settings.width, args.settings.height);
+  // The size written, not the one asked: --compare may add a zoom row.
+  const render::PictureSize size =
+      args.compare.empty()
+          ? render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings)
+          : render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare),
+                                     gt_ptr, args.output, args.settings);
+  spdlog::info("wrote {} ({}x{})", args.output, size.width, size.height);
 }
 
 }  // namespace
@@ -68,14 +69,16 @@ void registerRenderCommand(CLI::App& app) {
   command
       ->add_option("--compare", args->compare,
                    "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
   command->add_option("--width", args->settings.width, "Picture width (px)")
       ->check(CLI::Range(200, 16384))
       ->capture_default_str();
-  command->add_option("--height", args->settings.height, "Picture height (px)")
+  command
+      ->add_option("--height", args->settings.height,
+                   "Picture height (px); --compare adds a row 7/10 as tall below it where planes got thinner")
       ->check(CLI::Range(200, 16384))
       ->capture_default_str();
   command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m; 0 = keep all)")

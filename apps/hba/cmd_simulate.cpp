@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/sim/sessions.hpp"
 #include "hba/sim/simulation.hpp"
@@ -52,7 +53,8 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
     config.trajectory.shape = *shape;
   } else {
     config.trajectory.file = args.trajectory;
-    if (!std::filesystem::is_regular_file(config.trajectory.file)) {
+    // A FIFO or a link loop there is named as such (input_file.hpp).
+    if (!regularFileIsPresent(config.trajectory.file)) {
       failAt(args.trajectory, "not block, figure8, street, nor a trajectory file");
     }
   }

@@ -51,7 +51,8 @@ pyramid::HbaSettings settingsFromKwargs(const py::kwargs& kwargs) {
     }
     given[name] = settingValue(value, name);
   }
-  pyramid::applySettingsYaml(given.dump(), kSource, settings);
+  pyramid::applySettingsYaml(given.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kSource,
+                             settings);
   try {
     pyramid::checkSettings(settings);
   } catch (const Error& e) {

@@ -4,13 +4,12 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/pyramid/setting_table.hpp"
 
 namespace hba::pyramid {
@@ -173,11 +172,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source, 
 }
 
 void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings) {
-  std::ifstream in(path);
-  if (!in) failAt(path, "cannot open the settings file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  applySettingsYaml(text.str(), path.string(), settings);
+  applySettingsYaml(readTextFile(path), path.string(), settings);
 }
 
 void checkSettings(const HbaSettings& settings) {
