@@ -66,7 +66,11 @@ void writeScan(const std::filesystem::path& path, const PointCloud& cloud) {
 }
 
 WideCloud readScanWide(const std::filesystem::path& path) {
-  switch (scanFormatFromExtension(path)) {
+  return readScanWide(path, scanFormatFromExtension(path));
+}
+
+WideCloud readScanWide(const std::filesystem::path& path, ScanFormat format) {
+  switch (format) {
     case ScanFormat::Pcd:
       return detail::readPcdAs<WideCloud>(path);
     case ScanFormat::KittiBin:
