@@ -7,6 +7,7 @@
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/input_file.hpp"
+#include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file.hpp"
 
 namespace hba::io {
@@ -202,6 +203,12 @@ PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
     PointCloud scan = readScan(path);
+    if (scan.empty()) {
+      warnAboutFile(
+          path, "scans with no points",
+          "the scan has no points (none stored, or none with finite coordinates): it adds nothing to "
+          "the map or to the optimization of its pose");
+    }
     // In double: world-frame scans may be far from the origin (scan.origin).
     const Pose to_sensor = scans_in_world_ ? trajectory_.poses[i].inverse() : Pose::identity();
     if (scans_in_world_ || !scan.origin.isZero()) {
