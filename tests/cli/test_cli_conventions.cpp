@@ -124,7 +124,7 @@ TEST_F(CliConventions, LogFileGetsEveryMessageWithTimes) {
   const SplitResult unwritable =
       runSplit("--log-file " + quoted(dir / "a_file" / "hba.log") + " mme " + quoted(dir / "sim"), dir);
   EXPECT_EQ(unwritable.exit_code, 1);
-  expectContains(unwritable.err, "cannot write the log file");
+  expectContains(unwritable.err, "--log-file: the folder");
 }
 
 }  // namespace
