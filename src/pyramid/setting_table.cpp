@@ -91,7 +91,7 @@ Setting shorthand(std::string key, std::string flag, std::vector<std::string> se
   s.flag = std::move(flag);
   s.sets = std::move(sets);
   s.help = std::move(help);
-  return s;  // type, range and default: those of the first setting it sets
+  return s;  // type, range and default: completeShorthands
 }
 
 SettingRange atLeast(double min) { return {min, kInf, false, false, ""}; }
@@ -139,6 +139,43 @@ void addBaSettings(std::vector<Setting>& table, const std::string& section, cons
   table.push_back(onOff(
       k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
       "windows that blur the map keep their input poses"));
+}
+
+const Setting& inTable(const std::vector<Setting>& table, const std::string& key) {
+  for (const Setting& s : table) {
+    if (s.key == key) return s;
+  }
+  throw Error("no setting '" + key + "'");
+}
+
+// The numbers both ranges take (0 only if both take it).
+SettingRange common(const SettingRange& a, const SettingRange& b) {
+  SettingRange r = a;
+  if (b.min > r.min || (b.min == r.min && b.min_open)) {
+    r.min = b.min;
+    r.min_open = b.min_open;
+  }
+  if (b.max < r.max || (b.max == r.max && b.max_open)) {
+    r.max = b.max;
+    r.max_open = b.max_open;
+  }
+  if (b.zero.empty()) r.zero.clear();
+  return r;
+}
+
+// A shorthand takes the first setting's type and default, and only what
+// every setting it sets takes: --voxel is refused above voxel_scans' 100 m
+// by its own name, not by another setting's later.
+void completeShorthands(std::vector<Setting>& table) {
+  for (Setting& s : table) {
+    if (!s.shorthand()) continue;
+    const Setting& first = inTable(table, s.sets.front());
+    s.type = first.type;
+    s.choices = first.choices;
+    s.default_value = first.default_value;
+    s.range = first.range;
+    for (const std::string& key : s.sets) s.range = common(s.range, inTable(table, key).range);
+  }
 }
 
 std::vector<Setting> makeTable() {
@@ -276,6 +313,7 @@ std::vector<Setting> makeTable() {
       "groups' merged clouds downsampled to this, m"));
   addBaSettings(t, "local", "local", 0.05, &HbaSettings::local);
   addBaSettings(t, "global", "global", 0.1, &HbaSettings::global);
+  completeShorthands(t);
   return t;
 }
 
