@@ -13,6 +13,7 @@
 #include "hba/core/staging_folder.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "number_checks.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 #include "process_group.hpp"
@@ -119,7 +120,7 @@ void registerOptimizeCommand(CLI::App& app) {
   command
       ->add_option("--prior-max-gap", args->prior_max_gap_s,
                    "A prior further than this (s) from every scan's stamp is not used")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveUpTo(3600.0, "s"))
       ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-convention-check", args->no_convention_check,

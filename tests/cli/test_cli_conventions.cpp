@@ -92,7 +92,7 @@ TEST_F(CliConventions, MistypedSettingGetsASuggestionAndTheValidNames) {
   const SplitResult run = runSplit("optimize " + quoted(dir / "sim") + " -o " + quoted(dir / "o") +
                                        " --config " + quoted(dir / "bad.yaml"),
                                    dir);
-  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_EQ(run.exit_code, 2);  // usage, as a mistyped flag
   expectContains(run.err, "unknown setting 'windw' (did you mean 'window'?)");
   expectContains(run.err, "stride");
 }
