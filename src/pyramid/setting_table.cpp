@@ -202,11 +202,24 @@ std::vector<Setting> makeTable() {
   t.push_back(integer(
       "layers", "--layers", 0, zeroOr("automatic", 1, kInf), [](HbaSettings& h) -> int& { return h.layers; },
       "pyramid layers incl. layer 1"));
-  t.push_back(withAliases(
-      integer(
-          "iterations", "--iterations", 1, atLeast(1),
-          [](HbaSettings& h) -> int& { return h.outer_iterations; }, "bottom-up + top-down rounds at most"),
-      {"outer_iterations"}));
+  // Rounds stop before the limit when the poses settle (outer_rounds.hpp):
+  // a round that moves no pose beyond both tolerances, or no less than the
+  // round before. A round costs what the first did: past 100 the limit is
+  // no limit.
+  t.push_back(withAliases(integer(
+                              "iterations", "--iterations", 1, between(1, 100),
+                              [](HbaSettings& h) -> int& { return h.outer_iterations; },
+                              "bottom-up + top-down rounds at most; fewer when the poses settle"),
+                          {"outer_iterations"}));
+  // Half the default point_sigma; 0.01 deg turns a point 50 m away by 9 mm.
+  t.push_back(real(
+      "settle_translation", "--settle-translation", 0.01, between(1e-6, 1),
+      [](HbaSettings& h) -> double& { return h.settle_translation_m; },
+      "a round that moves no pose further (and no more than settle_rotation) settles the poses, m"));
+  t.push_back(real(
+      "settle_rotation", "--settle-rotation", 0.01, between(1e-6, 10),
+      [](HbaSettings& h) -> double& { return h.settle_rotation_deg; },
+      "a round that turns no pose further (and no more than settle_translation) settles the poses, deg"));
   // Downsampling, named apart from the plane maps' root voxels (--voxel-*).
   t.push_back(withAliases(real(
                               "downsample_scans", "--downsample-scans", 0.1, zeroOr("off", 1e-3, 100),

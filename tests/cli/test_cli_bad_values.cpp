@@ -81,6 +81,9 @@ const std::vector<BadValue> kRows = {
     {"optimize DATA -o OUT/o", "--voxel inf", "(not finite)"},
     {"optimize DATA -o OUT/o", "--stride 0", ">= 1"},
     {"optimize DATA -o OUT/o", "--stride 10", "stride must be below window"},
+    {"optimize DATA -o OUT/o", "--iterations 100000", "must be [1, 100], got 100000 (too large)"},
+    {"optimize DATA -o OUT/o", "--iterations 0", "[1, 100]"},
+    {"optimize DATA -o OUT/o", "--settle-translation 0", "[1e-06, 1]"},
     {"optimize DATA -o OUT/o", "--theta-local 1", "(0, 1)"},
     {"optimize DATA -o OUT/o", "--downsample-scans nan", "(not finite)"},
     {"optimize DATA -o OUT/o", "--scan-voxel -1", "0 (off) or [0.001, 100]"},
@@ -143,6 +146,7 @@ TEST_F(CliBadValues, ConfigFileValuesAreUsageErrors) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"window: -3\n", "setting window must be >= 2, got -3"},
       {"voxel: .inf\n", "setting voxel must be [0.01, 100]"},
+      {"iterations: 100000\n", "setting iterations must be [1, 100], got 100000 (too large)"},
       {"window: 99999999999999999999\n", "(too large: at most 2147483647)"},
       {"local:\n  eigen_ratio: 1.5\n", "setting local.eigen_ratio must be (0, 1)"},
       {"windw: 10\n", "unknown setting 'windw' (did you mean 'window'?)"},
