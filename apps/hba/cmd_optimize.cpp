@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/pyramid/settings_file.hpp"
@@ -96,6 +97,7 @@ void registerOptimizeCommand(CLI::App& app) {
                    "With several sessions, how each later one is placed in the first one's frame at the "
                    "start: register (found from their overlap), identity (already in one frame), or a "
                    "file with one 'tx ty tz qx qy qz qw' line per later session")
+      ->check(nameOrFile({"register", "identity"}, "a file of transforms"))
       ->capture_default_str();
   command->add_option("-o,--output", args->output,
                       "Output folder (created; never inside the input; a non-empty one needs --force)");

@@ -158,6 +158,7 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--trajectory", args->trajectory,
                    "block | figure8 | street | a KITTI/TUM/HBA trajectory file")
+      ->check(nameOrFile(enumNames<sim::PathShape>(), "a trajectory file"))
       ->capture_default_str();
   command->add_option("--speed", args->speed, "Vehicle speed in m/s (procedural paths)")
       ->check(positiveUpTo(100.0, "m/s"))

@@ -96,6 +96,8 @@ const std::vector<BadValue> kRows = {
     {"optimize DATA -o OUT/o", "--prior-max-gap inf", "(0, 3600] s"},
     {"optimize DATA -o OUT/o", "--prior-max-gap 0", "(0, 3600] s"},
     {"optimize DATA -o OUT/o", "--extrinsic 1,2,3", "expected 7 numbers"},
+    {"optimize DATA DATA -o OUT/o", "--align regster", "must be register, identity, or a file of transforms"},
+    {"simulate -o OUT/sim", "--trajectory blok", "must be block, figure8, street, or a trajectory file"},
 };
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
