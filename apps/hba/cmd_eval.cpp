@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -122,12 +123,15 @@ void run(const EvalArgs& args) {
   options.max_time_diff = args.t_max_diff;
   options.rpe_delta = args.delta;
   options.rpe_unit = parseEnum<eval::DeltaUnit>(args.delta_unit);
+  if (options.rpe_unit == eval::DeltaUnit::Frames && args.delta != std::floor(args.delta))
+    throw ValueError(
+        fmt::format("--delta: in frames (--delta-unit) it must be a whole number, got {}", args.delta));
 
+  if (!args.plot.empty() && std::filesystem::path(args.plot).extension() != ".png")
+    throw ValueError(args.plot + ": --plot must name a .png file");
   std::unique_ptr<OutputLock> json_claim, plot_claim;  // held until written
   if (!args.json.empty()) json_claim = claimOutputFile(args.json, args.force);
   if (!args.plot.empty()) {
-    if (std::filesystem::path(args.plot).extension() != ".png")
-      failAt(args.plot, "the plot must be a .png file");
     if (std::filesystem::path(args.plot) == std::filesystem::path(args.json))
       failAt(args.plot, "is also the --json file; give them two names");
     plot_claim = claimOutputFile(args.plot, args.force);
@@ -190,15 +194,15 @@ void registerEvalCommand(CLI::App& app) {
       ->check(oneOf<eval::AssociationMode>())
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
-      ->check(nonNegative())
+      ->check(realIn(0.0, 3600.0, "s"))
       ->capture_default_str();
   command
       ->add_option("--min-matched", args->min_matched,
                    "Fail when fewer than this share of estimated poses pair with ground truth")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(realIn(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--delta", args->delta, "RPE distance between compared poses")
-      ->check(positive())
+      ->check(positiveUpTo(1e6))
       ->capture_default_str();
   command->add_option("--delta-unit", args->delta_unit, "Unit of --delta")
       ->check(oneOf<eval::DeltaUnit>())

@@ -217,7 +217,7 @@ void registerInfoCommand(CLI::App& app) {
   command
       ->add_option("--sample", options->sample,
                    "Look at N evenly spaced scans for the point statistics (0 = all)")
-      ->check(nonNegative());
+      ->check(numberIn({1, 1e9, false, false, "all"}, NumberKind::Count));
   command->add_flag("--json", options->json, "Print a JSON document instead of text");
   command->callback([options] { runInfo(*options); });
 }

@@ -66,7 +66,7 @@ void registerMapCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output, "Output map file (.pcd, .ply or .las)")->required();
   command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
-      ->check(nonNegative())
+      ->check(mapVoxel())
       ->capture_default_str();
   command
       ->add_option("--color", args->color,

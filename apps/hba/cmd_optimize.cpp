@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
 #include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
@@ -16,6 +17,7 @@
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "json_text.hpp"
+#include "number_checks.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 #include "process_group.hpp"
@@ -105,6 +107,7 @@ void registerOptimizeCommand(CLI::App& app) {
                    "With several sessions, how each later one is placed in the first one's frame at the "
                    "start: register (found from their overlap), identity (already in one frame), or a "
                    "file with one 'tx ty tz qx qy qz qw' line per later session")
+      ->check(nameOrFile({"register", "identity"}, "a file of transforms"))
       ->capture_default_str();
   command->add_option("-o,--output", args->output,
                       "Output folder (created; never inside the input; a non-empty one needs --force)");
@@ -129,7 +132,7 @@ void registerOptimizeCommand(CLI::App& app) {
   command
       ->add_option("--prior-max-gap", args->prior_max_gap_s,
                    "A prior further than this (s) from every scan's stamp is not used")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveUpTo(3600.0, "s"))
       ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-convention-check", args->no_convention_check,

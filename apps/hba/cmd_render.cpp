@@ -35,8 +35,8 @@ std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::string& pa
 
 void run(RenderArgs& args) {
   if (std::filesystem::path(args.output).extension() != ".png")
-    failAt(args.output, "the picture must be a .png file");
-  if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);
+    throw ValueError(args.output + ": the picture (-o) must be a .png file");
+  if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);  // checked by the flag
   args.settings.side_view = !args.no_side;
 
   const io::Dataset dataset = args.data.open();
@@ -72,17 +72,27 @@ void registerRenderCommand(CLI::App& app) {
       ->check(inputFile());
   command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
       ->check(inputFile());
-  command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
+  command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            try {
+              render::parseBox(text);
+              return "";
+            } catch (const Error& e) {
+              return e.what();
+            }
+          },
+          "XMIN,YMIN,XMAX,YMAX"));
   command->add_option("--width", args->settings.width, "Picture width (px)")
-      ->check(CLI::Range(200, 16384))
+      ->check(numberIn({200, 16384, false, false, ""}, NumberKind::Integer, "px"))
       ->capture_default_str();
   command
       ->add_option("--height", args->settings.height,
                    "Picture height (px); --compare adds a row 7/10 as tall below it where planes got thinner")
-      ->check(CLI::Range(200, 16384))
+      ->check(numberIn({200, 16384, false, false, ""}, NumberKind::Integer, "px"))
       ->capture_default_str();
   command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m; 0 = keep all)")
-      ->check(nonNegative())
+      ->check(mapVoxel())
       ->capture_default_str();
   command->add_flag("--no-side", args->no_side, "Leave out the side view (x vs z)");
   command->callback([args] { run(*args); });

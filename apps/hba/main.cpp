@@ -84,7 +84,9 @@ int run(int argc, char** argv) {
   bool verbose = false;
   bool quiet = false;
   std::string log_file;
-  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")->check(hba::cli::nonNegative());
+  // More threads than 4096 is no machine hba runs on.
+  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
+      ->check(hba::cli::numberIn({1, 4096, false, false, "all cores"}, hba::NumberKind::Integer));
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
   app.add_option("--log-file", log_file, "Also write every message, with times, to this file");
@@ -134,6 +136,9 @@ int run(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return hba::cli::reportParseError(app, e, argc, argv);
+  } catch (const hba::ValueError& e) {  // a setting or a flag's value: usage
+    spdlog::error("{}", e.what());
+    return hba::cli::kExitUsage;
   } catch (const hba::Error& e) {
     spdlog::error("{}", e.what());
     return hba::cli::kExitFailure;

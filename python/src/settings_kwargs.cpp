@@ -82,10 +82,10 @@ nlohmann::json settingValue(const py::handle& value, const std::string& name) {
     // YAML would read the text "10" as a number: a string is a name, for the
     // settings that take one.
     const pyramid::Setting* setting = settingNamed(name);
-    if (setting && pyramid::valueSetting(*setting).type != pyramid::SettingType::Choice) {
+    if (setting && setting->type != pyramid::SettingType::Choice) {
       refuse(name,
              "is the string " + reprOf(value) + ", not a " +
-                 (pyramid::valueSetting(*setting).type == pyramid::SettingType::Switch ? "bool" : "number"));
+                 (setting->type == pyramid::SettingType::Switch ? "bool" : "number"));
     }
     return value.cast<std::string>();
   }
