@@ -24,6 +24,7 @@ struct Target {
 void feedPcd(const std::filesystem::path& input);
 void feedPly(const std::filesystem::path& input);
 void feedKittiBin(const std::filesystem::path& input);
+void feedLas(const std::filesystem::path& input);
 void feedHbaPoses(const std::filesystem::path& input);
 void feedKittiPoses(const std::filesystem::path& input);
 void feedTumPoses(const std::filesystem::path& input);

@@ -5,9 +5,11 @@
 
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
+#include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/wide_cloud.hpp"
 
 namespace hba::fuzz {
 namespace fs = std::filesystem;
@@ -19,6 +21,21 @@ void checkCloud(const PointCloud& cloud) {
   if (cloud.hasIntensity() && cloud.intensity.size() != cloud.size()) std::abort();
   for (const Vec3f& p : cloud.points) {
     if (!p.allFinite()) std::abort();
+  }
+}
+
+// The same file read in double: finite points, one intensity each, and
+// hba's cloud holds each of them as a float relative to its origin (it drops
+// only those whose float overflows).
+void checkWideAgainstCloud(const io::WideCloud& wide, const PointCloud& cloud) {
+  if (wide.hasIntensity() && wide.intensity.size() != wide.size()) std::abort();
+  for (const Vec3& p : wide.points) {
+    if (!p.allFinite()) std::abort();
+  }
+  if (cloud.size() > wide.size()) std::abort();
+  if (cloud.size() != wide.size()) return;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (cloud.points[i] != (wide.points[i] - cloud.origin).cast<float>()) std::abort();
   }
 }
 
@@ -55,6 +72,16 @@ void feedPcd(const fs::path& input) {
 
 void feedPly(const fs::path& input) {
   rejectOnlyWithError([&] { checkCloud(io::readPly(input)); });
+}
+
+// As `hba info` (the header alone) and every command (the points) read it.
+void feedLas(const fs::path& input) {
+  rejectOnlyWithError([&] { io::readLasHeader(input); });
+  rejectOnlyWithError([&] {
+    const PointCloud cloud = io::readLas(input);
+    checkCloud(cloud);
+    checkWideAgainstCloud(io::readScanWide(input, io::ScanFormat::Las), cloud);
+  });
 }
 
 void feedKittiBin(const fs::path& input) {

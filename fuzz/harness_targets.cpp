@@ -7,6 +7,7 @@ const std::vector<Target>& allTargets() {
       {"fuzz_pcd", feedPcd},
       {"fuzz_ply", feedPly},
       {"fuzz_kitti_bin", feedKittiBin},
+      {"fuzz_las", feedLas},
       {"fuzz_pose_hba", feedHbaPoses},
       {"fuzz_pose_kitti", feedKittiPoses},
       {"fuzz_pose_tum", feedTumPoses},

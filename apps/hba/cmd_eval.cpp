@@ -2,16 +2,20 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.hpp"
 #include "enum_choice.hpp"
+#include "file_checks.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/eval/association.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/render/error_plot.hpp"
+#include "json_text.hpp"
 #include "number_checks.hpp"
 #include "output_dir.hpp"
 
@@ -33,6 +37,29 @@ Trajectory readTrajectory(const std::string& path, const std::string& format) {
   const std::string unit = io::stampsToSeconds(trajectory.stamps);
   if (!unit.empty()) spdlog::info("{}: the stamps are in {}; read as seconds", path, unit);
   return trajectory;
+}
+
+// Too few estimated poses with a ground-truth stamp within the tolerance
+// (none at all included): the files' clocks differ, as scan indices against
+// seconds do. Says both files' stamps and the flag that would pair them.
+void refuseTimesThatDisagree(const EvalArgs& args, const Trajectory& gt, const Trajectory& est,
+                             std::size_t matched) {
+  const double share = static_cast<double>(matched) / static_cast<double>(est.size());
+  if (matched > 0 && share >= args.min_matched) return;
+  const std::string other_pairing =
+      gt.size() == est.size()
+          ? fmt::format("pair poses by index (--assoc index: both files hold {} poses)", est.size())
+          : fmt::format(
+                "if the clocks agree but the stamps lie further apart, widen the tolerance (--t-max-diff; "
+                "pairing by index, --assoc index, needs equal counts, not {} and {})",
+                est.size(), gt.size());
+  throw Error(fmt::format(
+      "{}: only {} of {} estimated poses ({:.0f} %) have a ground-truth pose within {} s in {} "
+      "(--min-matched {}). The two files' times do not agree: {} holds {}, {} holds {}. A TUM file written "
+      "from data without timestamps carries scan indices (0, 1, 2, ...): give the stamps (hba optimize "
+      "--times FILE), or {}.",
+      args.est, matched, est.size(), 100.0 * share, args.t_max_diff, args.gt, args.min_matched, args.est,
+      eval::describeStamps(est.stamps), args.gt, eval::describeStamps(gt.stamps), other_pairing));
 }
 
 std::string statsRow(const std::string& prefix, const char* name, const eval::ErrorStats& s) {
@@ -96,15 +123,24 @@ void run(const EvalArgs& args) {
   options.max_time_diff = args.t_max_diff;
   options.rpe_delta = args.delta;
   options.rpe_unit = parseEnum<eval::DeltaUnit>(args.delta_unit);
+  if (options.rpe_unit == eval::DeltaUnit::Frames && args.delta != std::floor(args.delta))
+    throw ValueError(
+        fmt::format("--delta: in frames (--delta-unit) it must be a whole number, got {}", args.delta));
 
-  if (!args.json.empty()) refuseToReplace(args.json, args.force);
+  if (!args.plot.empty() && std::filesystem::path(args.plot).extension() != ".png")
+    throw ValueError(args.plot + ": --plot must name a .png file");
+  std::unique_ptr<OutputLock> json_claim, plot_claim;  // held until written
+  if (!args.json.empty()) json_claim = claimOutputFile(args.json, args.force);
   if (!args.plot.empty()) {
-    if (std::filesystem::path(args.plot).extension() != ".png")
-      failAt(args.plot, "the plot must be a .png file");
-    refuseToReplace(args.plot, args.force);
+    if (std::filesystem::path(args.plot) == std::filesystem::path(args.json))
+      failAt(args.plot, "is also the --json file; give them two names");
+    plot_claim = claimOutputFile(args.plot, args.force);
   }
   const Trajectory gt = readTrajectory(args.gt, args.gt_format);
   const Trajectory est = readTrajectory(args.est, args.est_format);
+  if (eval::pairsByTime(gt, est, options.association)) {
+    refuseTimesThatDisagree(args, gt, est, eval::pairByTime(gt.stamps, est.stamps, args.t_max_diff).size());
+  }
   const eval::TrajectoryEvaluation result = eval::evaluateTrajectory(gt, est, options);
   const double share = static_cast<double>(result.matched) / static_cast<double>(result.estimate_count);
   if (share < args.min_matched && result.association_used == eval::AssociationMode::Index) {
@@ -112,15 +148,6 @@ void run(const EvalArgs& args) {
         fmt::format("{}: only {} of {} estimated poses have a ground-truth pose at their index in {} "
                     "({} poses; --min-matched {}): are they the same sequence?",
                     args.est, result.matched, result.estimate_count, args.gt, gt.size(), args.min_matched));
-  }
-  if (share < args.min_matched) {
-    throw Error(fmt::format(
-        "{}: only {} of {} estimated poses ({:.0f} %) have a ground-truth pose within {} s in {} "
-        "(--min-matched {}). The two files' times do not agree: {:.3f} to {:.3f} s against {:.3f} to "
-        "{:.3f} s. A TUM file written from data without timestamps carries scan indices (0, 1, 2, ...): "
-        "give the stamps (hba optimize --times FILE), or pair poses by index (--assoc index).",
-        args.est, result.matched, result.estimate_count, 100.0 * share, args.t_max_diff, args.gt,
-        args.min_matched, est.stamps.front(), est.stamps.back(), gt.stamps.front(), gt.stamps.back()));
   }
   if (result.matched < result.estimate_count) {
     spdlog::warn("{} estimated poses have no ground truth within {} s and are not evaluated",
@@ -142,7 +169,7 @@ void run(const EvalArgs& args) {
   }
   if (!args.json.empty()) {
     writeFileAtomically(args.json,
-                        [&](std::ostream& out) { out << reportJson(args, result).dump(2) << '\n'; });
+                        [&](std::ostream& out) { out << jsonText(reportJson(args, result), 2) << '\n'; });
   }
 }
 
@@ -152,8 +179,8 @@ void registerEvalCommand(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   auto* command = app.add_subcommand(
       "eval", "Trajectory accuracy: ATE and RPE of an estimate against ground truth (evo's definitions)");
-  command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(CLI::ExistingFile);
-  command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(CLI::ExistingFile);
+  command->add_option("--gt", args->gt, "Ground-truth trajectory file")->required()->check(inputFile());
+  command->add_option("--est", args->est, "Estimated trajectory file")->required()->check(inputFile());
   const auto formats = oneOf<io::PoseFormat>();
   command->add_option("--gt-format", args->gt_format, "Format of --gt (default: detected)")->check(formats);
   command->add_option("--est-format", args->est_format, "Format of --est (default: detected)")
@@ -167,15 +194,15 @@ void registerEvalCommand(CLI::App& app) {
       ->check(oneOf<eval::AssociationMode>())
       ->capture_default_str();
   command->add_option("--t-max-diff", args->t_max_diff, "Time association tolerance (s)")
-      ->check(nonNegative())
+      ->check(realIn(0.0, 3600.0, "s"))
       ->capture_default_str();
   command
       ->add_option("--min-matched", args->min_matched,
                    "Fail when fewer than this share of estimated poses pair with ground truth")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(realIn(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--delta", args->delta, "RPE distance between compared poses")
-      ->check(positive())
+      ->check(positiveUpTo(1e6))
       ->capture_default_str();
   command->add_option("--delta-unit", args->delta_unit, "Unit of --delta")
       ->check(oneOf<eval::DeltaUnit>())

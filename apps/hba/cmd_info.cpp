@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,7 +19,9 @@
 #include "commands.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file_summary.hpp"
+#include "json_text.hpp"
 #include "number_checks.hpp"
 
 namespace hba::cli {
@@ -55,6 +58,22 @@ std::vector<std::size_t> evenlySpaced(std::size_t n, std::size_t count) {
   return indices;
 }
 
+// Scans that store no points are read as empty: name a few, count them all.
+void warnAboutEmptyScans(const io::Dataset& dataset, const std::vector<std::size_t>& indices,
+                         const std::vector<std::uint64_t>& counts) {
+  std::size_t empty = 0;
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    if (counts[k] != 0) continue;
+    ++empty;
+    io::warnAboutFile(
+        dataset.scanPath(indices[k]), "scans with no points",
+        "the scan stores no points: it adds nothing to the map or to the optimization of its pose");
+  }
+  if (empty > io::kNamedFilesPerProblem) {
+    spdlog::warn("{} of the {} scans looked at store no points", empty, counts.size());
+  }
+}
+
 PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
   const std::vector<std::size_t> indices = evenlySpaced(dataset.size(), sample);
   std::vector<std::uint64_t> counts(indices.size());
@@ -71,6 +90,7 @@ PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
   for (const std::exception_ptr& failure : failures) {
     if (failure) std::rethrow_exception(failure);
   }
+  warnAboutEmptyScans(dataset, indices, counts);
   std::sort(counts.begin(), counts.end());
   return {counts.front(), counts[counts.size() / 2], counts.back(), counts.size()};
 }
@@ -174,7 +194,7 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"extent_max", {s.extent_max.x(), s.extent_max.y(), s.extent_max.z()}},
       {"duration_s", s.has_duration ? nlohmann::json(s.duration_s) : nlohmann::json(nullptr)},
   };
-  std::cout << out.dump(2) << "\n";
+  std::cout << jsonText(out, 2) << "\n";
 }
 
 void runInfo(const InfoOptions& options) {
@@ -197,7 +217,7 @@ void registerInfoCommand(CLI::App& app) {
   command
       ->add_option("--sample", options->sample,
                    "Look at N evenly spaced scans for the point statistics (0 = all)")
-      ->check(nonNegative());
+      ->check(numberIn({1, 1e9, false, false, "all"}, NumberKind::Count));
   command->add_flag("--json", options->json, "Print a JSON document instead of text");
   command->callback([options] { runInfo(*options); });
 }

@@ -38,8 +38,8 @@ void run(MapArgs& args) {
   args.settings.color = parseEnum<eval::MapColor>(args.color);
 
   const io::Dataset dataset = args.data.open();
-  refuseOutputInsideInput(output, dataset);  // hba never writes into its input
-  refuseToReplace(output, args.force);
+  refuseOutputInsideInput(output, dataset);                // hba never writes into its input
+  const auto claim = claimOutputFile(output, args.force);  // held until written
   spdlog::info("merging {} scans with poses from {}", dataset.size(), dataset.posesFile().string());
   const io::DatasetScanSource scans(dataset);
   // LAS has a field for the scan index (point source ID), so it gets one
@@ -75,7 +75,7 @@ void registerMapCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output, "Output map file (.pcd, .ply or .las)")->required();
   command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
-      ->check(nonNegative())
+      ->check(mapVoxel())
       ->capture_default_str();
   command
       ->add_option("--color", args->color,

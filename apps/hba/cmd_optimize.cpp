@@ -9,11 +9,16 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "enum_choice.hpp"
+#include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
+#include "hba/core/temporary_folder.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
+#include "json_text.hpp"
 #include "memory_check.hpp"
+#include "number_checks.hpp"
 #include "optimize_parts.hpp"
 #include "output_dir.hpp"
 #include "process_group.hpp"
@@ -35,6 +40,9 @@ void run(const Args& args) {
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
   settings.threads = pyramid::resolvedThreadCount(settings);
+  // Kept clouds and maps go to the temporary folder: a wrong TMPDIR is
+  // refused before any work, naming it.
+  temporaryFolder();
   // Under mpirun: each layer's windows spread over the processes (each reads
   // its own windows' scans); the first alone checks the conventions, runs
   // the closure stage and the refinement, and writes the outputs.
@@ -45,9 +53,11 @@ void run(const Args& args) {
     return runSessions(args, settings);
   }
 
+  refuseProtectedFolder(args.output);
   const io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
+  const std::optional<Trajectory> gt = readGroundTruth(args, dataset, dataset.size());
   // One source of the scans for the memory estimate, the convention check,
   // the optimization and the picture.
   const io::DatasetScanSource scans(dataset);
@@ -56,13 +66,16 @@ void run(const Args& args) {
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
   std::optional<StagingFolder> staging;
-  if (group.root()) staging.emplace(args.output, args.force);
+  if (group.root()) {
+    staging.emplace(args.output, args.force, "hba optimize");
+    announceReplacement(*staging);
+  }
   const nlohmann::json conventions =
       group.root() ? checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset)
                    : nlohmann::json();
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
                dataset.size(), dataset.posesFile().string());
-  spdlog::debug("settings: {}", pyramid::settingsToJson(settings).dump());  // also in report.json
+  spdlog::debug("settings: {}", jsonText(pyramid::settingsToJson(settings)));  // also in report.json
   spdlog::info("threads: {}{}", settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
@@ -76,8 +89,8 @@ void run(const Args& args) {
   report["memory_estimate"] = memory;
   writeReport(out, report);
 
-  const bool drawn = !args.no_render && writePicture(args, dataset, scans, result, settings.scan_voxel,
-                                                     dataset.trajectory().poses, out);
+  const bool drawn =
+      !args.no_render && writePicture(scans, result, settings.scan_voxel, dataset.trajectory().poses, gt, out);
   staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging->destination().string());
@@ -101,6 +114,7 @@ void registerOptimizeCommand(CLI::App& app) {
                    "With several sessions, how each later one is placed in the first one's frame at the "
                    "start: register (found from their overlap), identity (already in one frame), or a "
                    "file with one 'tx ty tz qx qy qz qw' line per later session")
+      ->check(nameOrFile({"register", "identity"}, "a file of transforms"))
       ->capture_default_str();
   command->add_option("-o,--output", args->output,
                       "Output folder (created; never inside the input; a non-empty one needs --force)");
@@ -111,21 +125,21 @@ void registerOptimizeCommand(CLI::App& app) {
   command
       ->add_option("--gt", args->ground_truth,
                    "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command
       ->add_option("--loops", args->loops,
                    "Loop-closure pairs to verify and close: lines 'i j' or 'i j tx ty tz qx qy qz qw' "
                    "(docs/closure.md)")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command
       ->add_option("--priors", args->priors,
                    "Position priors (GNSS in a local metric frame): lines 't x y z sigma' or "
                    "'t x y z sx sy sz' (docs/closure.md)")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command
       ->add_option("--prior-max-gap", args->prior_max_gap_s,
                    "A prior further than this (s) from every scan's stamp is not used")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveUpTo(3600.0, "s"))
       ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-memory-check", args->no_memory_check,
@@ -133,8 +147,7 @@ void registerOptimizeCommand(CLI::App& app) {
                     "(docs/pyramid.md, \"Memory\")");
   command->add_flag("--no-convention-check", args->no_convention_check,
                     "Do not check that the map is crispest with the poses as given (vs inverted, vs none)");
-  command->add_option("--config", args->config, "YAML settings file (flags override it)")
-      ->check(CLI::ExistingFile);
+  command->add_option("--config", args->config, "YAML settings file (flags override it)")->check(inputFile());
   args->settings.addTo(command);
   command->callback([args] { run(*args); });
 }

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "dataset_args.hpp"
+#include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/memory_budget.hpp"
 #include "hba/io/pose_file.hpp"
@@ -35,30 +36,29 @@ std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::string& pa
 
 void run(RenderArgs& args) {
   if (std::filesystem::path(args.output).extension() != ".png")
-    failAt(args.output, "the picture must be a .png file");
-  if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);
+    throw ValueError(args.output + ": the picture (-o) must be a .png file");
+  if (!args.crop.empty()) args.settings.crop = render::parseBox(args.crop);  // checked by the flag
   args.settings.side_view = !args.no_side;
 
   const io::Dataset dataset = args.data.open();
-  refuseOutputInsideInput(args.output, dataset);  // hba never writes into its input
-  refuseToReplace(args.output, args.force);
+  refuseOutputInsideInput(args.output, dataset);                // hba never writes into its input
+  const auto claim = claimOutputFile(args.output, args.force);  // held until written
   std::vector<Pose> gt;
   if (!args.gt.empty()) gt = io::readPoses(args.gt).poses;
   const std::vector<Pose>* gt_ptr = args.gt.empty() ? nullptr : &gt;
   const io::DatasetScanSource scans(dataset);
   // Stops, with nothing written, before the kernel would kill it.
   args.settings.budget = MemoryBudget::ofAvailableMemory();
+  render::PictureSize size;  // the size written, not the one asked: --compare may add a zoom row
   try {
-    if (args.compare.empty()) {
-      render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings);
-    } else {
-      render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare), gt_ptr,
-                               args.output, args.settings);
-    }
+    size = args.compare.empty()
+               ? render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings)
+               : render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare),
+                                          gt_ptr, args.output, args.settings);
   } catch (const MemoryExceeded& e) {
     failAt(args.output, std::string("not written: ") + e.what() + "; a larger --voxel keeps fewer points");
   }
-  spdlog::info("wrote {} ({}x{})", args.output, args.settings.width, args.settings.height);
+  spdlog::info("wrote {} ({}x{})", args.output, size.width, size.height);
 }
 
 }  // namespace
@@ -75,18 +75,30 @@ void registerRenderCommand(CLI::App& app) {
   command
       ->add_option("--compare", args->compare,
                    "A second trajectory (e.g. optimized): drawn right of the --poses/dataset one")
-      ->check(CLI::ExistingFile);
+      ->check(inputFile());
   command->add_option("--gt", args->gt, "Ground-truth trajectory to overlay (aligned rigidly)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)");
+      ->check(inputFile());
+  command->add_option("--crop", args->crop, "Show only xmin,ymin,xmax,ymax (metres)")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            try {
+              render::parseBox(text);
+              return "";
+            } catch (const Error& e) {
+              return e.what();
+            }
+          },
+          "XMIN,YMIN,XMAX,YMAX"));
   command->add_option("--width", args->settings.width, "Picture width (px)")
-      ->check(CLI::Range(200, 16384))
+      ->check(numberIn({200, 16384, false, false, ""}, NumberKind::Integer, "px"))
       ->capture_default_str();
-  command->add_option("--height", args->settings.height, "Picture height (px)")
-      ->check(CLI::Range(200, 16384))
+  command
+      ->add_option("--height", args->settings.height,
+                   "Picture height (px); --compare adds a row 7/10 as tall below it where planes got thinner")
+      ->check(numberIn({200, 16384, false, false, ""}, NumberKind::Integer, "px"))
       ->capture_default_str();
   command->add_option("--voxel", args->settings.voxel, "Voxel size of the merged maps (m; 0 = keep all)")
-      ->check(nonNegative())
+      ->check(mapVoxel())
       ->capture_default_str();
   command->add_flag("--no-side", args->no_side, "Leave out the side view (x vs z)");
   command->callback([args] { run(*args); });

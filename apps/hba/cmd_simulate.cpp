@@ -7,10 +7,12 @@
 #include "commands.hpp"
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/core/stopwatch.hpp"
 #include "hba/sim/sessions.hpp"
 #include "hba/sim/simulation.hpp"
 #include "number_checks.hpp"
+#include "output_dir.hpp"
 
 namespace hba::cli {
 namespace {
@@ -51,7 +53,8 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
     config.trajectory.shape = *shape;
   } else {
     config.trajectory.file = args.trajectory;
-    if (!std::filesystem::is_regular_file(config.trajectory.file)) {
+    // A FIFO or a link loop there is named as such (input_file.hpp).
+    if (!regularFileIsPresent(config.trajectory.file)) {
       failAt(args.trajectory, "not block, figure8, street, nor a trajectory file");
     }
   }
@@ -119,6 +122,7 @@ void runSessions(const SimulateArgs& args, const sim::SessionsConfig& sessions) 
 }
 
 void run(const SimulateArgs& args) {
+  refuseReplacingInputs(args.output);  // e.g. the --trajectory file inside the output folder
   const sim::SessionsConfig sessions = sessionsFrom(args);
   if (sessions.count > 1) {
     runSessions(args, sessions);
@@ -147,35 +151,48 @@ void registerSimulateCommand(CLI::App& app) {
       "Write a synthetic LiDAR sequence (HBA layout: pcd/, pose.json with drifting initial "
       "poses, gt.txt ground truth in TUM format, times.txt, sim.yaml)");
   command->add_option("-o,--output", args->output, "Output folder (must be empty or absent)")->required();
+  // The ranges are the simulator's own (sim::validate); 10^6 frames is a
+  // day of driving.
   command->add_option("--frames", args->frames, "Number of frames (10 Hz)")
-      ->check(positive())
+      ->check(countIn(1, 1e6))
       ->capture_default_str();
-  command->add_option("--seed", args->seed, "Random seed (same seed, same files)")->capture_default_str();
+  command->add_option("--seed", args->seed, "Random seed (same seed, same files)")
+      ->check(seedNumber())
+      ->capture_default_str();
   command
       ->add_option("--trajectory", args->trajectory,
                    "block | figure8 | street | a KITTI/TUM/HBA trajectory file")
+      ->check(nameOrFile(enumNames<sim::PathShape>(), "a trajectory file"))
       ->capture_default_str();
   command->add_option("--speed", args->speed, "Vehicle speed in m/s (procedural paths)")
+      ->check(positiveUpTo(100.0, "m/s"))
       ->capture_default_str();
   command->add_option("--sensor", args->sensor, "vlp16 | hdl32 | hdl64 | os128 | livox")
       ->check(oneOf<sim::SensorModel>())
       ->capture_default_str();
-  command->add_option("--noise", args->noise, "Range noise sigma in m (default: 0.02)");
-  command->add_option("--dropout", args->dropout, "Probability a return is lost (default: 0.02)");
-  command->add_option("--max-range", args->max_range, "Maximum range in m (default: preset)");
+  command->add_option("--noise", args->noise, "Range noise sigma in m (default: 0.02)")
+      ->check(realIn(0, 1, "m"));
+  command->add_option("--dropout", args->dropout, "Probability a return is lost (default: 0.02)")
+      ->check(numberIn({0, 1, false, true, ""}));
+  command->add_option("--max-range", args->max_range, "Maximum range in m (default: preset)")
+      ->check(realIn(1, 1000, "m"));
   command
       ->add_option("--drift-translation", args->drift_translation,
                    "Odometry translation drift, fraction of distance (0.01 = 1 %)")
+      ->check(realIn(0, 1))
       ->capture_default_str();
   command->add_option("--drift-rotation", args->drift_rotation, "Odometry heading drift in deg per metre")
+      ->check(realIn(0, 10, "deg per m"))
       ->capture_default_str();
   command
       ->add_option("--jitter-translation", args->jitter_translation,
                    "Per-frame odometry noise on top of the drift, sigma per axis (m)")
+      ->check(realIn(0, 1, "m"))
       ->default_val(args->jitter_translation);
   command
       ->add_option("--jitter-rotation", args->jitter_rotation,
                    "Per-frame odometry noise on top of the drift, sigma per axis (deg)")
+      ->check(realIn(0, 10, "deg"))
       ->default_val(args->jitter_rotation);
   command
       ->add_option("--scene", args->scene,
@@ -183,7 +200,9 @@ void registerSimulateCommand(CLI::App& app) {
                    "(corridors and halls under a ceiling)")
       ->check(oneOf<sim::Scene>())
       ->default_val(args->scene);
-  command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")->capture_default_str();
+  command->add_option("--drift-z", args->drift_z, "Odometry height drift, m per m")
+      ->check(realIn(0, 1))
+      ->capture_default_str();
   command->add_flag("--loop-closed", args->loop_closed,
                     "Initial poses = truth + small independent noise (no drift)");
   command->add_flag("--poses-only", args->poses_only,
@@ -192,22 +211,28 @@ void registerSimulateCommand(CLI::App& app) {
   command
       ->add_option("--downsample", args->downsample,
                    "Voxel size in m to thin each scan (0 = keep every return)")
+      ->check(numberIn({1e-3, 100, false, false, "keep every return"}, NumberKind::Real, "m"))
       ->capture_default_str();
   command->add_flag("--force", args->force, "Replace a non-empty output folder");
   command->add_option("--progress-every", args->progress_every, "Log progress every N frames")
+      ->check(numberIn({1, 1e6, false, false, "at the end only"}, NumberKind::Count))
       ->capture_default_str();
   command
       ->add_option("--sessions", args->sessions,
                    "Sessions in one world, written to DIR/session-0 ... (1: one dataset in DIR)")
+      ->check(countIn(1, 1000))
       ->capture_default_str();
   command
       ->add_option("--session-shift", args->session_shift,
                    "Metres along the path between one session's start and the next's")
+      ->check(realIn(0, 1e5, "m"))
       ->capture_default_str();
   command->add_flag("--session-reverse", args->session_reverse,
                     "Sessions 1, 3, 5 ... drive the path in the other direction");
-  command->add_option("--session-frames", args->session_frames,
-                      "Frames of every session (default: --frames, which also sizes the procedural loop)");
+  command
+      ->add_option("--session-frames", args->session_frames,
+                   "Frames of every session (default: --frames, which also sizes the procedural loop)")
+      ->check(countIn(1, 1e6));
   command->callback([args] { run(*args); });
 }
 

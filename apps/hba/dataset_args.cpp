@@ -11,7 +11,10 @@
 
 namespace hba::cli {
 
-Pose parsePoseArgument(const std::string& text, const std::string& flag) {
+namespace {
+
+// "" with the pose in `pose`, or what is wrong with `text`.
+std::string readPose(const std::string& text, Pose& pose) {
   std::vector<double> values;
   std::size_t pos = 0;
   const auto separator = [](char c) { return c == ' ' || c == ',' || c == '\t'; };
@@ -23,26 +26,37 @@ Pose parsePoseArgument(const std::string& text, const std::string& flag) {
     double value = 0.0;
     const auto [ptr, ec] = std::from_chars(text.data() + pos, text.data() + end, value);
     if (ec != std::errc() || ptr != text.data() + end || !std::isfinite(value)) {
-      throw Error(flag + ": '" + text.substr(pos, end - pos) + "' is not a number");
+      return "'" + text.substr(pos, end - pos) + "' is not a number";
     }
     values.push_back(value);
     pos = end;
   }
   if (values.size() == 7) {
     const Quat q(values[6], values[3], values[4], values[5]);  // given as qx qy qz qw
-    if (q.norm() < 1e-3) throw Error(flag + ": the quaternion has zero length");
-    return Pose(q, Vec3(values[0], values[1], values[2]));
+    if (q.norm() < 1e-3) return "the quaternion has zero length";
+    pose = Pose(q, Vec3(values[0], values[1], values[2]));
+    return "";
   }
   if (values.size() == 12) {
     Mat3 R;
     R << values[0], values[1], values[2], values[4], values[5], values[6], values[8], values[9], values[10];
     if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-3 || R.determinant() < 0.0) {
-      throw Error(flag + ": the 3x3 block is not a rotation");
+      return "the 3x3 block is not a rotation";
     }
-    return Pose(R, Vec3(values[3], values[7], values[11]));
+    pose = Pose(R, Vec3(values[3], values[7], values[11]));
+    return "";
   }
-  throw Error(flag + ": expected 7 numbers (tx ty tz qx qy qz qw) or 12 (row-major 3x4 [R|t]), found " +
-              std::to_string(values.size()));
+  return "expected 7 numbers (tx ty tz qx qy qz qw) or 12 (row-major 3x4 [R|t]), found " +
+         std::to_string(values.size());
+}
+
+}  // namespace
+
+Pose parsePoseArgument(const std::string& text, const std::string& flag) {
+  Pose pose;
+  const std::string problem = readPose(text, pose);
+  if (!problem.empty()) throw Error(flag + ": " + problem);
+  return pose;
 }
 
 void DatasetArgs::addTo(CLI::App* command) {
@@ -55,9 +69,16 @@ void DatasetArgs::addTo(CLI::App* command) {
       "Conventions",
       "When the input is not sensor-to-world poses of sensor-frame scans (docs/io_datasets.md)");
   conventions->add_flag("--invert-poses", invert_poses, "The poses map world to sensor: invert them");
-  conventions->add_option("--extrinsic", extrinsic,
-                          "The poses are of another body (IMU, base): T_body_sensor as "
-                          "'tx ty tz qx qy qz qw' or 12 numbers row-major [R|t]");
+  conventions
+      ->add_option("--extrinsic", extrinsic,
+                   "The poses are of another body (IMU, base): T_body_sensor as "
+                   "'tx ty tz qx qy qz qw' or 12 numbers row-major [R|t]")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            Pose pose;
+            return readPose(text, pose);
+          },
+          "POSE"));
   conventions->add_option("--calib", calibration,
                           "KITTI calib.txt: the poses are of camera 0, turned into LiDAR poses with Tr");
   conventions->add_flag("--scans-in-world", scans_in_world,

@@ -1,11 +1,13 @@
 // hba: hierarchical LiDAR bundle adjustment from the command line.
-#include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -14,7 +16,9 @@
 #include "hba/core/error.hpp"
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
+#include "log_file.hpp"
 #include "number_checks.hpp"
+#include "output_dir.hpp"
 #include "process_group.hpp"
 #include "progress_display.hpp"
 #include "usage_errors.hpp"
@@ -23,26 +27,46 @@
 namespace {
 
 // Logs go to stderr (results to stdout), and to --log-file with times and
-// every debug message, whatever -q says.
-void setUpLogging(bool verbose, bool quiet, const std::string& log_file) {
+// every debug message, whatever -q says. `command` is the chosen command,
+// whose inputs and outputs the log file must not be.
+void setUpLogging(bool verbose, bool quiet, const std::string& log_file, const CLI::App* command = nullptr) {
   auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
   console->set_pattern("%^[%l]%$ %v");
   console->set_level(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
   std::vector<spdlog::sink_ptr> sinks{console};
-  if (!log_file.empty()) {
-    try {
-      auto file = std::make_shared<spdlog::sinks::basic_file_sink_mt>(log_file, false);
-      file->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
-      file->set_level(spdlog::level::debug);
-      sinks.push_back(file);
-    } catch (const spdlog::spdlog_ex& e) {
-      throw hba::Error(log_file + ": cannot write the log file: " + e.what());
-    }
+  if (!log_file.empty() && command) {
+    auto file = hba::cli::openLogFile(log_file, *command);
+    file->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
+    file->set_level(spdlog::level::debug);
+    sinks.push_back(file);
   }
   auto logger = std::make_shared<spdlog::logger>("hba", sinks.begin(), sinks.end());
   logger->set_level(spdlog::level::debug);
   logger->flush_on(spdlog::level::info);
   spdlog::set_default_logger(logger);
+}
+
+// Results go to stdout: one that could not be written (a full disk,
+// /dev/full, a closed stdout) fails the run instead of exiting 0, and so
+// does a log file that lost a message.
+int checkWritten(int exit_code) {
+  if (exit_code != hba::cli::kExitSuccess) return exit_code;
+  errno = 0;
+  std::cout.flush();  // through stdout's buffer: the failing write may happen here
+  const int cout_err = errno;
+  errno = 0;
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout;
+  if (failed) {
+    const int err = errno != 0 ? errno : cout_err != 0 ? cout_err : EIO;
+    spdlog::error("cannot write the results to standard output: {}",
+                  err == ENOSPC ? "no space left on device (disk full)" : std::strerror(err));
+    return hba::cli::kExitFailure;
+  }
+  if (const auto failure = hba::cli::logFileFailure()) {
+    spdlog::error("the log file is incomplete: {}", *failure);
+    return hba::cli::kExitFailure;
+  }
+  return exit_code;
 }
 
 // The tool's work once MPI (under mpirun) has started; the exit code.
@@ -60,7 +84,9 @@ int run(int argc, char** argv) {
   bool verbose = false;
   bool quiet = false;
   std::string log_file;
-  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")->check(hba::cli::nonNegative());
+  // More threads than 4096 is no machine hba runs on.
+  app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
+      ->check(hba::cli::numberIn({1, 4096, false, false, "all cores"}, hba::NumberKind::Integer));
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
   app.add_option("--log-file", log_file, "Also write every message, with times, to this file");
@@ -79,9 +105,12 @@ int run(int argc, char** argv) {
   // Threads and log level must be set before any subcommand callback runs.
   std::unique_ptr<tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
+    // What the run reads, so that no output (nor the log) can replace it.
+    const CLI::App* command = app.get_subcommands().empty() ? nullptr : app.get_subcommands().front();
+    if (command) hba::cli::recordRunInputs(*command);
     // Under mpirun the members log alike: the first speaks for all, the
     // others report their errors only.
-    setUpLogging(verbose, quiet, log_file);
+    setUpLogging(verbose, quiet, group.root() ? log_file : std::string(), command);
     if (!group.root()) spdlog::default_logger()->sinks().front()->set_level(spdlog::level::err);
     if (group.size() > 1 && !app.got_subcommand("optimize")) {
       throw hba::Error("under mpirun only `hba optimize` runs (" + std::to_string(group.size()) +
@@ -107,6 +136,9 @@ int run(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return hba::cli::reportParseError(app, e, argc, argv);
+  } catch (const hba::ValueError& e) {  // a setting or a flag's value: usage
+    spdlog::error("{}", e.what());
+    return hba::cli::kExitUsage;
   } catch (const hba::Error& e) {
     spdlog::error("{}", e.what());
     return hba::cli::kExitFailure;
@@ -130,5 +162,5 @@ int main(int argc, char** argv) {
     return hba::cli::kExitFailure;
   }
   // Under mpirun a member that fails ends every member (no one waits).
-  return hba::cli::endProcessGroup(run(argc, argv));
+  return hba::cli::endProcessGroup(checkWritten(run(argc, argv)));
 }

@@ -10,6 +10,7 @@
 #include "hba/closure/frame_priors.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/core/memory_budget.hpp"
 #include "hba/io/loop_file.hpp"
 #include "hba/io/pose_file.hpp"
@@ -18,16 +19,22 @@
 #include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
+#include "json_text.hpp"
 #include "version_text.hpp"
 
 namespace hba::cli::optimize {
 namespace fs = std::filesystem;
 
-namespace {
-// Ground truth to draw: --gt, or the simulator's gt.txt beside the data.
-std::optional<Trajectory> groundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames) {
+double peakMemoryMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames) {
+  if (args.no_render) return std::nullopt;
   fs::path path = args.ground_truth;
-  if (path.empty() && fs::exists(dataset.root() / "gt.txt")) path = dataset.root() / "gt.txt";
+  if (path.empty() && regularFileIsPresent(dataset.root() / "gt.txt")) path = dataset.root() / "gt.txt";
   if (path.empty()) return std::nullopt;
   Trajectory gt = io::readPoses(path);
   if (gt.size() != frames) {
@@ -37,19 +44,15 @@ std::optional<Trajectory> groundTruth(const Args& args, const io::Dataset& datas
   return gt;
 }
 
-}  // namespace
-
-double peakMemoryMiB() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+void announceReplacement(const StagingFolder& staging) {
+  if (staging.replaces().empty()) return;
+  spdlog::info("--force: {} holds {}; it will be replaced by this run's output when it is complete",
+               staging.destination().string(), staging.replaces());
 }
 
-bool writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
-                  const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
-                  const fs::path& out) {
+bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+                  const std::vector<Pose>& before, const std::optional<Trajectory>& gt, const fs::path& out) {
   const std::vector<Pose>& optimized = result.poses;
-  const std::optional<Trajectory> gt = groundTruth(args, dataset, optimized.size());
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
   render::RenderSettings settings;
@@ -183,7 +186,7 @@ void writeReport(const fs::path& out, const nlohmann::json& report) {
   nlohmann::json with_memory = report;
   with_memory["peak_memory_mib"] = peakMemoryMiB();
   writeFileAtomically(
-      out / "report.json", [&](std::ostream& os) { os << with_memory.dump(2) << '\n'; }, false);
+      out / "report.json", [&](std::ostream& os) { os << jsonText(with_memory, 2) << '\n'; }, false);
 }
 
 }  // namespace hba::cli::optimize

@@ -3,10 +3,12 @@
 // its arguments, settings, input checks and outputs.
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "dataset_args.hpp"
+#include "hba/core/staging_folder.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
@@ -33,6 +35,8 @@ struct Args {
 };
 
 double peakMemoryMiB();
+// Says, before any work, what --force will replace at the end.
+void announceReplacement(const StagingFolder& staging);
 // Defaults, then the YAML file, then the flags given on the command line.
 pyramid::HbaSettings mergeSettings(const Args& args);
 // --loops (frame indices of `frames`) and --priors (by `dataset`'s stamps), read before any work.
@@ -46,13 +50,17 @@ std::vector<std::string> writeOptimizedPoses(const std::filesystem::path& out, c
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
                           const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
 void writeReport(const std::filesystem::path& out, const nlohmann::json& report);
-// before_after.png of `before` and `result.poses` (ground truth drawn when
-// given or found). The scans are read as the optimization kept them (parsed
-// and downsampled once, at `scan_voxel`) when it kept them at least as fine
-// as the picture's voxel; from `scans` otherwise. False, with a warning,
-// when the picture would not fit in the memory available: left out.
-bool writePicture(const Args& args, const io::Dataset& dataset, const io::ScanSource& scans,
-                  const pyramid::HbaResult& result, double scan_voxel, const std::vector<Pose>& before,
+// Ground truth for the picture: --gt, or the simulator's gt.txt beside the
+// data; none with --no-render or when it has not `frames` poses (a warning).
+// Read before any work: a bad file must not cost a finished run.
+std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames);
+// before_after.png of `before` and `result.poses` (with `gt` when given).
+// The scans are read as the optimization kept them (parsed and downsampled
+// once, at `scan_voxel`) when it kept them at least as fine as the picture's
+// voxel; from `scans` otherwise. False, with a warning, when the picture
+// would not fit in the memory available: left out.
+bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+                  const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                   const std::filesystem::path& out);
 
 // Several sessions (args.more_sessions): optimize_sessions.cpp.

@@ -2,11 +2,12 @@
 // own frame, optimized as one sequence into one map in A's frame.
 #include <spdlog/spdlog.h>
 
-#include <fstream>
+#include <sstream>
 
 #include "hba/closure/session_alignment.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
@@ -29,8 +30,7 @@ void refuseOverrides(const DatasetArgs& d) {
 
 // --align FILE: one "tx ty tz qx qy qz qw" line per later session.
 std::vector<Pose> readAlignmentFile(const fs::path& path, std::size_t later_sessions) {
-  std::ifstream in(path);
-  if (!in) failAt(path, "cannot be read");
+  std::istringstream in(readTextFile(path));
   std::vector<Pose> transforms;
   std::string line;
   while (std::getline(in, line)) {
@@ -69,9 +69,11 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   const io::ConcatenatedScanSource scans(parts);
   pyramid::ClosureInputs closures = readClosureInputs(args, nullptr, scans.size());
   for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
+  const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
   const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
 
-  StagingFolder staging(args.output, args.force);
+  StagingFolder staging(args.output, args.force, "hba optimize");
+  announceReplacement(staging);
   const fs::path& out = staging.path();
   nlohmann::json conventions = nlohmann::json::array();
   for (std::size_t k = 0; k < datasets.size(); ++k) {
@@ -143,8 +145,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
       {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
       {"registered", alignment_report}};
   writeReport(out, report);
-  const bool drawn =
-      !args.no_render && writePicture(args, datasets[0], scans, result, settings.scan_voxel, initial, out);
+  const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
   staging.commit();
   spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{})", result.report.seconds_total,
                staging.destination().string(), datasets.size(), drawn ? ", before_after.png" : "");

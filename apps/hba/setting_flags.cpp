@@ -13,16 +13,56 @@ using pyramid::SettingValue;
 namespace {
 
 std::string describe(const Setting& setting) {
-  const Setting& typed = pyramid::valueSetting(setting);
   std::string text = setting.help;
   // Which BA a sectioned setting belongs to (local.eigen_ratio: the windows').
   const auto dot = setting.key.find('.');
   if (dot != std::string::npos) text = setting.key.substr(0, dot) + " BA: " + text;
-  if (typed.type == SettingType::Switch) {
-    text = (std::get<bool>(typed.default_value) ? "Off: " : "On: ") + text;
+  if (setting.type == SettingType::Switch) {
+    text = (std::get<bool>(setting.default_value) ? "Off: " : "On: ") + text;
   }
-  if (!typed.range.zero.empty()) text += "; 0 = " + typed.range.zero;
+  if (!setting.range.zero.empty()) text += "; 0 = " + setting.range.zero;
   return text;
+}
+
+// A number flag's value checked against the setting's own range, by the
+// flag's name ("--window: must be >= 2, got -3"), and written back as the
+// digits CLI11 converts ("1e3" -> "1000").
+CLI::Validator numberOf(const Setting& setting) {
+  return CLI::Validator(
+      [&setting](std::string& text) -> std::string {
+        const pyramid::ParsedSetting parsed = pyramid::parseSettingNumber(setting, text);
+        if (parsed.problem.empty()) text = pyramid::valueText(parsed.value);
+        return parsed.problem;
+      },
+      pyramid::rangeText(setting));
+}
+
+// One option under `name` writing into `slot`.
+CLI::Option* addOption(CLI::App* group, const Setting& setting, const std::string& name,
+                       std::optional<SettingValue>& slot, const std::string& help) {
+  switch (setting.type) {
+    case SettingType::Switch:
+      // A switch's flag turns it from its default (--no-refine, --no-revisits: off).
+      return group->add_flag_callback(
+          name, [&slot, on = !std::get<bool>(setting.default_value)] { slot = on; }, help);
+    case SettingType::Integer:
+    case SettingType::Count:
+      return group
+          ->add_option_function<long long>(
+              name, [&slot](const long long& v) { slot = v; }, help)
+          ->check(numberOf(setting));
+    case SettingType::Real:
+      return group
+          ->add_option_function<double>(
+              name, [&slot](const double& v) { slot = v; }, help)
+          ->check(numberOf(setting));
+    case SettingType::Choice:
+      return group
+          ->add_option_function<std::string>(
+              name, [&slot](const std::string& v) { slot = normalizedEnumName(v); }, help)
+          ->check(CLI::IsMember(setting.choices, normalizedEnumName));
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -36,33 +76,14 @@ void SettingFlags::addTo(CLI::App* command) {
     const Setting& setting = table[i];
     if (setting.flag.empty()) continue;
     std::optional<SettingValue>& slot = given_[i];
-    const Setting& typed = pyramid::valueSetting(setting);
     const std::string help = describe(setting);
-    std::string names = setting.flag;
-    for (const std::string& old : setting.old_flags) names += "," + old;
-    CLI::Option* option = nullptr;
-    switch (typed.type) {
-      case SettingType::Switch:
-        // A switch's flag turns it from its default (--no-refine, --no-revisits: off).
-        group->add_flag_callback(
-            names, [&slot, on = !std::get<bool>(typed.default_value)] { slot = on; }, help);
-        continue;
-      case SettingType::Integer:
-      case SettingType::Count:
-        option = group->add_option_function<long long>(
-            names, [&slot](const long long& v) { slot = v; }, help);
-        break;
-      case SettingType::Real:
-        option = group->add_option_function<double>(
-            names, [&slot](const double& v) { slot = v; }, help);
-        break;
-      case SettingType::Choice:
-        option = group->add_option_function<std::string>(
-            names, [&slot](const std::string& v) { slot = normalizedEnumName(v); }, help);
-        option->check(CLI::IsMember(typed.choices, normalizedEnumName));
-        break;
-    }
-    if (!setting.shorthand()) option->default_str(pyramid::valueText(setting.default_value));
+    CLI::Option* option = addOption(group, setting, setting.flag, slot, help);
+    if (setting.type != SettingType::Switch && !setting.shorthand())
+      option->default_str(pyramid::valueText(setting.default_value));
+    // Earlier names still read, listed apart, and an error names the one
+    // typed (CLI11 names a hidden option "").
+    for (const std::string& old : setting.old_flags)
+      addOption(group, setting, old, slot, "old name of " + setting.flag)->group("Old names (still read)");
   }
 }
 
@@ -72,8 +93,8 @@ void SettingFlags::applyTo(pyramid::HbaSettings& settings) const {
     for (std::size_t i = 0; i < table.size(); ++i) {
       const Setting& setting = table[i];
       if (setting.shorthand() != shorthands || !given_[i]) continue;
-      // The range is checked with the whole settings (checkSettings), which
-      // names the setting.
+      // Each value's range was checked by its flag; what settings hold
+      // together (stride below window), by checkSettings.
       pyramid::applySetting(setting, *given_[i], settings);
     }
   }

@@ -15,6 +15,8 @@ namespace py = pybind11;
 namespace hba::python {
 namespace {
 
+std::string numberText(double value) { return py::repr(py::float_(value)); }
+
 py::dict statsDict(const eval::ErrorStats& s) {
   py::dict d;
   d["count"] = s.count;
@@ -48,8 +50,11 @@ py::dict ate(const py::handle& reference, const py::handle& estimate, const std:
 }
 
 double mme(const py::object& scans, const py::handle& poses, double voxel, double radius, int min_neighbors) {
-  if (!(radius > 0)) throw Error("mme: radius must be > 0 (m)");
-  if (min_neighbors < 0) throw Error("mme: min_neighbors must be >= 0");
+  // The rules of `hba mme`'s --voxel, --radius and --min-neighbors (NaN fails each).
+  if (!(voxel >= 0))
+    throw Error("mme: voxel must be >= 0 (m; 0 = keep every point), got " + numberText(voxel));
+  if (!(radius > 0)) throw Error("mme: radius must be > 0 (m), got " + numberText(radius));
+  if (min_neighbors < 0) throw Error("mme: min_neighbors must be >= 0, got " + std::to_string(min_neighbors));
   const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans);
   const std::vector<Pose> world_poses = posesFromArray(poses, "poses");
   eval::MapSettings map_settings;

@@ -27,19 +27,19 @@ py::object stampsArray(const std::vector<double>& stamps) {
   return py::array_t<double>(static_cast<py::ssize_t>(stamps.size()), stamps.data());
 }
 
-py::array_t<float> readScan(const fs::path& path) {
-  PointCloud cloud;
+py::array_t<double> readScan(const fs::path& path) {
+  io::WideCloud cloud;
   {
     const py::gil_scoped_release release;
-    cloud = io::readScan(path);
+    cloud = io::readScanWide(path);
   }
-  return arrayFromCloud(cloud);
+  return arrayFromWideCloud(cloud);
 }
 
 void writeScan(const fs::path& path, const py::handle& points) {
-  const PointCloud cloud = cloudFromArray(points, "points");
+  const io::WideCloud cloud = wideCloudFromArray(points, "points");
   const py::gil_scoped_release release;
-  io::writeScan(path, cloud);
+  io::writeScanWide(path, cloud);
 }
 
 py::object readPoses(const fs::path& path, const std::optional<std::string>& format, bool return_stamps) {
@@ -83,12 +83,13 @@ io::Dataset openDataset(const fs::path& dir, const std::optional<fs::path>& scan
 
 std::size_t scanIndex(const io::Dataset& dataset, py::ssize_t index) {
   const auto size = static_cast<py::ssize_t>(dataset.size());
-  if (index < 0) index += size;  // Python's negative indices
-  if (index < 0 || index >= size) {
-    throw py::index_error("scan index " + std::to_string(index) + " out of range (" + std::to_string(size) +
-                          " scans)");
+  const py::ssize_t from_start = index < 0 ? index + size : index;  // Python's negative indices
+  if (from_start < 0 || from_start >= size) {
+    throw py::index_error("scan index " + std::to_string(index) + " is out of range for " +
+                          std::to_string(size) + " scans (" + std::to_string(-size) + " to " +
+                          std::to_string(size - 1) + ")");
   }
-  return static_cast<std::size_t>(index);
+  return static_cast<std::size_t>(from_start);
 }
 
 py::array_t<float> loadScan(const io::Dataset& dataset, py::ssize_t index) {
@@ -104,7 +105,8 @@ py::array_t<float> loadScan(const io::Dataset& dataset, py::ssize_t index) {
 void bindDataset(py::module_& m) {
   py::class_<io::Dataset>(m, "Dataset",
                           "A sequence on disk (scans + trajectory), opened by hba.open_dataset. "
-                          "dataset[i] reads scan i in its sensor frame.")
+                          "dataset[i] reads scan i in its sensor frame as hba optimizes it: (N, 4) "
+                          "float32 (N, 3 without intensity); negative i counts from the end.")
       .def("__len__", &io::Dataset::size)
       .def("__getitem__", &loadScan, py::arg("index"))
       .def("scan_path", [](const io::Dataset& d, py::ssize_t i) { return d.scanPath(scanIndex(d, i)); })
@@ -132,13 +134,30 @@ void bindDataset(py::module_& m) {
       });
 }
 
+const char* const kReadScanDoc = R"(Reads a scan or map: .pcd, .bin, .ply or .las (LAS 1.0-1.4).
+
+Returns (N, 4) float64 (x y z intensity), (N, 3) when the file has no
+intensity (a LAS file always has one). Coordinates are exactly as stored:
+float64 fields to the last bit, LAS's scaled integers (UTM included) to the
+file's scale, float32 fields widened. Points with a NaN or infinite
+coordinate are dropped. Raises hba.Error naming the file.)";
+
+const char* const kWriteScanDoc =
+    R"(Writes points in the format the extension names: .pcd, .bin, .ply or .las.
+
+points: (N, 3) or (N, 4) (x y z [intensity]) of any real, integer or bool
+dtype, in any memory layout; every coordinate must be exactly a float64.
+Coordinates are kept: .pcd and .ply store float32 x y z when every
+coordinate is exactly a float32 and float64 otherwise; .las stores
+millimetres (scale 0.001) from an offset at the cloud's centre; .bin holds
+float32 only and refuses coordinates a float32 would round. Intensities are
+stored as float32 (.las: uint16, rounded). Raises hba.Error.)";
+
 }  // namespace
 
 void bindIo(py::module_& m) {
-  m.def("read_scan", &readScan, py::arg("path"),
-        "Reads a .pcd, .bin or .ply scan: (N, 4) float32 (x y z intensity), (N, 3) if it has no intensity.");
-  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"),
-        "Writes (N, 3) or (N, 4) points as the format the extension names (.pcd, .bin, .ply).");
+  m.def("read_scan", &readScan, py::arg("path"), kReadScanDoc);
+  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"), kWriteScanDoc);
   m.def("read_poses", &readPoses, py::arg("path"), py::arg("format") = py::none(),
         py::arg("return_stamps") = false,
         "Reads a trajectory (hba pose.json, kitti, tum; detected unless `format`): (K, 4, 4) "

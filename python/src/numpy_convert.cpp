@@ -1,5 +1,10 @@
 #include "numpy_convert.hpp"
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+
 #include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
 
@@ -27,15 +32,108 @@ bool isRigid(const Mat4& m) {
   return orthonormal && r.determinant() > 0 && last_row && m.allFinite();
 }
 
-}  // namespace
+std::string dtypeName(const py::array& array) { return py::str(array.dtype()); }
 
-PointCloud cloudFromArray(const py::handle& array, const std::string& what) {
-  const auto points = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(array);
-  if (!points) throw Error(what + ": expected a numpy array of points (N, 3) or (N, 4)");
+// An array of numbers (bool, integer or real dtype), whatever its layout.
+py::array numericArray(const py::handle& object, const std::string& what) {
+  py::array array = py::array::ensure(object);
+  if (!array || (array.dtype().kind() == 'O' && !py::isinstance<py::array>(object))) {
+    throw Error(what + ": expected a numpy array of points (N, 3) or (N, 4), got " +
+                std::string(py::str(object.get_type().attr("__name__"))));
+  }
+  const char kind = array.dtype().kind();
+  if (kind != 'b' && kind != 'i' && kind != 'u' && kind != 'f') {
+    throw Error(what + ": expected numbers, got an array of dtype " + dtypeName(array));
+  }
+  return array;
+}
+
+// A value that a float64 holds exactly: as one, it converts back to itself
+// (the bound keeps the conversion back defined).
+template <typename Integer>
+bool isExactInDouble(Integer v) {
+  const auto d = static_cast<double>(v);
+  return d < static_cast<double>(std::numeric_limits<Integer>::max()) && static_cast<Integer>(d) == v;
+}
+
+template <typename Number>
+void requireEachExactInDouble(const py::array& array, const std::string& what) {
+  const auto values = py::array_t<Number, py::array::c_style | py::array::forcecast>::ensure(array);
+  for (py::ssize_t i = 0; i < values.size(); ++i) {
+    const Number v = values.data()[i];
+    bool exact = true;
+    if constexpr (std::is_integral_v<Number>) {
+      exact = isExactInDouble(v);
+    } else {
+      exact = std::isnan(v) || static_cast<Number>(static_cast<double>(v)) == v;
+    }
+    if (!exact) {
+      throw Error(what + ": value " + std::to_string(i) + " (" +
+                  std::string(py::str(array.attr("flat")[py::int_(i)])) + ", dtype " + dtypeName(array) +
+                  ") is not exactly a float64, which hba keeps coordinates in");
+    }
+  }
+}
+
+// 64-bit integers past 2^53 and long doubles that are not doubles would
+// change on the way to float64: refused rather than rounded. Every other
+// dtype of numbers fits.
+void requireExactInDouble(const py::array& array, const std::string& what) {
+  const char kind = array.dtype().kind();
+  if (kind == 'i' && array.itemsize() == 8) requireEachExactInDouble<std::int64_t>(array, what);
+  if (kind == 'u' && array.itemsize() == 8) requireEachExactInDouble<std::uint64_t>(array, what);
+  if (kind == 'f' && array.itemsize() > 8) requireEachExactInDouble<long double>(array, what);
+}
+
+void requirePointShape(const py::array& points, const std::string& what) {
   if (points.ndim() != 2 || (points.shape(1) != 3 && points.shape(1) != 4)) {
     throw Error(what + ": expected an (N, 3) or (N, 4) array (x y z [intensity]), got shape " +
                 shapeText(points));
   }
+}
+
+}  // namespace
+
+io::WideCloud wideCloudFromArray(const py::handle& array, const std::string& what) {
+  const py::array numbers = numericArray(array, what);
+  requirePointShape(numbers, what);
+  requireExactInDouble(numbers, what);
+  const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(numbers);
+  if (!points) throw Error(what + ": cannot be read as float64 numbers");
+  const auto n = static_cast<std::size_t>(points.shape(0));
+  const bool with_intensity = points.shape(1) == 4;
+  const auto view = points.unchecked<2>();
+  io::WideCloud cloud;
+  cloud.reserve(n, with_intensity);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    const Vec3 p(view(row, 0), view(row, 1), view(row, 2));
+    if (with_intensity) {
+      cloud.add(p, static_cast<float>(view(row, 3)));
+    } else {
+      cloud.add(p);
+    }
+  }
+  return cloud;
+}
+
+py::array_t<double> arrayFromWideCloud(const io::WideCloud& cloud) {
+  const py::ssize_t columns = cloud.hasIntensity() ? 4 : 3;
+  py::array_t<double> array({static_cast<py::ssize_t>(cloud.size()), columns});
+  auto view = array.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    for (py::ssize_t c = 0; c < 3; ++c) view(row, c) = cloud.points[i][c];
+    if (cloud.hasIntensity()) view(row, 3) = cloud.intensity[i];
+  }
+  return array;
+}
+
+PointCloud cloudFromArray(const py::handle& array, const std::string& what) {
+  const py::array numbers = numericArray(array, what);
+  requirePointShape(numbers, what);
+  const auto points = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(numbers);
+  if (!points) throw Error(what + ": cannot be read as float32 numbers");
   const auto n = static_cast<std::size_t>(points.shape(0));
   const bool with_intensity = points.shape(1) == 4;
   const auto view = points.unchecked<2>();

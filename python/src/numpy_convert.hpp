@@ -12,6 +12,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/scan_source.hpp"
+#include "hba/io/wide_cloud.hpp"
 
 namespace hba::python {
 
@@ -19,6 +20,14 @@ namespace hba::python {
 PointCloud cloudFromArray(const pybind11::handle& array, const std::string& what);
 // (N, 4) float32 with intensity, (N, 3) without.
 pybind11::array_t<float> arrayFromCloud(const PointCloud& cloud);
+
+// The same arrays with every coordinate kept: any real or integer dtype
+// whose values a float64 holds exactly (int64 beyond 2^53 and long doubles
+// that are not doubles are refused, as are strings, complex numbers and
+// objects). Intensities become float32, as every scan format stores them.
+io::WideCloud wideCloudFromArray(const pybind11::handle& array, const std::string& what);
+// (N, 4) float64 with intensity, (N, 3) without.
+pybind11::array_t<double> arrayFromWideCloud(const io::WideCloud& cloud);
 
 // A (K, 4, 4) array, or anything numpy turns into one (a list of 4x4);
 // every matrix must be a rigid transform.

@@ -6,6 +6,9 @@ import sys
 HBA_CLI = sys.argv[1] if len(sys.argv) > 1 else os.environ.get("HBA_CLI", "hba")
 TEST_DATA = os.environ.get("HBA_TEST_DATA_DIR",
                            os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data"))
+# ../shared/data beside the repository (third-party files, real sequences); may be absent.
+SHARED_DATA = os.environ.get("HBA_SHARED_DATA_DIR",
+                             os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "data"))
 
 
 def run_cli(*args):

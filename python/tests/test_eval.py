@@ -64,6 +64,17 @@ class Evaluation(unittest.TestCase):
         with self.assertRaises(hba.Error):
             hba.mme(self.scans, self.gt[:-1])
 
+    def test_mme_refuses_what_hba_mme_refuses(self):
+        """--voxel >= 0, --radius > 0, --min-neighbors >= 0, as the CLI's checks."""
+        for keywords, message in ((dict(voxel=-1), r"voxel must be >= 0 .*got -1\.0"),
+                                  (dict(voxel=float("nan")), "voxel must be >= 0"),
+                                  (dict(radius=0), "radius must be > 0"),
+                                  (dict(min_neighbors=-1), "min_neighbors must be >= 0")):
+            with self.subTest(**keywords), self.assertRaisesRegex(hba.Error, message):
+                hba.mme(self.scans, self.gt, **keywords)
+        with self.assertRaises(TypeError):
+            hba.mme(self.scans, self.gt, voxel="0.5")
+
 
 if __name__ == "__main__":
     main()

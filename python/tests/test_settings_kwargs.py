@@ -62,6 +62,36 @@ class SettingsKwargs(unittest.TestCase):
         with self.assertRaisesRegex(hba.Error, "threads must be an integer >= 0"):
             hba.settings(threads=-1)
 
+    def test_integers_too_large_are_refused_naming_the_setting(self):
+        with self.assertRaisesRegex(hba.Error, r"setting 'window' is 1180591620717411303424, out of range; "
+                                               r"it takes"):
+            hba.settings(window=2**70)
+        with self.assertRaisesRegex(hba.Error, r"setting 'local.max_iterations' is -1180591620717411303424"):
+            hba.settings(local={"max_iterations": -2**70})
+        with self.assertRaisesRegex(hba.Error, "threads must be an integer >= 0.*got 1180591620717411303424"):
+            hba.settings(threads=2**70)
+        with self.assertRaisesRegex(hba.Error, "threads must be an integer >= 0.*got True"):
+            hba.settings(threads=True)
+
+    def test_strings_are_not_numbers(self):
+        """YAML would read the text "10" as 10: a string is refused where a number or bool is due."""
+        with self.assertRaisesRegex(hba.Error, r"setting 'window' is the string '10', not a number; it takes"):
+            hba.optimize(*NO_SCANS, window="10")
+        with self.assertRaisesRegex(hba.Error, r"setting 'scan_voxel' is the string '0.5', not a number"):
+            hba.settings(scan_voxel="0.5")
+        with self.assertRaisesRegex(hba.Error, r"setting 'local.voxel_size' is the string '2'"):
+            hba.settings(local={"voxel_size": "2"})
+        with self.assertRaisesRegex(hba.Error, r"setting 'refine' is the string 'false', not a bool"):
+            hba.settings(refine="false")
+        with self.assertRaisesRegex(hba.Error, "threads must be an integer"):
+            hba.settings(threads="2")
+
+    def test_nan_and_infinity_are_refused_naming_the_setting(self):
+        for value in (float("nan"), float("inf"), np.float64("-inf")):
+            with self.subTest(value=value), self.assertRaisesRegex(hba.Error,
+                                                                   "setting 'scan_voxel' is .*, not a finite number"):
+                hba.settings(scan_voxel=value)
+
     def test_a_choice_takes_its_names(self):
         self.assertEqual(hba.settings(top_down="direct_assign")["top_down"], "direct_assign")
         with self.assertRaisesRegex(hba.Error, "top_down"):

@@ -1,17 +1,16 @@
 #include "hba/core/staging_folder.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/file.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <system_error>
 
+#include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/path_inside.hpp"
 
 namespace hba {
 namespace fs = std::filesystem;
@@ -39,51 +38,79 @@ void removeAbandonedStaging(const fs::path& destination) {
   }
 }
 
-// An exclusive lock on `path` for as long as the returned descriptor is
-// open, or -1 if another process holds it. A lock file unlinked by its last
-// holder between our open and our lock is retried, so two runs never both
-// believe they own the folder.
-int lockFile(const fs::path& path) {
-  for (int attempt = 0; attempt < 10; ++attempt) {
-    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) failAt(path, std::string("cannot create the lock file: ") + std::strerror(errno));
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd);
-      return -1;
-    }
-    struct stat held {
-    }, current{};
-    if (::fstat(fd, &held) == 0 && ::stat(path.c_str(), &current) == 0 && held.st_ino == current.st_ino) {
-      return fd;
-    }
-    ::close(fd);
+// "7 files, 1.2 MiB": what replacing `folder` removes.
+std::string contentSummary(const fs::path& folder) {
+  std::size_t files = 0;
+  std::uintmax_t bytes = 0;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(folder, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_directory(ec) || it->path().filename() == kOutputMarker) continue;
+    ++files;
+    const std::uintmax_t size = it->file_size(ec);
+    if (!ec) bytes += size;
+    ec.clear();
   }
-  failAt(path, "cannot lock the output folder");
+  char text[64];
+  std::snprintf(text, sizeof text, "%zu files, %.1f MiB", files,
+                static_cast<double>(bytes) / (1024.0 * 1024.0));
+  return text;
+}
+
+// A non-empty destination may be replaced only with --force, and only if an
+// earlier hba run wrote it (its marker): --force never deletes a user's files.
+std::string checkReplaceable(const fs::path& destination, bool force) {
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(destination, ec))) return "";
+  if (fs::is_symlink(fs::symlink_status(destination, ec))) {
+    failAt(destination, "is a symbolic link; name the folder itself (hba replaces outputs whole)");
+  }
+  if (!fs::is_directory(destination, ec)) failAt(destination, "exists and is not a folder");
+  if (fs::is_empty(destination, ec)) return "";
+  if (!force) failAt(destination, "the output folder is not empty (use --force to replace it)");
+  if (!fs::is_regular_file(destination / kOutputMarker, ec)) {
+    failAt(destination, std::string("holds files hba did not write (no ") + kOutputMarker +
+                            " marker): --force replaces only an earlier hba output or an empty folder; "
+                            "remove it yourself or choose another output");
+  }
+  return "an earlier hba output (" + contentSummary(destination) + ")";
 }
 
 }  // namespace
 
-StagingFolder::StagingFolder(fs::path destination, bool force)
+// Folders no run may replace, whatever --force says: the file system's
+// root, the home folder, and the current folder or any folder holding it
+// (replacing it would pull the folder from under the user's shell).
+void refuseProtectedFolder(const fs::path& folder) {
+  const fs::path destination = fs::absolute(folder).lexically_normal();
+  std::error_code ec;
+  if (destination == destination.root_path())
+    failAt(destination, "is the root folder; choose a folder to create");
+  if (const char* home = std::getenv("HOME"); home && *home && fs::equivalent(destination, home, ec)) {
+    failAt(destination, "is your home folder; choose a folder to create inside it");
+  }
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec && isSameOrInside(cwd, destination)) {
+    failAt(destination, cwd == fs::weakly_canonical(destination, ec)
+                            ? "is the current folder; choose a folder to create (e.g. -o out)"
+                            : "holds the current folder " + cwd.string() + "; choose a folder to create");
+  }
+}
+
+StagingFolder::StagingFolder(fs::path destination, bool force, const std::string& writer)
     : destination_(fs::absolute(std::move(destination)).lexically_normal()) {
   if (destination_.filename().empty()) destination_ = destination_.parent_path();
-  std::error_code ec;
-  if (fs::exists(destination_, ec)) {
-    if (!fs::is_directory(destination_, ec)) failAt(destination_, "exists and is not a folder");
-    if (!force && !fs::is_empty(destination_, ec)) {
-      failAt(destination_, "the output folder is not empty (use --force to replace it)");
-    }
-  }
+  refuseProtectedFolder(destination_);
+  replaces_ = checkReplaceable(destination_, force);
   // Like mkdir -p: `-o results/run1` creates results/ too.
+  std::error_code ec;
   fs::create_directories(destination_.parent_path(), ec);
   if (!fs::is_directory(destination_.parent_path(), ec)) {
     failAt(destination_, "cannot create the parent folder" + (ec ? ": " + ec.message() : std::string()));
   }
-  lock_path_ = destination_.parent_path() / ("." + destination_.filename().string() + ".lock");
-  lock_fd_ = lockFile(lock_path_);
-  if (lock_fd_ < 0) {
-    failAt(destination_, "another hba run is writing this folder; wait for it to finish or choose another");
-  }
-  remove_lock_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(lock_path_);
+  lock_ = std::make_unique<OutputLock>(destination_);
+  // Checked again under the lock: another run may have filled it meanwhile.
+  replaces_ = checkReplaceable(destination_, force);
   removeAbandonedStaging(destination_);
   staging_ = besideWithSuffix(destination_, ".partial-");
   remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(staging_);
@@ -91,17 +118,20 @@ StagingFolder::StagingFolder(fs::path destination, bool force)
   if (!fs::create_directory(staging_, ec) || ec) {
     failAt(staging_, "cannot create the staging folder: " + ec.message());
   }
+  writeFileAtomically(
+      staging_ / kOutputMarker,
+      [&](std::ostream& out) {
+        out << "Written by " << writer << ". `--force` may replace this folder whole; without this file it "
+            << "would refuse to.\n";
+      },
+      false);
 }
 
 StagingFolder::~StagingFolder() {
   std::error_code ec;
   if (!committed_) fs::remove_all(staging_, ec);
   remove_on_interrupt_.reset();
-  remove_lock_on_interrupt_.reset();
-  if (lock_fd_ >= 0) {
-    fs::remove(lock_path_, ec);  // while still holding it (see lockFile)
-    ::close(lock_fd_);
-  }
+  lock_.reset();
 }
 
 void StagingFolder::commit() {

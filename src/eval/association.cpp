@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
+#include <string>
 
 #include "hba/core/error.hpp"
 
@@ -36,8 +38,16 @@ std::size_t nearestStamp(const std::vector<double>& stamps, const std::vector<st
 
 }  // namespace
 
-Association associateByTime(const std::vector<double>& reference_stamps,
-                            const std::vector<double>& estimate_stamps, double max_diff) {
+std::string describeStamps(const std::vector<double>& stamps) {
+  if (stamps.empty()) return "no stamps";
+  const auto [low, high] = std::minmax_element(stamps.begin(), stamps.end());
+  char text[128];
+  std::snprintf(text, sizeof text, "%zu stamps from %.3f to %.3f s", stamps.size(), *low, *high);
+  return text;
+}
+
+Association pairByTime(const std::vector<double>& reference_stamps,
+                       const std::vector<double>& estimate_stamps, double max_diff) {
   if (reference_stamps.empty() || estimate_stamps.empty()) {
     throw Error("association by time needs timestamps on both trajectories");
   }
@@ -63,9 +73,6 @@ Association associateByTime(const std::vector<double>& reference_stamps,
   for (std::size_t r = 0; r < best_estimate.size(); ++r) {
     if (best_estimate[r] != kNone) pairs.emplace_back(best_estimate[r], r);
   }
-  if (pairs.empty()) {
-    throw Error("no timestamps match within " + std::to_string(max_diff) + " s");
-  }
   std::sort(pairs.begin(), pairs.end());
   Association a;
   a.mode = AssociationMode::Time;
@@ -76,10 +83,26 @@ Association associateByTime(const std::vector<double>& reference_stamps,
   return a;
 }
 
+Association associateByTime(const std::vector<double>& reference_stamps,
+                            const std::vector<double>& estimate_stamps, double max_diff) {
+  Association a = pairByTime(reference_stamps, estimate_stamps, max_diff);
+  if (a.size() == 0) {
+    char tolerance[32];
+    std::snprintf(tolerance, sizeof tolerance, "%g", max_diff);
+    throw Error(std::string("no timestamps match within ") + tolerance + " s: the reference has " +
+                describeStamps(reference_stamps) + ", the estimate " + describeStamps(estimate_stamps));
+  }
+  return a;
+}
+
+bool pairsByTime(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode) {
+  return mode == AssociationMode::Time ||
+         (mode == AssociationMode::Auto && reference.hasStamps() && estimate.hasStamps());
+}
+
 Association associate(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode,
                       double max_time_diff) {
-  const bool stamped = reference.hasStamps() && estimate.hasStamps();
-  if (mode == AssociationMode::Time || (mode == AssociationMode::Auto && stamped)) {
+  if (pairsByTime(reference, estimate, mode)) {
     return associateByTime(reference.stamps, estimate.stamps, max_time_diff);
   }
   return associateByIndex(reference.size(), estimate.size());

@@ -3,22 +3,17 @@
 #include "hba/io/dataset.hpp"
 
 #include <exception>
-#include <system_error>
 
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
+#include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file.hpp"
 
 namespace hba::io {
 namespace fs = std::filesystem;
 
 namespace {
-
-void checkDatasetFolder(const fs::path& dir) {
-  std::error_code ec;
-  if (!fs::exists(dir, ec)) failAt(dir, "dataset folder not found");
-  if (!fs::is_directory(dir, ec)) failAt(dir, "is not a folder (expected a dataset folder)");
-}
 
 std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_dir, const fs::path& poses_file,
                      const fs::path& first_scan) {
@@ -55,12 +50,11 @@ void Dataset::noteStampUnit(const fs::path& file, const std::string& unit) {
 // when nothing else gives stamps).
 std::vector<double> Dataset::scanStamps(std::vector<double> name_stamps, const DatasetOverrides& overrides,
                                         std::string& source) {
-  std::error_code ec;
   const fs::path times = root_ / "times.txt";
   fs::path path;
   if (overrides.times_file) {
     path = detail::resolveOverride(root_, *overrides.times_file, "times file");
-  } else if (name_stamps.empty() && fs::is_regular_file(times, ec)) {
+  } else if (name_stamps.empty() && regularFileIsPresent(times)) {
     path = times;
   }
   if (path.empty()) {
@@ -145,11 +139,10 @@ void Dataset::convertPoses(const DatasetOverrides& overrides) {
   // first LiDAR frame (z up) instead of the first camera frame (y down).
   // An explicit --poses file is taken as LiDAR poses unless --calib is given.
   fs::path calib;
-  std::error_code ec;
   if (overrides.calibration) {
     calib = detail::resolveOverride(root_, *overrides.calibration, "calibration file");
   } else if (layout_ == "kitti" && !overrides.poses_file && !overrides.extrinsic &&
-             fs::is_regular_file(root_ / "calib.txt", ec)) {
+             regularFileIsPresent(root_ / "calib.txt")) {
     calib = root_ / "calib.txt";
   }
   if (!calib.empty()) {
@@ -183,7 +176,7 @@ std::vector<Pose> Dataset::toInputFrame(const std::vector<Pose>& sensor_poses) c
 }
 
 Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
-  checkDatasetFolder(dir);
+  requireFolder(dir, "dataset folder");
   Dataset dataset;
   dataset.root_ = dir;
   dataset.scans_dir_ = overrides.scans_dir
@@ -210,6 +203,12 @@ PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
     PointCloud scan = readScan(path);
+    if (scan.empty()) {
+      warnAboutFile(
+          path, "scans with no points",
+          "the scan has no points (none stored, or none with finite coordinates): it adds nothing to "
+          "the map or to the optimization of its pose");
+    }
     // In double: world-frame scans may be far from the origin (scan.origin).
     const Pose to_sensor = scans_in_world_ ? trajectory_.poses[i].inverse() : Pose::identity();
     if (scans_in_world_ || !scan.origin.isZero()) {

@@ -8,6 +8,7 @@
 
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;
@@ -39,9 +40,19 @@ std::vector<std::string> asStrings(const std::array<const char*, N>& names) {
   return std::vector<std::string>(names.begin(), names.end());
 }
 
-bool isRegularFile(const fs::path& path) {
+// A folder under one of the usual names; a link loop there is an error, not
+// "no scans found".
+bool isFolder(const fs::path& dir) {
   std::error_code ec;
-  return fs::is_regular_file(path, ec);
+  const fs::file_status status = fs::status(dir, ec);
+  if (status.type() == fs::file_type::none) requireFolder(dir, "scans folder");  // says why
+  return fs::is_directory(status);
+}
+
+// Something is at `path`, even a broken link or a loop (its reader says what).
+bool anythingAt(const fs::path& path) {
+  std::error_code ec;
+  return fs::symlink_status(path, ec).type() != fs::file_type::not_found;
 }
 
 // KITTI odometry keeps poses as <sequence>.txt (00.txt ... 21.txt).
@@ -79,8 +90,7 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
   std::vector<fs::path> candidates;
   for (const char* name : kScanFolderNames) {
     const fs::path dir = root / name;
-    std::error_code ec;
-    if (fs::is_directory(dir, ec) && containsScanFile(dir)) candidates.push_back(dir);
+    if (isFolder(dir) && containsScanFile(dir)) candidates.push_back(dir);
   }
   if (candidates.size() > 1) {
     failAt(root,
@@ -100,7 +110,8 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
 fs::path findTrajectoryFile(const fs::path& root, const fs::path& scans_dir, Notes& notes) {
   std::vector<fs::path> known;
   for (const char* name : kTrajectoryNames) {
-    if (isRegularFile(root / name)) known.push_back(root / name);
+    // A FIFO or a loop under a trajectory's name is an error, not passed over.
+    if (regularFileIsPresent(root / name)) known.push_back(root / name);
   }
   // The original HBA layout pairs pcd/ with pose.json: prefer it there.
   const auto hba_pose = std::find(known.begin(), known.end(), root / "pose.json");
@@ -140,12 +151,11 @@ fs::path findTrajectoryFile(const fs::path& root, const fs::path& scans_dir, Not
 }
 
 fs::path resolveOverride(const fs::path& root, const fs::path& path, const char* what) {
-  std::error_code ec;
-  if (path.is_absolute() || fs::exists(path, ec)) {
-    if (!fs::exists(path, ec)) failAt(path, std::string(what) + " not found");
+  if (path.is_absolute() || anythingAt(path)) {
+    if (!anythingAt(path)) failAt(path, std::string(what) + " not found");
     return path;
   }
-  if (fs::exists(root / path, ec)) return root / path;
+  if (anythingAt(root / path)) return root / path;
   failAt(path, std::string(what) + " not found (looked in the working folder and in " + root.string() + ")");
 }
 

@@ -1,15 +1,14 @@
 // Files that sit beside the trajectory: KITTI's calib.txt and times.txt.
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "pose_file_lines.hpp"
 
 namespace hba::io::detail {
@@ -41,9 +40,7 @@ NumberRow parseCalibValues(const fs::path& path, std::size_t line, std::string_v
 }  // namespace
 
 std::optional<Pose> readKittiLidarToCamera(const fs::path& calib_file) {
-  errno = 0;
-  std::ifstream in(calib_file);
-  if (!in) failAt(calib_file, std::string("cannot open: ") + std::strerror(errno));
+  std::istringstream in(readTextFile(calib_file));
   std::string text;
   for (std::size_t line = 1; std::getline(in, text); ++line) {
     // KITTI odometry names it "Tr:", the object benchmark "Tr_velo_to_cam:".

@@ -22,7 +22,8 @@ class FileBytes {
 };
 
 // Reads the whole file. Throws hba::Error naming the file when it is missing,
-// a directory, or unreadable.
+// not a regular file (a folder, a FIFO, a link loop: hba/core/input_file.hpp)
+// or unreadable.
 FileBytes readFileBytes(const std::filesystem::path& path);
 
 // Reads at most `max_bytes` from the start of the file (for header-only parsing).

@@ -7,7 +7,10 @@
 #include <string>
 #include <system_error>
 
-#include "cloud_checks.hpp"
+#include <fmt/format.h>
+
+#include "cloud_readers.hpp"
+#include "cloud_view.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
@@ -22,14 +25,22 @@ namespace {
                    "truncated or not a KITTI scan");
 }
 
-// The file's bytes: one record a point.
-std::string records(const std::filesystem::path& path, const PointCloud& cloud) {
-  detail::requireOneIntensityPerPoint(cloud, path);
+// The file's bytes: one record a point. A .bin stores float32 and nothing
+// else, so a coordinate a float would round (a map far out, a double) is
+// refused rather than written somewhere else.
+std::string records(const std::filesystem::path& path, const detail::CloudView& cloud) {
+  cloud.requireOneIntensityPerPoint(path);
   std::string content(cloud.size() * kKittiPointBytes, '\0');
   for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3 world = cloud.world(i);
+    const Vec3f p = world.cast<float>();
+    if (world.allFinite() && p.cast<double>() != world) {
+      failAt(path, "cannot write point " + std::to_string(i) + " (" +
+                       fmt::format("{} {} {}", world.x(), world.y(), world.z()) +
+                       ") exactly: a .bin stores float32 x y z; write .pcd, .ply or .las to keep it");
+    }
     // A KITTI record always carries an intensity; 0 stands for "none".
-    const float record[4] = {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z(),
-                             cloud.hasIntensity() ? cloud.intensity[i] : 0.0f};
+    const float record[4] = {p.x(), p.y(), p.z(), cloud.hasIntensity() ? cloud.intensity(i) : 0.0f};
     std::memcpy(&content[i * kKittiPointBytes], record, kKittiPointBytes);
   }
   return content;
@@ -37,28 +48,47 @@ std::string records(const std::filesystem::path& path, const PointCloud& cloud) 
 
 }  // namespace
 
-PointCloud readKittiBin(const std::filesystem::path& path) {
-  const detail::FileBytes bytes = detail::readFileBytes(path);
+namespace detail {
+
+template <typename Cloud>
+Cloud readKittiBinAs(const std::filesystem::path& path) {
+  const FileBytes bytes = readFileBytes(path);
   if (bytes.size() % kKittiPointBytes != 0) failPartialRecord(path, bytes.size());
   const auto column = [&](std::size_t index) {
-    return detail::Column{bytes.data() + index * sizeof(float), kKittiPointBytes,
-                          detail::ScalarType::Float32};
+    return Column{bytes.data() + index * sizeof(float), kKittiPointBytes, ScalarType::Float32};
   };
-  const detail::PointColumns columns{column(0), column(1), column(2), column(3), false};
-  PointCloud cloud;
-  detail::appendFinitePoints(columns, bytes.size() / kKittiPointBytes, cloud);
+  const PointColumns columns{column(0), column(1), column(2), column(3), false};
+  Cloud cloud;
+  appendFinitePoints(columns, bytes.size() / kKittiPointBytes, cloud);
   return cloud;
 }
 
-void writeKittiBin(const std::filesystem::path& path, const PointCloud& cloud) {
+template PointCloud readKittiBinAs(const std::filesystem::path&);
+template WideCloud readKittiBinAs(const std::filesystem::path&);
+
+}  // namespace detail
+
+PointCloud readKittiBin(const std::filesystem::path& path) {
+  return detail::readKittiBinAs<PointCloud>(path);
+}
+
+namespace detail {
+
+void writeKittiBinView(const std::filesystem::path& path, const CloudView& cloud) {
   const std::string content = records(path, cloud);
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
   });
 }
 
+}  // namespace detail
+
+void writeKittiBin(const std::filesystem::path& path, const PointCloud& cloud) {
+  detail::writeKittiBinView(path, detail::CloudView(cloud));
+}
+
 void writeScratchKittiBin(const std::filesystem::path& path, const PointCloud& cloud) {
-  const std::string content = records(path, cloud);
+  const std::string content = records(path, detail::CloudView(cloud));
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(content.data(), static_cast<std::streamsize>(content.size()));
   out.close();

@@ -9,6 +9,7 @@
 #include "checked_size.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/file_warnings.hpp"
 #include "las_format.hpp"
 
 namespace hba::io::detail {
@@ -72,7 +73,8 @@ void checkScaleAndOffset(const LasHeader& header, const std::filesystem::path& p
 
 // 1.4 has a 64-bit count; the legacy 32-bit one may be zero (formats 6-10
 // must leave it zero) but, when both are set, they must agree.
-std::uint64_t pointCount(const char* data, const LasHeader& header, const std::filesystem::path& path) {
+std::uint64_t declaredPointCount(const char* data, const LasHeader& header,
+                                 const std::filesystem::path& path) {
   if (header.version_minor < 4) return header.legacy_point_count;
   const auto count = loadLittleEndian<std::uint64_t>(data + las_field::kPointCount);
   if (count == 0) return header.legacy_point_count;
@@ -81,6 +83,42 @@ std::uint64_t pointCount(const char* data, const LasHeader& header, const std::f
                      " contradicts the 64-bit point count " + std::to_string(count));
   }
   return count;
+}
+
+// Where the point records end at the latest: the file's end, or the
+// waveform data (1.3) or extended VLRs (1.4) stored after them.
+std::uint64_t pointDataLimit(const char* data, const LasHeader& header, std::uint64_t file_size) {
+  std::uint64_t limit = file_size;
+  const auto lower = [&](std::uint64_t start) {
+    if (start > header.point_data_offset && start < limit) limit = start;
+  };
+  if (header.version_minor >= 3) lower(loadLittleEndian<std::uint64_t>(data + las_field::kWaveformStart));
+  if (header.version_minor >= 4 && loadLittleEndian<std::uint32_t>(data + las_field::kEvlrCount) > 0) {
+    lower(loadLittleEndian<std::uint64_t>(data + las_field::kFirstEvlrStart));
+  }
+  return limit;
+}
+
+// Some writers leave every count at 0 and still store the records: read
+// those that fit, with a warning, rather than an empty scan without a word.
+std::uint64_t pointCount(const char* data, const LasHeader& header, std::uint64_t file_size,
+                         const std::filesystem::path& path) {
+  const std::uint64_t declared = declaredPointCount(data, header, path);
+  const std::uint64_t limit = pointDataLimit(data, header, file_size);
+  // (An offset inside the header fails checkLayout.)
+  if (declared != 0 || header.point_data_offset < header.header_size || limit <= header.point_data_offset) {
+    return declared;
+  }
+  const std::uint64_t bytes = limit - header.point_data_offset;
+  const std::uint64_t records = bytes / header.record_length;
+  if (records == 0) return 0;
+  const std::uint64_t left_over = bytes % header.record_length;
+  warnAboutFile(path, "LAS point count 0 before point records",
+                "the header counts 0 points, but " + std::to_string(bytes) +
+                    " bytes of point records follow it: " + "reading the " + std::to_string(records) +
+                    " records of " + std::to_string(header.record_length) + " bytes they hold" +
+                    (left_over ? " (" + std::to_string(left_over) + " bytes left over)" : std::string()));
+  return records;
 }
 
 void checkLayout(const LasHeader& header, std::uint64_t file_size, const std::filesystem::path& path) {
@@ -139,7 +177,7 @@ LasHeader parseLasHeader(const char* data, std::size_t available, std::uint64_t 
   }
   checkPointFormat(header, format_byte, path);
   checkScaleAndOffset(header, path);
-  header.point_count = pointCount(data, header, path);
+  header.point_count = pointCount(data, header, file_size, path);
   checkLayout(header, file_size, path);
   return header;
 }

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "cloud_readers.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/las.hpp"
@@ -37,27 +38,36 @@ void checkVlrsFit(const detail::FileBytes& bytes, const LasHeader& header,
 
 }  // namespace
 
-PointCloud readLas(const std::filesystem::path& path) {
-  const detail::FileBytes bytes = detail::readFileBytes(path);
-  const LasHeader header = detail::parseLasHeader(bytes.data(), bytes.size(), bytes.size(), path);
+namespace detail {
+
+template <typename Cloud>
+Cloud readLasAs(const std::filesystem::path& path) {
+  const FileBytes bytes = readFileBytes(path);
+  const LasHeader header = parseLasHeader(bytes.data(), bytes.size(), bytes.size(), path);
   checkVlrsFit(bytes, header, path);
-  PointCloud cloud;
+  Cloud cloud;
   // LAS coordinates are wide (scaled int32 plus a double offset): the
   // collector gives far-out clouds an origin instead of rounding them to floats.
-  detail::PointCollector collector(cloud, true, true);
+  PointCollector collector(cloud, true, true);
   const char* record = bytes.data() + header.point_data_offset;
   for (std::uint64_t i = 0; i < header.point_count; ++i, record += header.record_length) {
     double values[4];
     for (int a = 0; a < 3; ++a) {
       values[a] =
-          detail::loadLittleEndian<std::int32_t>(record + detail::las_point::kX + 4 * a) * header.scale[a] +
-          header.offset[a];
+          loadLittleEndian<std::int32_t>(record + las_point::kX + 4 * a) * header.scale[a] + header.offset[a];
     }
-    values[3] = detail::loadLittleEndian<std::uint16_t>(record + detail::las_point::kIntensity);
+    values[3] = loadLittleEndian<std::uint16_t>(record + las_point::kIntensity);
     collector.add(values);
   }
   collector.finish();
   return cloud;
 }
+
+template PointCloud readLasAs(const std::filesystem::path&);
+template WideCloud readLasAs(const std::filesystem::path&);
+
+}  // namespace detail
+
+PointCloud readLas(const std::filesystem::path& path) { return detail::readLasAs<PointCloud>(path); }
 
 }  // namespace hba::io

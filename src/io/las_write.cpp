@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "cloud_checks.hpp"
+#include "cloud_view.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/las.hpp"
@@ -17,6 +17,7 @@
 namespace hba::io {
 namespace {
 namespace field = detail::las_field;
+using detail::CloudView;
 using detail::storeLittleEndian;
 
 constexpr double kScale = 0.001;  // m per integer step
@@ -31,7 +32,7 @@ struct Quantization {
 };
 
 template <typename T>
-void requireOnePerPoint(const std::vector<T>& values, const PointCloud& cloud, const std::string& what,
+void requireOnePerPoint(const std::vector<T>& values, const CloudView& cloud, const std::string& what,
                         const std::filesystem::path& path) {
   if (!values.empty() && values.size() != cloud.size()) {
     failAt(path, "cannot write: the cloud has " + std::to_string(cloud.size()) + " points but " +
@@ -39,7 +40,7 @@ void requireOnePerPoint(const std::vector<T>& values, const PointCloud& cloud, c
   }
 }
 
-Quantization chooseQuantization(const PointCloud& cloud, const std::filesystem::path& path) {
+Quantization chooseQuantization(const CloudView& cloud, const std::filesystem::path& path) {
   Quantization q;
   if (cloud.empty()) return q;
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -65,9 +66,9 @@ Quantization chooseQuantization(const PointCloud& cloud, const std::filesystem::
   return q;
 }
 
-std::uint16_t lasIntensity(const PointCloud& cloud, std::size_t i) {
-  if (!cloud.hasIntensity() || !(cloud.intensity[i] > 0.0f)) return 0;  // none, negative or NaN
-  return static_cast<std::uint16_t>(std::lround(std::min(cloud.intensity[i], 65535.0f)));
+std::uint16_t lasIntensity(const CloudView& cloud, std::size_t i) {
+  if (!cloud.hasIntensity() || !(cloud.intensity(i) > 0.0f)) return 0;  // none, negative or NaN
+  return static_cast<std::uint16_t>(std::lround(std::min(cloud.intensity(i), 65535.0f)));
 }
 
 void putText(std::string& header, std::size_t at, const std::string& text) {
@@ -78,7 +79,7 @@ void putVec3(std::string& header, std::size_t at, const Vec3& v) {
   for (int a = 0; a < 3; ++a) storeLittleEndian(&header[at + 8 * a], v[a]);
 }
 
-std::string headerBytes(const PointCloud& cloud, const Quantization& q) {
+std::string headerBytes(const CloudView& cloud, const Quantization& q) {
   std::string header(detail::kLasHeaderSize14, '\0');
   header.replace(field::kSignature, 4, "LASF");
   storeLittleEndian<std::uint16_t>(&header[field::kGlobalEncoding], kWktEncoding);
@@ -109,7 +110,7 @@ std::string headerBytes(const PointCloud& cloud, const Quantization& q) {
   return header;
 }
 
-void appendRecords(const PointCloud& cloud, const LasPointExtras& extras, const Quantization& q,
+void appendRecords(const CloudView& cloud, const LasPointExtras& extras, const Quantization& q,
                    std::string& out) {
   namespace point = detail::las_point6;
   const std::size_t start = out.size();
@@ -133,8 +134,10 @@ void appendRecords(const PointCloud& cloud, const LasPointExtras& extras, const 
 
 }  // namespace
 
-void writeLas(const std::filesystem::path& path, const PointCloud& cloud, const LasPointExtras& extras) {
-  detail::requireOneIntensityPerPoint(cloud, path);
+namespace detail {
+
+void writeLasView(const std::filesystem::path& path, const CloudView& cloud, const LasPointExtras& extras) {
+  cloud.requireOneIntensityPerPoint(path);
   requireOnePerPoint(extras.scan_index, cloud, "scan indices", path);
   requireOnePerPoint(extras.gps_time, cloud, "GPS times", path);
   const Quantization q = chooseQuantization(cloud, path);
@@ -143,6 +146,12 @@ void writeLas(const std::filesystem::path& path, const PointCloud& cloud, const 
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
   });
+}
+
+}  // namespace detail
+
+void writeLas(const std::filesystem::path& path, const PointCloud& cloud, const LasPointExtras& extras) {
+  detail::writeLasView(path, CloudView(cloud), extras);
 }
 
 }  // namespace hba::io

@@ -34,8 +34,9 @@ std::uint32_t loadUint32(const char* p) { return loadUnaligned<std::uint32_t>(p,
 
 }  // namespace
 
-PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
-                           const fs::path& path) {
+template <typename Cloud>
+Cloud decodePcdBinary(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                      const fs::path& path) {
   const std::uint64_t needed = checkedMul(header.points, layout.point_bytes, path, "data size");
   if (needed > body.size()) {
     failAt(path, "truncated: the header declares " + describeSize(header, layout) + " (" +
@@ -45,13 +46,14 @@ PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header, const
   const PointColumns columns = pcdColumns(
       header, layout, [&](std::size_t f) { return body.data() + layout.byte_offsets[f]; },
       [&](std::size_t) { return layout.point_bytes; });
-  PointCloud cloud;
+  Cloud cloud;
   appendFinitePoints(columns, static_cast<std::size_t>(header.points), cloud);
   return cloud;
 }
 
-PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
-                               const fs::path& path) {
+template <typename Cloud>
+Cloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                          const fs::path& path) {
   const std::uint64_t expected = checkedMul(header.points, layout.point_bytes, path, "data size");
   if (expected == 0 && body.size() < 8) return {};  // some writers omit the sizes of nothing
   if (body.size() < 8) failAt(path, "truncated: the compressed block sizes are missing");
@@ -73,9 +75,15 @@ PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header, c
   const PointColumns columns = pcdColumns(
       header, layout, [&](std::size_t f) { return raw.get() + n * layout.byte_offsets[f]; },
       [&](std::size_t f) { return static_cast<std::size_t>(header.fields[f].size); });
-  PointCloud cloud;
+  Cloud cloud;
   appendFinitePoints(columns, n, cloud);
   return cloud;
 }
+
+template PointCloud decodePcdBinary(std::string_view, const PcdHeader&, const PcdLayout&, const fs::path&);
+template WideCloud decodePcdBinary(std::string_view, const PcdHeader&, const PcdLayout&, const fs::path&);
+template PointCloud decodePcdCompressed(std::string_view, const PcdHeader&, const PcdLayout&,
+                                        const fs::path&);
+template WideCloud decodePcdCompressed(std::string_view, const PcdHeader&, const PcdLayout&, const fs::path&);
 
 }  // namespace hba::io::detail

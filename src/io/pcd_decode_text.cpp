@@ -45,10 +45,11 @@ WantedWords wantedWords(const PcdHeader& header, const PcdLayout& layout) {
 
 }  // namespace
 
-PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
-                          const fs::path& path) {
+template <typename Cloud>
+Cloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                     const fs::path& path) {
   const WantedWords wanted = wantedWords(header, layout);
-  PointCloud cloud;
+  Cloud cloud;
   // Every value takes at least two characters, which bounds a lying POINTS.
   const std::uint64_t most_possible = body.size() / (2 * layout.words_per_point) + 1;
   cloud.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(header.points, most_possible)),
@@ -94,5 +95,8 @@ PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const 
   }
   return cloud;
 }
+
+template PointCloud decodePcdAscii(std::string_view, const PcdHeader&, const PcdLayout&, const fs::path&);
+template WideCloud decodePcdAscii(std::string_view, const PcdHeader&, const PcdLayout&, const fs::path&);
 
 }  // namespace hba::io::detail

@@ -8,6 +8,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/io/pcd.hpp"
+#include "hba/io/wide_cloud.hpp"
 #include "scalar_type.hpp"
 
 namespace hba::io::detail {
@@ -41,12 +42,15 @@ struct PcdLayout {
 PcdLayout pcdLayout(const PcdHeader& header, const std::filesystem::path& path);
 
 // Decoders of the bytes after the header; every one checks the declared sizes
-// against `body` before touching it.
-PointCloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+// against `body` before touching it. Cloud: PointCloud or WideCloud.
+template <typename Cloud>
+Cloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                     const std::filesystem::path& path);
+template <typename Cloud>
+Cloud decodePcdBinary(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
+                      const std::filesystem::path& path);
+template <typename Cloud>
+Cloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
                           const std::filesystem::path& path);
-PointCloud decodePcdBinary(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
-                           const std::filesystem::path& path);
-PointCloud decodePcdCompressed(std::string_view body, const PcdHeader& header, const PcdLayout& layout,
-                               const std::filesystem::path& path);
 
 }  // namespace hba::io::detail

@@ -8,6 +8,7 @@
 #include "checked_size.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "pcd_format.hpp"
 #include "text_parsing.hpp"
 
@@ -177,7 +178,7 @@ std::optional<PcdHeader> parsePcdHeader(std::string_view bytes, bool is_whole_fi
   const std::string_view window = bytes.substr(0, kMaxPcdHeaderBytes);
   const bool window_is_whole_file = is_whole_file && window.size() == bytes.size();
   RawHeader raw;
-  std::string_view rest = window;
+  std::string_view rest = withoutByteOrderMark(window);  // an ascii PCD saved by a Windows editor
   while (!rest.empty()) {
     const bool line_complete = rest.find('\n') != std::string_view::npos;
     if (!line_complete && !window_is_whole_file) return std::nullopt;

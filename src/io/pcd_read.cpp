@@ -1,25 +1,35 @@
 // readPcd: one read of the whole file, then the decoder its DATA line names.
+#include "cloud_readers.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
 #include "pcd_format.hpp"
 
 namespace hba::io {
+namespace detail {
 
-PointCloud readPcd(const std::filesystem::path& path) {
-  const detail::FileBytes bytes = detail::readFileBytes(path);
-  const std::optional<PcdHeader> header = detail::parsePcdHeader(bytes.view(), true, path);
-  if (!header) detail::failNoPcdDataLine(path);
-  const detail::PcdLayout layout = detail::pcdLayout(*header, path);
+template <typename Cloud>
+Cloud readPcdAs(const std::filesystem::path& path) {
+  const FileBytes bytes = readFileBytes(path);
+  const std::optional<PcdHeader> header = parsePcdHeader(bytes.view(), true, path);
+  if (!header) failNoPcdDataLine(path);
+  const PcdLayout layout = pcdLayout(*header, path);
   const std::string_view body = bytes.view().substr(header->data_offset);
   switch (header->encoding) {
     case PcdEncoding::Ascii:
-      return detail::decodePcdAscii(body, *header, layout, path);
+      return decodePcdAscii<Cloud>(body, *header, layout, path);
     case PcdEncoding::Binary:
-      return detail::decodePcdBinary(body, *header, layout, path);
+      return decodePcdBinary<Cloud>(body, *header, layout, path);
     case PcdEncoding::BinaryCompressed:
-      return detail::decodePcdCompressed(body, *header, layout, path);
+      return decodePcdCompressed<Cloud>(body, *header, layout, path);
   }
   failAt(path, "unknown PCD encoding");
 }
+
+template PointCloud readPcdAs(const std::filesystem::path&);
+template WideCloud readPcdAs(const std::filesystem::path&);
+
+}  // namespace detail
+
+PointCloud readPcd(const std::filesystem::path& path) { return detail::readPcdAs<PointCloud>(path); }
 
 }  // namespace hba::io

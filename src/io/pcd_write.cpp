@@ -1,11 +1,12 @@
 // writePcd: fields x y z [intensity] as float32, written atomically. The file
 // is assembled in memory and written with one call. A cloud with an origin
-// (a map far from the world origin) gets float64 x y z: origin + point.
+// (a map far from the world origin) gets float64 x y z: origin + point; so
+// does a WideCloud with a coordinate that is not exactly a float.
 #include <charconv>
 #include <cstring>
 #include <string>
 
-#include "cloud_checks.hpp"
+#include "cloud_view.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
@@ -27,12 +28,12 @@ const char* encodingName(PcdEncoding encoding) {
   return "binary";
 }
 
-bool wideCoordinates(const PointCloud& cloud) { return cloud.origin != Vec3::Zero(); }
+using detail::CloudView;
 
-std::string pcdHeaderText(const PointCloud& cloud, PcdEncoding encoding) {
+std::string pcdHeaderText(const CloudView& cloud, PcdEncoding encoding) {
   const bool with_i = cloud.hasIntensity();
   const std::string n = std::to_string(cloud.size());
-  const std::string xyz_size = wideCoordinates(cloud) ? "8 8 8" : "4 4 4";
+  const std::string xyz_size = cloud.wide() ? "8 8 8" : "4 4 4";
   std::string text = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
   text += with_i ? "FIELDS x y z intensity\nSIZE " + xyz_size + " 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
                  : "FIELDS x y z\nSIZE " + xyz_size + "\nTYPE F F F\nCOUNT 1 1 1\n";
@@ -42,7 +43,7 @@ std::string pcdHeaderText(const PointCloud& cloud, PcdEncoding encoding) {
 }
 
 // Fields written: x, y, z and, when the cloud has it, intensity.
-std::size_t fieldCount(const PointCloud& cloud) { return cloud.hasIntensity() ? 4 : 3; }
+std::size_t fieldCount(const CloudView& cloud) { return cloud.hasIntensity() ? 4 : 3; }
 
 template <typename T>
 void appendValue(std::string& out, T value) {
@@ -61,19 +62,19 @@ void appendText(std::string& out, T value) {
 
 // Appends field `field` of point `point` as the header declares it.
 template <bool kText>
-void appendField(const PointCloud& cloud, std::size_t point, std::size_t field, std::string& out) {
+void appendField(const CloudView& cloud, std::size_t point, std::size_t field, std::string& out) {
   if (field == 3) {
-    kText ? appendText(out, cloud.intensity[point]) : appendValue(out, cloud.intensity[point]);
-  } else if (wideCoordinates(cloud)) {
+    kText ? appendText(out, cloud.intensity(point)) : appendValue(out, cloud.intensity(point));
+  } else if (cloud.wide()) {
     const double v = cloud.world(point)[static_cast<Eigen::Index>(field)];
     kText ? appendText(out, v) : appendValue(out, v);
   } else {
-    const float v = cloud.points[point][static_cast<Eigen::Index>(field)];
+    const float v = cloud.point(point)[static_cast<Eigen::Index>(field)];
     kText ? appendText(out, v) : appendValue(out, v);
   }
 }
 
-void appendAscii(const PointCloud& cloud, std::string& out) {
+void appendAscii(const CloudView& cloud, std::string& out) {
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
       if (f > 0) out += ' ';
@@ -83,7 +84,7 @@ void appendAscii(const PointCloud& cloud, std::string& out) {
   }
 }
 
-void appendBinary(const PointCloud& cloud, std::string& out) {
+void appendBinary(const CloudView& cloud, std::string& out) {
   out.reserve(out.size() + cloud.size() * fieldCount(cloud) * sizeof(double));
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (std::size_t f = 0; f < fieldCount(cloud); ++f) appendField<false>(cloud, i, f, out);
@@ -91,7 +92,7 @@ void appendBinary(const PointCloud& cloud, std::string& out) {
 }
 
 // Column-major (all x, then all y, ...) compresses far better than records.
-void appendCompressed(const PointCloud& cloud, std::string& out, const fs::path& path) {
+void appendCompressed(const CloudView& cloud, std::string& out, const fs::path& path) {
   std::string columns;
   columns.reserve(cloud.size() * fieldCount(cloud) * sizeof(double));
   for (std::size_t f = 0; f < fieldCount(cloud); ++f) {
@@ -107,8 +108,10 @@ void appendCompressed(const PointCloud& cloud, std::string& out, const fs::path&
 
 }  // namespace
 
-void writePcd(const fs::path& path, const PointCloud& cloud, PcdEncoding encoding) {
-  detail::requireOneIntensityPerPoint(cloud, path);
+namespace detail {
+
+void writePcdView(const fs::path& path, const CloudView& cloud, PcdEncoding encoding) {
+  cloud.requireOneIntensityPerPoint(path);
   std::string content = pcdHeaderText(cloud, encoding);
   switch (encoding) {
     case PcdEncoding::Ascii:
@@ -124,6 +127,12 @@ void writePcd(const fs::path& path, const PointCloud& cloud, PcdEncoding encodin
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
   });
+}
+
+}  // namespace detail
+
+void writePcd(const fs::path& path, const PointCloud& cloud, PcdEncoding encoding) {
+  detail::writePcdView(path, CloudView(cloud), encoding);
 }
 
 }  // namespace hba::io

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "hba/core/point_cloud.hpp"
+#include "hba/io/wide_cloud.hpp"
 #include "ply_format.hpp"
 #include "point_columns.hpp"
 
@@ -27,7 +28,8 @@ class PlyBinaryBody {
   PlyBinaryBody(std::string_view bytes, bool big_endian, const std::filesystem::path& path)
       : bytes_(bytes), big_endian_(big_endian), path_(path) {}
   void skipElement(const PlyElement& element);
-  PointCloud readVertices(const PlyElement& vertex, const PlyVertexFields& fields);
+  template <typename Cloud>  // PointCloud or WideCloud
+  Cloud readVertices(const PlyElement& vertex, const PlyVertexFields& fields);
 
  private:
   std::uint64_t remaining() const { return bytes_.size() - pos_; }
@@ -46,7 +48,8 @@ class PlyAsciiBody {
  public:
   PlyAsciiBody(std::string_view text, const std::filesystem::path& path) : rest_(text), path_(path) {}
   void skipElement(const PlyElement& element);
-  PointCloud readVertices(const PlyElement& vertex, const PlyVertexFields& fields);
+  template <typename Cloud>  // PointCloud or WideCloud
+  Cloud readVertices(const PlyElement& vertex, const PlyVertexFields& fields);
 
  private:
   std::string_view token(const PlyElement& element);

@@ -24,8 +24,9 @@ void PlyAsciiBody::skipElement(const PlyElement& element) {
   }
 }
 
-PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexFields& fields) {
-  PointCloud cloud;
+template <typename Cloud>
+Cloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexFields& fields) {
+  Cloud cloud;
   const bool with_intensity = fields.count == 4;
   // Every value takes at least two characters, which bounds a lying count.
   const std::uint64_t most_possible = rest_.size() / (2 * vertex.properties.size()) + 1;
@@ -49,6 +50,9 @@ PointCloud PlyAsciiBody::readVertices(const PlyElement& vertex, const PlyVertexF
   collector.finish();
   return cloud;
 }
+
+template PointCloud PlyAsciiBody::readVertices(const PlyElement&, const PlyVertexFields&);
+template WideCloud PlyAsciiBody::readVertices(const PlyElement&, const PlyVertexFields&);
 
 std::string_view PlyAsciiBody::token(const PlyElement& element) {
   const std::string_view word = nextToken(rest_);

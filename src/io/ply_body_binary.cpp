@@ -42,8 +42,9 @@ void PlyBinaryBody::skipElement(const PlyElement& element) {
   for (std::uint64_t r = 0; r < element.count; ++r) walkRecord(element, nullptr);
 }
 
-PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertexFields& fields) {
-  PointCloud cloud;
+template <typename Cloud>
+Cloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertexFields& fields) {
+  Cloud cloud;
   const bool with_intensity = fields.count == 4;
   if (const auto record = fixedRecordBytes(vertex)) {
     const std::uint64_t total = checkedMul(vertex.count, *record, path_, "vertex data size");
@@ -75,6 +76,9 @@ PointCloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertex
   collector.finish();
   return cloud;
 }
+
+template PointCloud PlyBinaryBody::readVertices(const PlyElement&, const PlyVertexFields&);
+template WideCloud PlyBinaryBody::readVertices(const PlyElement&, const PlyVertexFields&);
 
 void PlyBinaryBody::require(std::uint64_t n, const PlyElement& element) const {
   if (n > remaining()) {

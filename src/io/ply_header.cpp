@@ -3,6 +3,7 @@
 #include <string>
 
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "ply_format.hpp"
 #include "text_parsing.hpp"
 
@@ -82,6 +83,7 @@ PlyHeader parsePlyHeader(std::string_view bytes, const fs::path& path) {
   if (bytes.empty()) failAt(path, "empty file");
   std::string_view rest = bytes.substr(0, kMaxPlyHeaderBytes);
   const std::size_t window = rest.size();
+  rest = withoutByteOrderMark(rest);  // an ascii PLY saved by a Windows editor
   std::string_view first = nextLine(rest);
   if (nextWord(first) != "ply") failAt(path, "not a PLY file (it does not start with \"ply\")");
 

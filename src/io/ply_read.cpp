@@ -3,6 +3,7 @@
 // elements after them (faces, PCL's camera) are never touched.
 #include <string>
 
+#include "cloud_readers.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/ply.hpp"
@@ -45,10 +46,12 @@ detail::PlyVertexFields findVertexFields(const PlyElement& vertex, const fs::pat
   return fields;
 }
 
-template <typename Body>
-PointCloud readVertexElement(Body body, const detail::PlyHeader& header, const fs::path& path) {
+template <typename Cloud, typename Body>
+Cloud readVertexElement(Body body, const detail::PlyHeader& header, const fs::path& path) {
   for (const PlyElement& element : header.elements) {
-    if (element.name == "vertex") return body.readVertices(element, findVertexFields(element, path));
+    if (element.name == "vertex") {
+      return body.template readVertices<Cloud>(element, findVertexFields(element, path));
+    }
     body.skipElement(element);
   }
   failAt(path, "the PLY file has no vertex element");
@@ -56,15 +59,25 @@ PointCloud readVertexElement(Body body, const detail::PlyHeader& header, const f
 
 }  // namespace
 
-PointCloud readPly(const fs::path& path) {
-  const detail::FileBytes bytes = detail::readFileBytes(path);
-  const detail::PlyHeader header = detail::parsePlyHeader(bytes.view(), path);
+namespace detail {
+
+template <typename Cloud>
+Cloud readPlyAs(const fs::path& path) {
+  const FileBytes bytes = readFileBytes(path);
+  const PlyHeader header = parsePlyHeader(bytes.view(), path);
   const std::string_view body = bytes.view().substr(header.data_offset);
-  if (header.storage == detail::PlyStorage::Ascii) {
-    return readVertexElement(detail::PlyAsciiBody(body, path), header, path);
+  if (header.storage == PlyStorage::Ascii) {
+    return readVertexElement<Cloud>(PlyAsciiBody(body, path), header, path);
   }
-  const bool big_endian = header.storage == detail::PlyStorage::BinaryBigEndian;
-  return readVertexElement(detail::PlyBinaryBody(body, big_endian, path), header, path);
+  const bool big_endian = header.storage == PlyStorage::BinaryBigEndian;
+  return readVertexElement<Cloud>(PlyBinaryBody(body, big_endian, path), header, path);
 }
+
+template PointCloud readPlyAs(const fs::path&);
+template WideCloud readPlyAs(const fs::path&);
+
+}  // namespace detail
+
+PointCloud readPly(const fs::path& path) { return detail::readPlyAs<PointCloud>(path); }
 
 }  // namespace hba::io

@@ -83,10 +83,10 @@ void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) 
 
 }  // namespace
 
-PointCollector::PointCollector(PointCloud& cloud, bool wide, bool with_intensity)
+PointCollector<PointCloud>::PointCollector(PointCloud& cloud, bool wide, bool with_intensity)
     : cloud_(cloud), wide_(wide), with_intensity_(with_intensity) {}
 
-void PointCollector::add(const double (&values)[4]) {
+void PointCollector<PointCloud>::add(const double (&values)[4]) {
   const Vec3 p(values[0], values[1], values[2]);
   if (!p.allFinite()) return;
   if (wide_) {
@@ -103,7 +103,7 @@ void PointCollector::add(const double (&values)[4]) {
   }
 }
 
-void PointCollector::finish() {
+void PointCollector<PointCloud>::finish() {
   if (wide_points_.empty()) return;
   constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
   constexpr double kOnEarth = 1.0e8;  // m; beyond that stray values, not a place
@@ -144,6 +144,22 @@ void appendFinitePoints(const PointColumns& columns, std::size_t count, PointClo
     appendFloat32<true>(columns, count, cloud);
   } else {
     appendFloat32<false>(columns, count, cloud);
+  }
+}
+
+void appendFinitePoints(const PointColumns& columns, std::size_t count, WideCloud& cloud) {
+  cloud.reserve(cloud.size() + count, columns.intensity.has_value());
+  const bool be = columns.big_endian;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 p(loadAsDouble(columns.x.first + i * columns.x.stride, columns.x.type, be),
+                 loadAsDouble(columns.y.first + i * columns.y.stride, columns.y.type, be),
+                 loadAsDouble(columns.z.first + i * columns.z.stride, columns.z.type, be));
+    if (!p.allFinite()) continue;
+    if (columns.intensity) {
+      cloud.add(p, columns.intensity->at(i, be));
+    } else {
+      cloud.add(p);
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hba/core/point_cloud.hpp"
+#include "hba/io/wide_cloud.hpp"
 #include "scalar_type.hpp"
 
 namespace hba::io::detail {
@@ -30,6 +31,8 @@ struct PointColumns {
 // NaN or infinite coordinate. The caller has checked that every element lies
 // inside its buffer. Float64 coordinates keep their precision (addFinitePoint).
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud);
+// The same points in double: any stored type exactly (readScanWide).
+void appendFinitePoints(const PointColumns& columns, std::size_t count, WideCloud& cloud);
 
 // Collects the points a reader decodes (x y z [intensity]), dropping those
 // with a NaN or infinite coordinate. When the file stores coordinates as
@@ -38,7 +41,11 @@ void appendFinitePoints(const PointColumns& columns, std::size_t count, PointClo
 // more than 10 km out (a map in UTM or ECEF): points are then kept relative to
 // it in whole metres, where floats would round them to decimetres. Neither a
 // stray first point nor (0,0,0) placeholders decide the origin.
-class PointCollector {
+template <typename Cloud>
+class PointCollector;
+
+template <>
+class PointCollector<PointCloud> {
  public:
   PointCollector(PointCloud& cloud, bool wide, bool with_intensity);
   void add(const double (&values)[4]);
@@ -50,5 +57,30 @@ class PointCollector {
   std::vector<Vec3> wide_points_;
   std::vector<float> wide_intensity_;
 };
+
+// For a WideCloud every finite point goes in as decoded, in double.
+template <>
+class PointCollector<WideCloud> {
+ public:
+  PointCollector(WideCloud& cloud, bool /*wide*/, bool with_intensity)
+      : cloud_(cloud), with_intensity_(with_intensity) {}
+  void add(const double (&values)[4]) {
+    const Vec3 p(values[0], values[1], values[2]);
+    if (!p.allFinite()) return;
+    if (with_intensity_) {
+      cloud_.add(p, static_cast<float>(values[3]));
+    } else {
+      cloud_.add(p);
+    }
+  }
+  void finish() {}
+
+ private:
+  WideCloud& cloud_;
+  bool with_intensity_;
+};
+
+template <typename Cloud>
+PointCollector(Cloud&, bool, bool) -> PointCollector<Cloud>;
 
 }  // namespace hba::io::detail

@@ -1,14 +1,12 @@
 #include "pose_file_lines.hpp"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <string>
 #include <string_view>
 
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;
@@ -62,22 +60,10 @@ std::vector<double> parseRow(const fs::path& path, std::size_t line, std::string
   return values;
 }
 
-std::string readWholeFile(const fs::path& path) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) failAt(path, "is a folder, not a file");
-  if (!fs::exists(path, ec)) failAt(path, "file not found");
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) failAt(path, std::string("cannot open: ") + std::strerror(errno));
-  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) failAt(path, "read error");
-  return content;
-}
-
 // Calls on_row(row) for each data line; returns early when it returns false.
 template <typename OnRow>
 void forEachNumberRow(const fs::path& path, OnRow on_row) {
-  const std::string content = readWholeFile(path);
+  const std::string content = readTextFile(path);  // checked a regular file, BOM dropped
   std::string_view rest(content);
   std::size_t line = 0;
   std::size_t pending_blank = 0;  // line number of a blank line not yet followed by data

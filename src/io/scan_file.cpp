@@ -2,11 +2,14 @@
 // Windows-made datasets).
 #include "hba/io/scan_file.hpp"
 
+#include "cloud_readers.hpp"
+#include "cloud_view.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/kitti_bin.hpp"
 #include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
+#include "hba/io/wide_cloud.hpp"
 #include "text_parsing.hpp"
 
 namespace hba::io {
@@ -58,6 +61,42 @@ void writeScan(const std::filesystem::path& path, const PointCloud& cloud) {
       break;
     case ScanFormat::Las:
       writeLas(path, cloud);
+      break;
+  }
+}
+
+WideCloud readScanWide(const std::filesystem::path& path) {
+  return readScanWide(path, scanFormatFromExtension(path));
+}
+
+WideCloud readScanWide(const std::filesystem::path& path, ScanFormat format) {
+  switch (format) {
+    case ScanFormat::Pcd:
+      return detail::readPcdAs<WideCloud>(path);
+    case ScanFormat::KittiBin:
+      return detail::readKittiBinAs<WideCloud>(path);
+    case ScanFormat::Ply:
+      return detail::readPlyAs<WideCloud>(path);
+    case ScanFormat::Las:
+      return detail::readLasAs<WideCloud>(path);
+  }
+  failAt(path, "unknown scan format");
+}
+
+void writeScanWide(const std::filesystem::path& path, const WideCloud& cloud) {
+  const detail::CloudView view(cloud);
+  switch (scanFormatFromExtension(path)) {
+    case ScanFormat::Pcd:
+      detail::writePcdView(path, view, PcdEncoding::Binary);
+      break;
+    case ScanFormat::KittiBin:
+      detail::writeKittiBinView(path, view);
+      break;
+    case ScanFormat::Ply:
+      detail::writePlyView(path, view, PlyEncoding::BinaryLittleEndian);
+      break;
+    case ScanFormat::Las:
+      detail::writeLasView(path, view, {});
       break;
   }
 }

@@ -18,6 +18,7 @@
 #include "hba/core/stopwatch.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
+#include "outer_rounds.hpp"
 #include "refine_stage.hpp"
 #include "shared_outcomes.hpp"
 #include "timed_clouds.hpp"
@@ -210,6 +211,7 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   }
   report.closure = closed.report;
   result.poses = closed.start;
+  OuterRounds rounds(settings);
   for (int iteration = 1; iteration <= settings.outer_iterations; ++iteration) {
     spdlog::info("iteration {}/{}: {} layers", iteration, settings.outer_iterations, report.layers);
     std::vector<Pose> updated =
@@ -222,11 +224,11 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
     report.iterations.back().max_rotation_update = u.rotation_deg;
     spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation_m, u.rotation_deg);
     result.poses = std::move(updated);
-    if (u.translation_m < settings.outer_tolerance_m && u.rotation_deg < settings.outer_tolerance_deg) {
-      report.poses_settled = true;
-      break;
-    }
+    if (rounds.stopAfter(iteration, u)) break;
   }
+  report.rounds_stopped = toString(rounds.why());
+  report.rounds_reason = rounds.reason();
+  spdlog::info("{}", report.rounds_reason);
 
   // What follows the hierarchy runs in the first process (the refinement
   // reads every scan), which sends the others its poses.

@@ -14,6 +14,7 @@
 #include <system_error>
 
 #include "hba/core/error.hpp"
+#include "hba/core/temporary_folder.hpp"
 
 namespace hba::pyramid {
 namespace fs = std::filesystem;
@@ -66,9 +67,8 @@ void readAll(int fd, void* data, std::size_t bytes, std::uint64_t offset, const 
 
 KeyframeStore::KeyframeStore(std::size_t count) : count_(count), entries_(count) {
   static std::atomic<unsigned> counter{0};
+  const fs::path base = temporaryFolder();
   std::error_code ec;
-  const fs::path base = fs::temp_directory_path(ec);
-  if (ec) throw Error("no temporary folder for keyframes: " + ec.message());
   static std::once_flag cleaned;
   std::call_once(cleaned, [&] { removeAbandonedFolders(base); });
   folder_ = base / (kPrefix + std::to_string(::getpid()) + "-" + std::to_string(counter++));

@@ -91,7 +91,7 @@ Setting shorthand(std::string key, std::string flag, std::vector<std::string> se
   s.flag = std::move(flag);
   s.sets = std::move(sets);
   s.help = std::move(help);
-  return s;  // type, range and default: those of the first setting it sets
+  return s;  // type, range and default: completeShorthands
 }
 
 SettingRange atLeast(double min) { return {min, kInf, false, false, ""}; }
@@ -141,6 +141,43 @@ void addBaSettings(std::vector<Setting>& table, const std::string& section, cons
       "windows that blur the map keep their input poses"));
 }
 
+const Setting& inTable(const std::vector<Setting>& table, const std::string& key) {
+  for (const Setting& s : table) {
+    if (s.key == key) return s;
+  }
+  throw Error("no setting '" + key + "'");
+}
+
+// The numbers both ranges take (0 only if both take it).
+SettingRange common(const SettingRange& a, const SettingRange& b) {
+  SettingRange r = a;
+  if (b.min > r.min || (b.min == r.min && b.min_open)) {
+    r.min = b.min;
+    r.min_open = b.min_open;
+  }
+  if (b.max < r.max || (b.max == r.max && b.max_open)) {
+    r.max = b.max;
+    r.max_open = b.max_open;
+  }
+  if (b.zero.empty()) r.zero.clear();
+  return r;
+}
+
+// A shorthand takes the first setting's type and default, and only what
+// every setting it sets takes: --voxel is refused above voxel_scans' 100 m
+// by its own name, not by another setting's later.
+void completeShorthands(std::vector<Setting>& table) {
+  for (Setting& s : table) {
+    if (!s.shorthand()) continue;
+    const Setting& first = inTable(table, s.sets.front());
+    s.type = first.type;
+    s.choices = first.choices;
+    s.default_value = first.default_value;
+    s.range = first.range;
+    for (const std::string& key : s.sets) s.range = common(s.range, inTable(table, key).range);
+  }
+}
+
 std::vector<Setting> makeTable() {
   std::vector<Setting> t;
   // Shorthands first: they are applied before the settings they set.
@@ -165,11 +202,24 @@ std::vector<Setting> makeTable() {
   t.push_back(integer(
       "layers", "--layers", 0, zeroOr("automatic", 1, kInf), [](HbaSettings& h) -> int& { return h.layers; },
       "pyramid layers incl. layer 1"));
-  t.push_back(withAliases(
-      integer(
-          "iterations", "--iterations", 1, atLeast(1),
-          [](HbaSettings& h) -> int& { return h.outer_iterations; }, "bottom-up + top-down rounds at most"),
-      {"outer_iterations"}));
+  // Rounds stop before the limit when the poses settle (outer_rounds.hpp):
+  // a round that moves no pose beyond both tolerances, or no less than the
+  // round before. A round costs what the first did: past 100 the limit is
+  // no limit.
+  t.push_back(withAliases(integer(
+                              "iterations", "--iterations", 1, between(1, 100),
+                              [](HbaSettings& h) -> int& { return h.outer_iterations; },
+                              "bottom-up + top-down rounds at most; fewer when the poses settle"),
+                          {"outer_iterations"}));
+  // Half the default point_sigma; 0.01 deg turns a point 50 m away by 9 mm.
+  t.push_back(real(
+      "settle_translation", "--settle-translation", 0.01, between(1e-6, 1),
+      [](HbaSettings& h) -> double& { return h.settle_translation_m; },
+      "a round that moves no pose further (and no more than settle_rotation) settles the poses, m"));
+  t.push_back(real(
+      "settle_rotation", "--settle-rotation", 0.01, between(1e-6, 10),
+      [](HbaSettings& h) -> double& { return h.settle_rotation_deg; },
+      "a round that turns no pose further (and no more than settle_translation) settles the poses, deg"));
   // Downsampling, named apart from the plane maps' root voxels (--voxel-*).
   t.push_back(withAliases(real(
                               "downsample_scans", "--downsample-scans", 0.1, zeroOr("off", 1e-3, 100),
@@ -276,6 +326,7 @@ std::vector<Setting> makeTable() {
       "groups' merged clouds downsampled to this, m"));
   addBaSettings(t, "local", "local", 0.05, &HbaSettings::local);
   addBaSettings(t, "global", "global", 0.1, &HbaSettings::global);
+  completeShorthands(t);
   return t;
 }
 

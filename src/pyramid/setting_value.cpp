@@ -1,19 +1,13 @@
 // What a declared setting takes, as text and as a check: one wording for the
 // command line, the YAML file, the docs and the errors.
-#include <charconv>
 #include <cmath>
 
+#include "hba/core/enum_names.hpp"
 #include "hba/core/error.hpp"
 #include "hba/pyramid/setting_table.hpp"
 
 namespace hba::pyramid {
 namespace {
-
-std::string numberText(double value) {
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char digits[32];  // the shortest form that reads back the same
-  return std::string(digits, std::to_chars(digits, digits + sizeof(digits), value).ptr);
-}
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
@@ -21,30 +15,20 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-std::string intervalText(const SettingRange& r) {
-  const bool no_min = std::isinf(r.min);
-  const bool no_max = std::isinf(r.max);
-  if (no_min && no_max) return "any number";
-  if (no_max) return (r.min_open ? "> " : ">= ") + numberText(r.min);
-  if (no_min) return (r.max_open ? "< " : "<= ") + numberText(r.max);
-  return std::string(r.min_open ? "(" : "[") + numberText(r.min) + ", " + numberText(r.max) +
-         (r.max_open ? ")" : "]");
-}
-
-bool inInterval(const SettingRange& r, double v) {
-  const bool above = r.min_open ? v > r.min : v >= r.min;
-  const bool below = r.max_open ? v < r.max : v <= r.max;
-  return above && below;
+NumberKind kindOf(const Setting& s) {
+  switch (s.type) {
+    case SettingType::Integer:
+      return NumberKind::Integer;
+    case SettingType::Count:
+      return NumberKind::Count;
+    default:
+      return NumberKind::Real;
+  }
 }
 
 }  // namespace
 
-const Setting& valueSetting(const Setting& setting) {
-  return setting.shorthand() ? settingByKey(setting.sets.front()) : setting;
-}
-
-std::string rangeText(const Setting& setting) {
-  const Setting& s = valueSetting(setting);
+std::string rangeText(const Setting& s) {
   switch (s.type) {
     case SettingType::Switch:
       return "true or false";
@@ -53,8 +37,7 @@ std::string rangeText(const Setting& setting) {
     default:
       break;
   }
-  std::string text = intervalText(s.range);
-  if (!s.range.zero.empty()) text = "0 (" + s.range.zero + ") or " + text;
+  std::string text = rangeText(s.range);
   if (!s.below.empty()) text += ", below " + s.below;
   return text;
 }
@@ -66,21 +49,18 @@ std::string valueText(const SettingValue& value) {
   return std::get<std::string>(value);
 }
 
-void checkSettingValue(const Setting& setting, const SettingValue& value) {
-  const Setting& s = valueSetting(setting);
-  const auto fail = [&] { throw Error("setting " + setting.key + " must be " + rangeText(setting)); };
+std::string settingProblem(const Setting& s, const SettingValue& value) {
+  const std::string must = "must be " + rangeText(s);
   switch (s.type) {
     case SettingType::Switch:
-      if (!std::holds_alternative<bool>(value)) fail();
-      return;
+      return std::holds_alternative<bool>(value) ? "" : must;
     case SettingType::Choice: {
       const std::string* name = std::get_if<std::string>(&value);
-      if (name == nullptr) fail();
+      if (name == nullptr) return must;
       for (const std::string& choice : s.choices) {
-        if (normalizedEnumName(*name) == choice) return;
+        if (normalizedEnumName(*name) == choice) return "";
       }
-      fail();
-      return;
+      return must;
     }
     case SettingType::Integer:
     case SettingType::Count:
@@ -92,16 +72,33 @@ void checkSettingValue(const Setting& setting, const SettingValue& value) {
     number = static_cast<double>(*i);
     if (s.type == SettingType::Integer &&
         (*i < std::numeric_limits<int>::min() || *i > std::numeric_limits<int>::max()))
-      fail();
-    if (s.type == SettingType::Count && *i < 0) fail();
+      return must;
+    if (s.type == SettingType::Count && *i < 0) return must;
   } else if (const double* d = std::get_if<double>(&value); d != nullptr && s.type == SettingType::Real) {
     number = *d;
   } else {
-    fail();
+    return must;
   }
-  if (!std::isfinite(number)) fail();
-  if (number == 0.0 && !s.range.zero.empty()) return;
-  if (!inInterval(s.range, number)) fail();
+  return inRange(s.range, number) ? "" : must;
+}
+
+void checkSettingValue(const Setting& setting, const SettingValue& value) {
+  const std::string problem = settingProblem(setting, value);
+  if (!problem.empty()) throw ValueError("setting " + setting.key + " " + problem);
+}
+
+ParsedSetting parseSettingNumber(const Setting& setting, const std::string& text) {
+  ParsedSetting parsed;
+  const NumberKind kind = kindOf(setting);
+  parsed.problem = numberProblem(text, setting.range, kind, rangeText(setting));
+  if (!parsed.problem.empty()) return parsed;
+  const ParsedNumber number = parseNumber(text, setting.range, kind);
+  if (kind == NumberKind::Real) {
+    parsed.value = number.value;
+  } else {
+    parsed.value = number.whole;
+  }
+  return parsed;
 }
 
 void applySetting(const Setting& setting, const SettingValue& value, HbaSettings& settings) {

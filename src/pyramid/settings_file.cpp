@@ -4,20 +4,22 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
+#include <cctype>
+#include <map>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
 #include "hba/pyramid/setting_table.hpp"
 
 namespace hba::pyramid {
 namespace {
 
+// Everything wrong with a settings file's content is the caller's to fix.
 [[noreturn]] void bad(const std::string& source, const std::string& problem) {
-  throw Error(source + ": " + problem);
+  throw ValueError(source + ": " + problem);
 }
 
 std::string sectionOf(const std::string& key) {
@@ -53,9 +55,27 @@ void rejectUnknownKeys(const YAML::Node& node, const std::set<std::string>& know
   }
 }
 
+// yaml-cpp keeps both entries of a key given twice and reads the first: a
+// file whose later line looks like it wins. Refused, with both lines.
+void rejectRepeatedKeys(const YAML::Node& map, const std::string& where, const std::string& source) {
+  std::map<std::string, int> first_line;
+  for (const auto& entry : map) {
+    if (!entry.first.IsScalar()) continue;  // rejectUnknownKeys names it
+    const std::string key = entry.first.Scalar();
+    const int line = entry.first.Mark().line + 1;
+    const auto [seen, fresh] = first_line.emplace(key, line);
+    if (fresh) continue;
+    const std::string lines = seen->second == line
+                                  ? "both on line " + std::to_string(line)
+                                  : "lines " + std::to_string(seen->second) + " and " + std::to_string(line);
+    bad(source, "'" + where + key + "' is given twice (" + lines + "); give it once");
+  }
+}
+
 // Unknown keys are an error (with a "did you mean"), so a typo never passes
-// silently; so are the sections that are not maps.
+// silently; so are the sections that are not maps and keys given twice.
 void rejectUnknownNames(const YAML::Node& root, const std::string& source) {
+  rejectRepeatedKeys(root, "", source);
   std::set<std::string> top;
   for (const Setting& s : settingTable()) {
     top.insert(sectionOf(s.key).empty() ? s.key : sectionOf(s.key));
@@ -66,6 +86,7 @@ void rejectUnknownNames(const YAML::Node& root, const std::string& source) {
     const YAML::Node map = root[section.name];
     if (!map) continue;
     if (!map.IsMap()) bad(source, "'" + section.name + "' must be a map of settings");
+    rejectRepeatedKeys(map, section.name + ".", source);
     std::set<std::string> known;
     for (const Setting& s : settingTable()) {
       if (sectionOf(s.key) == section.name) known.insert(leafOf(s.key));
@@ -91,22 +112,38 @@ std::optional<std::string> givenName(const YAML::Node& root, const Setting& sett
 
 SettingValue readValue(const YAML::Node& node, const Setting& setting, const std::string& name,
                        const std::string& source) {
-  const Setting& typed = valueSetting(setting);
+  const auto wrong = [&] {
+    bad(source, "'" + name + "' has a value of the wrong type; it takes " + rangeText(setting));
+  };
   try {
-    switch (typed.type) {
+    switch (setting.type) {
       case SettingType::Switch:
         return node.as<bool>();
-      case SettingType::Integer:
-      case SettingType::Count:
-        return node.as<long long>();
-      case SettingType::Real:
-        return node.as<double>();
       case SettingType::Choice:
         return node.as<std::string>();
+      case SettingType::Integer:
+      case SettingType::Count:
+      case SettingType::Real:
+        break;
     }
   } catch (const YAML::Exception&) {
+    wrong();
   }
-  bad(source, "'" + name + "' has a value of the wrong type; it takes " + rangeText(setting));
+  if (!node.IsScalar()) wrong();
+  // A whole-number setting is written as one: 10.0 and 1e1 are refused, as
+  // yaml-cpp did (Python's window=10.0 too).
+  const std::string& scalar = node.Scalar();
+  if (setting.type != SettingType::Real && scalar.find_first_of(".eE") != std::string::npos) wrong();
+  // The flags' reading: "too large", "not a whole number" said as such;
+  // YAML's .inf and .nan read as the flags' inf and nan (not finite).
+  std::string text = node.Scalar();
+  const bool signed_dot = text.size() > 2 && (text[0] == '+' || text[0] == '-') && text[1] == '.';
+  if ((text.size() > 1 && text[0] == '.' && std::isalpha(text[1])) || (signed_dot && std::isalpha(text[2])))
+    text.erase(signed_dot ? 1 : 0, 1);
+  const ParsedSetting parsed = parseSettingNumber(setting, text);
+  if (parsed.problem.empty()) return parsed.value;
+  if (parseNumber(text, setting.range, NumberKind::Real).why == "not a number") wrong();
+  bad(source, "setting " + name + " " + parsed.problem);
 }
 
 nlohmann::json toJson(const SettingValue& value) {
@@ -135,7 +172,7 @@ std::string yamlLine(const std::string& indent, const Setting& s, const SettingV
   std::string text = indent + leafOf(s.key) + ": " + valueText(value);
   if (text.size() < 34) text.resize(34, ' ');
   std::string comment = s.help;
-  if (!valueSetting(s).range.zero.empty()) comment += "; 0 = " + valueSetting(s).range.zero;
+  if (!s.range.zero.empty()) comment += "; 0 = " + s.range.zero;
   return text + "  # " + comment + flagNote(s) + "\n";
 }
 
@@ -173,11 +210,7 @@ void applySettingsYaml(const std::string& yaml_text, const std::string& source, 
 }
 
 void applySettingsFile(const std::filesystem::path& path, HbaSettings& settings) {
-  std::ifstream in(path);
-  if (!in) failAt(path, "cannot open the settings file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  applySettingsYaml(text.str(), path.string(), settings);
+  applySettingsYaml(readTextFile(path), path.string(), settings);
 }
 
 void checkSettings(const HbaSettings& settings) {
@@ -188,8 +221,9 @@ void checkSettings(const HbaSettings& settings) {
     if (s.below.empty()) continue;
     const SettingValue limit = settingByKey(s.below).get(settings);
     if (!(std::get<long long>(value) < std::get<long long>(limit))) {
-      throw Error("setting " + s.key + " must be below " + s.below + " (" + valueText(value) +
-                  " >= " + valueText(limit) + ")");
+      const Setting& other = settingByKey(s.below);
+      throw ValueError("setting " + s.key + " must be below " + s.below + " (" + s.flag + " " +
+                       valueText(value) + " >= " + other.flag + " " + valueText(limit) + ")");
     }
   }
 }

@@ -150,11 +150,11 @@ std::vector<std::uint8_t> encodePng(const Image& image) {
   return encodePng(std::vector<const Image*>{&image});
 }
 
-void writePng(const std::filesystem::path& path, const Image& image) {
-  writePng(path, std::vector<const Image*>{&image});
+PictureSize writePng(const std::filesystem::path& path, const Image& image) {
+  return writePng(path, std::vector<const Image*>{&image});
 }
 
-void writePng(const std::filesystem::path& path, const std::vector<const Image*>& stack) {
+PictureSize writePng(const std::filesystem::path& path, const std::vector<const Image*>& stack) {
   std::vector<std::uint8_t> png;
   try {
     png = encodePng(stack);
@@ -164,6 +164,9 @@ void writePng(const std::filesystem::path& path, const std::vector<const Image*>
   writeFileAtomically(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   });
+  PictureSize size{stack.front()->width(), 0};  // encodePng refused an empty stack
+  for (const Image* image : stack) size.height += image->height();
+  return size;
 }
 
 }  // namespace hba::render

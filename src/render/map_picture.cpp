@@ -22,6 +22,12 @@ constexpr int kGap = 10;
 constexpr int kTitleBand = 38;
 constexpr int kFooter = 46;
 
+// The colours span these quantiles of the heights in view, so that a few
+// stray returns do not wash out the rest; the side view's axis spans nearly
+// all heights. The captions say which is which.
+constexpr double kColourLow = 0.02, kColourHigh = 0.98;
+constexpr double kExtentLow = 0.002, kExtentHigh = 0.998;
+
 // q-quantile of values (copied; q in [0, 1]).
 double quantile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -102,9 +108,17 @@ double niceLength(double target) {
   return power;
 }
 
-std::string metres(double value) {
-  return std::abs(value) >= 10 || value == std::round(value) ? fmt::format("{:.0f} m", value)
-                                                             : fmt::format("{:.1f} m", value);
+// One number format for every caption: the side view's and the colour bar's
+// numbers read alike.
+std::string number(double value) {
+  return std::abs(value) >= 10 || value == std::round(value) ? fmt::format("{:.0f}", value)
+                                                             : fmt::format("{:.1f}", value);
+}
+
+std::string metres(double value) { return number(value) + " m"; }
+
+std::string colourQuantiles() {
+  return fmt::format("{:.0f}-{:.0f} %", 100.0 * kColourLow, 100.0 * kColourHigh);
 }
 
 struct Rect {
@@ -180,19 +194,23 @@ void drawSideView(Image& image, const MapPanel& panel, const Box2& box, const To
   }
 }
 
-// The side view's caption (unclipped text: drawn after the panels' views).
-void labelSideView(Image& image, const TopViewTransform& view, const Rect& area,
-                   std::pair<double, double> z_range) {
+// The side view's caption: the heights its axis spans and, when colour is
+// by height, the (narrower) range the colours span, as the bar says.
+std::string sideCaption(const TopViewTransform& view, const Rect& area, std::pair<double, double> z_range,
+                        std::pair<double, double> heights, bool colour_by_height) {
   const double z_scale = (area.height - 8) / (z_range.second - z_range.first);
   const double exaggeration = z_scale / view.pixels_per_meter;
-  drawText(image, area.left + 8, area.top + 6,
-           fmt::format("side view: x vs z (z x{:.1f}), z {:.1f}..{:.1f} m", exaggeration, z_range.first,
-                       z_range.second),
-           kDimText, 2);
+  std::string caption = fmt::format("side view: x vs z (z x{:.1f}), z {}..{} m", exaggeration,
+                                    number(z_range.first), number(z_range.second));
+  if (colour_by_height) {
+    caption += fmt::format("; colour {}..{} m ({})", number(heights.first), number(heights.second),
+                           colourQuantiles());
+  }
+  return caption;
 }
 
-void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<double, double> heights,
-                const std::optional<RenderSettings::ValueScale>& scale) {
+void drawFooter(Image& image, const std::vector<MapPanel>& panels, const std::string& low,
+                const std::string& high) {
   const int y = image.height() - kFooter + 12;
   int x = kGap + 6;
   std::vector<std::string> seen;
@@ -205,9 +223,7 @@ void drawFooter(Image& image, const std::vector<MapPanel>& panels, std::pair<dou
       x += 40 + textWidth(layer.label, 2) + 34;
     }
   }
-  // Height bar.
-  const std::string low = scale ? scale->low_label : "z " + metres(heights.first);
-  const std::string high = scale ? scale->high_label : metres(heights.second);
+  // Colour bar.
   drawText(image, x, y + 2, low, kDimText, 2);
   x += textWidth(low, 2) + 8;
   for (int i = 0; i < 200; ++i)
@@ -236,7 +252,7 @@ Box2 parseBox(const std::string& text) {
 Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& settings) {
   if (panels.empty()) throw Error("nothing to render");
   const int n = static_cast<int>(panels.size());
-  Picture picture{Image(settings.width, settings.height, kBackground), {}};
+  Picture picture{Image(settings.width, settings.height, kBackground), {}, {}, {}, {}};
   Image& image = picture.image;
   const int panel_width = (settings.width - (n + 1) * kGap) / n;
   const int body = settings.height - kTitleBand - kFooter;
@@ -247,8 +263,8 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
   const Box2 box = viewBox(panels, settings);
   const auto heights = settings.value_scale
                            ? std::make_pair(settings.value_scale->low, settings.value_scale->high)
-                           : heightRange(panels, box, 0.02, 0.98);
-  const auto z_range = heightRange(panels, box, 0.002, 0.998);
+                           : heightRange(panels, box, kColourLow, kColourHigh);
+  const auto z_range = heightRange(panels, box, kExtentLow, kExtentHigh);
   const double scale = std::min(panel_width / (box.xmax - box.xmin), top_height / (box.ymax - box.ymin));
 
   std::vector<Rect> top_areas, side_areas;
@@ -283,9 +299,16 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
   });
   for (int k = 0; k < n; ++k) {
     drawScaleBar(image, top_areas[k], scale);
-    if (settings.side_view) labelSideView(image, picture.top_views[k], side_areas[k], z_range);
+    if (!settings.side_view) continue;
+    // Unclipped text: drawn after the panels' views.
+    picture.side_caption =
+        sideCaption(picture.top_views[k], side_areas[k], z_range, heights, !settings.value_scale);
+    drawText(image, side_areas[k].left + 8, side_areas[k].top + 6, picture.side_caption, kDimText, 2);
   }
-  drawFooter(image, panels, heights, settings.value_scale);
+  const std::optional<RenderSettings::ValueScale>& values = settings.value_scale;
+  picture.bar_low = values ? values->low_label : "z " + metres(heights.first);
+  picture.bar_high = values ? values->high_label : metres(heights.second) + " (" + colourQuantiles() + ")";
+  drawFooter(image, panels, picture.bar_low, picture.bar_high);
   return picture;
 }
 

@@ -103,9 +103,9 @@ std::vector<Image> drawBeforeAfter(const io::ScanSource& scans,
 
 }  // namespace
 
-void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
-                      const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
-                      const std::filesystem::path& out_png, const RenderSettings& settings) {
+PictureSize writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
+                             const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
+                             const std::filesystem::path& out_png, const RenderSettings& settings) {
   const std::array<const std::vector<Pose>*, 2> poses{&before, &after};
   std::vector<MapPanel> panels(2);
   panels[0].title = "initial poses";
@@ -122,8 +122,7 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
         squareMaps(scans, poses, settings.voxel, *settings.crop, std::numeric_limits<double>::infinity(),
                    settings.scans_voxel, settings.budget);
     for (std::size_t k = 0; k < 2; ++k) panels[k].map = std::move(fine[k]);
-    writePng(out_png, renderPanels(panels, settings).image);
-    return;
+    return writePng(out_png, renderPanels(panels, settings).image);
   }
   // What the caller freed (an optimization's heap) stays resident while the
   // picture's buffers come as fresh pages: handed back first, the picture
@@ -132,12 +131,12 @@ void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& befo
   const std::vector<Image> rows = drawBeforeAfter(scans, poses, std::move(panels), settings);
   std::vector<const Image*> stack;
   for (const Image& row : rows) stack.push_back(&row);
-  writePng(out_png, stack);
+  return writePng(out_png, stack);
 }
 
-void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                     const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
-                     const RenderSettings& settings) {
+PictureSize writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
+                            const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
+                            const RenderSettings& settings) {
   std::vector<MapPanel> panels(1);
   panels[0].title = "map";
   panels[0].map = mergedMap(scans, poses, settings);
@@ -147,7 +146,7 @@ void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses
         panels[0].trajectories.begin(),
         {"ground truth", alignedGroundTruth(*ground_truth, poses), kGroundTruthColor});
   }
-  writePng(out_png, renderPanels(panels, settings).image);
+  return writePng(out_png, renderPanels(panels, settings).image);
 }
 
 }  // namespace hba::render

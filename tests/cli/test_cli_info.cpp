@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -91,6 +92,46 @@ TEST(CliInfo, CountMismatchFailsNamingBothFiles) {
   EXPECT_NE(result.exit_code, 0);
   expectContains(result.output, "3 scans in " + (dir / "Scans").string());
   expectContains(result.output, "2 poses in " + (dir / "odom_poses.txt").string());
+}
+
+std::size_t occurrences(const std::string& text, const std::string& part) {
+  std::size_t count = 0;
+  for (std::size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++count;
+  return count;
+}
+
+// hba_plain with the scans `empty` rewritten to hold no points.
+fs::path withEmptyScans(const test::TempDir& dir, const std::vector<int>& empty) {
+  fs::copy(fixture("hba_plain"), dir.path(), fs::copy_options::recursive);
+  for (const int i : empty) {
+    test::writeText(dir / "pcd" / (std::to_string(i) + ".pcd"),
+                    "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                    "WIDTH 0\nHEIGHT 1\nPOINTS 0\nDATA ascii\n");
+  }
+  return dir.path();
+}
+
+TEST(CliInfo, ScansWithNoPointsAreNamedOnce) {
+  test::TempDir dir;
+  const fs::path data = withEmptyScans(dir, {3, 7});
+  const test::CommandResult result = hbaInfo(quoted(data));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const char* name : {"3.pcd", "7.pcd"}) {
+    EXPECT_EQ(occurrences(result.output, (data / "pcd" / name).string() + ": the scan stores no points"), 1u)
+        << result.output;
+  }
+  expectContains(result.output, "points/scan: min 0,");
+}
+
+TEST(CliInfo, ManyScansWithNoPointsGiveAFewLinesAndACount) {
+  test::TempDir dir;
+  const fs::path data = withEmptyScans(dir, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  const test::CommandResult result = hbaInfo(quoted(data));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(occurrences(result.output, ": the scan stores no points"), 3u) << result.output;
+  EXPECT_EQ(occurrences(result.output, "more files in this folder have the same problem"), 1u)
+      << result.output;
+  expectContains(result.output, "11 of the 11 scans looked at store no points");
 }
 
 TEST(CliInfo, UnreadableScanFailsNamingIt) {

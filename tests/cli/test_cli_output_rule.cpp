@@ -41,7 +41,9 @@ class OutputRule : public testing::Test {
 };
 
 TEST_F(OutputRule, NonEmptyFolderNeedsForceWhichReplacesItWhole) {
+  // An earlier hba output (its marker) with a picture this run will not draw.
   fs::create_directories(dir / "out");
+  test::writeText(dir / "out" / ".hba-output", "");
   test::writeText(dir / "out" / "before_after.png", "an earlier run's picture");
   const test::CommandResult refused = test::runCommand(optimize("--no-render --layers 1"));
   EXPECT_NE(refused.exit_code, 0);
@@ -61,7 +63,7 @@ TEST_F(OutputRule, SecondRunIntoAFolderInUseIsRefused) {
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   const test::CommandResult second = test::runCommand(optimize("--no-render --force"));
   EXPECT_NE(second.exit_code, 0);
-  EXPECT_NE(second.output.find("another hba run is writing this folder"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("another hba run is writing this output"), std::string::npos) << second.output;
   // The first finishes untroubled.
   for (int i = 0; i < 600 && !fs::exists(dir / "out" / "pose.json"); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -31,6 +31,20 @@ TEST(Association, ByTimeHandlesUnsortedReference) {
   EXPECT_THROW(associateByTime(reference, {10.0}, 0.1), Error);
 }
 
+// Nothing within the tolerance: the message gives both sides' stamps, so the
+// reader sees at once that one holds seconds since 1970 and the other indices.
+TEST(Association, NoMatchSaysBothTimeRanges) {
+  try {
+    associateByTime({1000.0, 1001.0, 1002.0}, {2.0, 0.0, 1.0}, 0.01);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "no timestamps match within 0.01 s: the reference has 3 stamps from 1000.000 to 1002.000 s, "
+                 "the estimate 3 stamps from 0.000 to 2.000 s");
+  }
+  EXPECT_EQ(pairByTime({1000.0}, {0.0}, 0.01).size(), 0u);
+}
+
 TEST(Association, AutoUsesIndexWhenEitherSideHasNoStamps) {
   Trajectory stamped, plain;
   for (int i = 0; i < 4; ++i) {

@@ -85,6 +85,37 @@ TEST(EvalCli, StampedTumAgainstUnstampedHbaPairsByIndexAndPrintsTheLabel) {
   EXPECT_TRUE(std::regex_search(se3.output, std::regex("\nafter  ATE trans m +0.000000 "))) << se3.output;
 }
 
+// No stamp within the tolerance (docs/eval.md): both files named with their
+// stamps' counts and ranges, the tolerance, and the flag that would pair them.
+TEST(EvalCli, StampsThatMatchNowhereAreShownWithBothRanges) {
+  TempDir tmp;
+  std::string gt, est;
+  for (int i = 0; i < 4; ++i) {
+    gt += std::to_string(1000 + i) + " " + std::to_string(i) + " 0 0 0 0 0 1\n";
+    est += std::to_string(i) + " " + std::to_string(i) + " 0 0 0 0 0 1\n";
+  }
+  writeText(tmp / "gt.tum", gt);
+  writeText(tmp / "est.tum", est);
+  const std::string base = cliPath().string() + " eval --gt " + (tmp / "gt.tum").string() + " --est ";
+  const CommandResult same_count = runCommand(base + (tmp / "est.tum").string());
+  EXPECT_EQ(same_count.exit_code, 1);
+  for (const std::string& piece :
+       std::vector<std::string>{"only 0 of 4 estimated poses (0 %) have a ground-truth pose within 0.01 s",
+                                (tmp / "gt.tum").string() + " holds 4 stamps from 1000.000 to 1003.000 s",
+                                (tmp / "est.tum").string() + " holds 4 stamps from 0.000 to 3.000 s",
+                                "--assoc index: both files hold 4 poses"}) {
+    EXPECT_NE(same_count.output.find(piece), std::string::npos) << piece << "\n" << same_count.output;
+  }
+  writeText(tmp / "est.tum", est.substr(0, est.rfind('\n', est.size() - 2) + 1));  // 3 poses
+  const CommandResult other_count = runCommand(base + (tmp / "est.tum").string());
+  EXPECT_EQ(other_count.exit_code, 1);
+  EXPECT_NE(other_count.output.find("holds 3 stamps from 0.000 to 2.000 s"), std::string::npos)
+      << other_count.output;
+  EXPECT_NE(other_count.output.find("widen the tolerance (--t-max-diff"), std::string::npos)
+      << other_count.output;
+  EXPECT_NE(other_count.output.find("not 3 and 4"), std::string::npos) << other_count.output;
+}
+
 TEST(EvalCli, ReportsProblemsInsteadOfGuessing) {
   TempDir tmp;
   writeText(tmp / "a.txt", "0 0 0 1 0 0 0\n1 0 0 1 0 0 0\n2 0 0 1 0 0 0\n");

@@ -133,8 +133,10 @@ TEST(MapCli, NegativeVoxelIsRefused) {
   ASSERT_EQ(test::runHba("-q simulate --frames 5 --seed 2 -o " + test::quoted(dir / "sim")).exit_code, 0);
   const test::CommandResult run =
       test::runHba("map " + test::quoted(dir / "sim") + " -o " + test::quoted(dir / "m.pcd") + " --voxel -1");
-  EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.output.find("--voxel: must be >= 0, got -1"), std::string::npos) << run.output;
+  EXPECT_EQ(run.exit_code, 2);  // usage: a bad value
+  EXPECT_NE(run.output.find("--voxel: must be 0 (keep every point) or [0.001, 100] m, got -1"),
+            std::string::npos)
+      << run.output;
   EXPECT_FALSE(fs::exists(dir / "m.pcd"));
 }
 

@@ -120,7 +120,8 @@ TEST(PoseFile, FormatNames) {
 }
 
 TEST(PoseFile, MissingFileIsNamed) {
-  expectErrorMentioning([] { readPoses("/nonexistent/odom.txt"); }, {"/nonexistent/odom.txt", "not found"});
+  expectErrorMentioning([] { readPoses("/nonexistent/odom.txt"); },
+                        {"/nonexistent/odom.txt", "no such file"});
 }
 
 // One bad input, the format to read it as, and what the error must mention.

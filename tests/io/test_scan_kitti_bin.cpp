@@ -44,7 +44,7 @@ TEST(KittiBin, RejectsSizesThatAreNotWholeRecordsAndBadPaths) {
   test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16", [&] { readKittiBin(dir / "odd.bin"); });
   test::expectErrorAbout(dir / "none.bin", "no such file", [&] { readKittiBin(dir / "none.bin"); });
   std::filesystem::create_directory(dir / "d.bin");
-  test::expectErrorAbout(dir / "d.bin", "is a directory", [&] { readKittiBin(dir / "d.bin"); });
+  test::expectErrorAbout(dir / "d.bin", "is a folder, not a file", [&] { readKittiBin(dir / "d.bin"); });
   test::writeText(dir / "empty.bin", "");
   EXPECT_TRUE(readKittiBin(dir / "empty.bin").empty());
 }

@@ -9,6 +9,7 @@
 #include "hba/io/las.hpp"
 #include "hba/io/scan_file.hpp"
 #include "test_las_bytes.hpp"
+#include "test_log_capture.hpp"
 #include "test_scan_helpers.hpp"
 
 namespace hba::io {
@@ -196,6 +197,60 @@ TEST(Las, ReadsEveryVersionAndPointFormat) {
       EXPECT_EQ(cloud.intensity, (std::vector<float>{7.0f, 65535.0f}));
     }
   }
+}
+
+// Writers that leave every point count at 0 still store the records after
+// the header: they are read, with one warning naming the file.
+TEST(Las, ZeroCountWithRecordsFollowingReadsThemWithAWarning) {
+  test::TempDir dir;
+  const std::vector<test::LasPointInts> points = {{100, -200, 300, 7}, {-5, 0, 123456, 65535}, {1, 2, 3, 4}};
+  for (const int minor : {2, 4}) {
+    SCOPED_TRACE("LAS 1." + std::to_string(minor));
+    test::LasSpec spec;
+    spec.minor = minor;
+    spec.vlr_payloads = {16};
+    spec.legacy_count = false;
+    spec.wide_count = false;
+    const auto path = dir / ("zero_" + std::to_string(minor) + ".las");
+    test::writeText(path, test::lasBytes(spec, points));
+    const test::LogCapture log;
+    const PointCloud cloud = readLas(path);
+    ASSERT_EQ(cloud.size(), 3u);
+    EXPECT_NEAR(cloud.world(1).z(), 1234.56, 1e-4);
+    EXPECT_EQ(cloud.intensity, (std::vector<float>{7.0f, 65535.0f, 4.0f}));
+    EXPECT_EQ(readLasHeader(path).point_count, 3u);
+    readLas(path);
+    const std::string warning = path.string() + ": the header counts 0 points, but 84 bytes of point records";
+    const std::string text = log.text();
+    EXPECT_NE(text.find(warning), std::string::npos) << text;
+    EXPECT_EQ(text.find(warning), text.rfind(warning)) << "warned twice about one file: " << text;
+  }
+}
+
+// The bytes after the records are not records: a trailing part of one, the
+// extended VLRs of LAS 1.4 (their start is in the header).
+TEST(Las, ZeroCountReadsOnlyWholeRecordsBeforeExtendedVlrs) {
+  test::TempDir dir;
+  test::LasSpec spec;
+  spec.minor = 4;
+  spec.legacy_count = false;
+  spec.wide_count = false;
+  std::string bytes = test::lasBytes(spec, {{1, 2, 3, 4}, {5, 6, 7, 8}});
+  const std::size_t records_end = bytes.size();
+  bytes += std::string(60 + 28 * 3, 'e');  // an EVLR header and 3 records' worth of payload
+  test::putBytes<std::uint64_t>(bytes, 235, records_end);
+  test::putBytes<std::uint32_t>(bytes, 243, 1);
+  test::writeText(dir / "evlr.las", bytes);
+  EXPECT_EQ(readLas(dir / "evlr.las").size(), 2u);
+  bytes.resize(records_end + 5);
+  test::putBytes<std::uint32_t>(bytes, 243, 0);
+  test::writeText(dir / "tail.las", bytes);
+  const test::LogCapture log;
+  EXPECT_EQ(readLas(dir / "tail.las").size(), 2u);
+  EXPECT_NE(log.text().find("(5 bytes left over)"), std::string::npos) << log.text();
+  bytes.resize(records_end - 56);  // less than one record after the header
+  test::writeText(dir / "none.las", bytes);
+  EXPECT_TRUE(readLas(dir / "none.las").empty());
 }
 
 TEST(Las, ScanFilesDispatchOnTheExtension) {

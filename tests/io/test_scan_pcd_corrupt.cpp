@@ -137,8 +137,9 @@ TEST(PcdCorrupt, MissingFileAndDirectoryAreNamed) {
   test::expectErrorAbout(dir / "absent.pcd", "no such file", [&] { readPcd(dir / "absent.pcd"); });
   test::expectErrorAbout(dir / "absent.pcd", "no such file", [&] { readPcdHeader(dir / "absent.pcd"); });
   std::filesystem::create_directory(dir / "folder.pcd");
-  test::expectErrorAbout(dir / "folder.pcd", "is a directory", [&] { readPcd(dir / "folder.pcd"); });
-  test::expectErrorAbout(dir / "folder.pcd", "is a directory", [&] { readPcdHeader(dir / "folder.pcd"); });
+  test::expectErrorAbout(dir / "folder.pcd", "is a folder, not a file", [&] { readPcd(dir / "folder.pcd"); });
+  test::expectErrorAbout(dir / "folder.pcd", "is a folder, not a file",
+                         [&] { readPcdHeader(dir / "folder.pcd"); });
 }
 
 TEST(PcdCorrupt, LongFileWithoutHeaderIsRejectedAfterABoundedScan) {

@@ -208,6 +208,39 @@ TEST_F(OptimizeSimulated, EarlierFlagNamesStillRead) {
   EXPECT_NE(printed.output.find("downsample_keyframes: 0.3"), std::string::npos) << printed.output;
 }
 
+// --iterations is a maximum: 50 asked, the rounds stop when the poses
+// settle or their moves stop shrinking, and report.json says which.
+TEST_F(OptimizeSimulated, OuterRoundsStopWhenThePosesSettle) {
+  run(hba() + " -q simulate --frames 60 --seed 3 -o " + data().string());
+  const auto rounds = [&](const std::string& flags, const std::string& name) {
+    run(hba() + " -q optimize " + data().string() + " -o " + (dir / name).string() + " --no-render " + flags);
+    return readJson(dir / name / "report.json");
+  };
+  const nlohmann::json asked = rounds("--iterations 50", "fifty");
+  const nlohmann::json& stopped = asked.at("outer_iterations");
+  EXPECT_LE(stopped.at("run").get<int>(), 5) << stopped;
+  EXPECT_EQ(asked.at("iterations").size(), stopped.at("run").get<std::size_t>());
+  EXPECT_NE(stopped.at("stopped"), "iteration limit") << stopped;
+  const std::string reason = stopped.at("reason");
+  EXPECT_TRUE(reason.rfind("settled after ", 0) == 0 || reason.rfind("stopped after ", 0) == 0) << reason;
+
+  // Looser tolerances: settled after the second round, within them.
+  const nlohmann::json loose =
+      rounds("--iterations 50 --settle-rotation 0.05 --settle-translation 0.02", "loose");
+  EXPECT_EQ(loose.at("outer_iterations").at("stopped"), "poses settled") << loose.at("outer_iterations");
+  EXPECT_EQ(loose.at("outer_iterations").at("run"), 2);
+  EXPECT_NE(loose.at("outer_iterations").at("reason").get<std::string>().find("(within 0.02 m, 0.05 deg)"),
+            std::string::npos);
+  EXPECT_EQ(loose.at("settings").at("settle_rotation"), 0.05);
+
+  // The default: one round, said as such.
+  const nlohmann::json once = rounds("", "once");
+  EXPECT_EQ(once.at("outer_iterations").at("run"), 1);
+  EXPECT_EQ(once.at("outer_iterations").at("stopped"), "iteration limit");
+  EXPECT_EQ(once.at("outer_iterations").at("reason").get<std::string>().rfind("reached --iterations 1: ", 0),
+            0u);
+}
+
 }  // namespace
 }  // namespace hba
 

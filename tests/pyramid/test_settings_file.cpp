@@ -129,3 +129,49 @@ TEST(SettingsFile, FlagNamedKeysAreTheSameSettings) {
 
 }  // namespace
 }  // namespace hba::pyramid
+
+namespace hba::pyramid {
+namespace {
+
+std::string errorOf(const std::string& yaml) {
+  HbaSettings s;
+  try {
+    applySettingsYaml(yaml, "cfg.yaml", s);
+  } catch (const ValueError& e) {  // the caller's to fix: the tool exits 2
+    return e.what();
+  }
+  return "";
+}
+
+// yaml-cpp keeps both entries of a repeated key and reads the first: the
+// later line, which looks like it wins, would be ignored in silence.
+TEST(SettingsFile, AKeyGivenTwiceIsAnErrorNamingBothLines) {
+  EXPECT_EQ(errorOf("window: 10\nstride: 4\nwindow: 12\n"),
+            "cfg.yaml: 'window' is given twice (lines 1 and 3); give it once");
+  EXPECT_EQ(errorOf("local:\n  voxel_size: 2\n  max_depth: 2\n  voxel_size: 3\n"),
+            "cfg.yaml: 'local.voxel_size' is given twice (lines 2 and 4); give it once");
+  EXPECT_EQ(errorOf("local:\n  voxel_size: 2\nlocal:\n  max_depth: 2\n"),
+            "cfg.yaml: 'local' is given twice (lines 1 and 3); give it once");
+  EXPECT_EQ(errorOf("{window: 10, window: 12}\n"),
+            "cfg.yaml: 'window' is given twice (both on line 1); give it once");
+  // The same value twice is still twice.
+  EXPECT_NE(errorOf("refine: false\nrefine: false\n"), "");
+  EXPECT_EQ(errorOf("window: 10\nlocal:\n  window: 3\n").find("twice"), std::string::npos);
+}
+
+TEST(SettingsFile, BadNumbersSayWhatTheyGotAndWhy) {
+  EXPECT_EQ(errorOf("window: -3\n"), "cfg.yaml: setting window must be >= 2, got -3");
+  EXPECT_EQ(
+      errorOf("window: 99999999999999999999\n"),
+      "cfg.yaml: setting window must be >= 2, got 99999999999999999999 (too large: at most 2147483647)");
+  EXPECT_EQ(errorOf("window: 2.5\n"), "cfg.yaml: 'window' has a value of the wrong type; it takes >= 2");
+  EXPECT_NE(errorOf("window: 10.0\n"), "");  // a whole number is written as one, as Python's window=10.0
+  EXPECT_EQ(errorOf("voxel: 500\n"), "cfg.yaml: setting voxel must be [0.01, 100], got 500 (too large)");
+  EXPECT_NE(errorOf("downsample_scans: .nan\n"), "");
+  EXPECT_EQ(errorOf("local:\n  voxel_size: .inf\n"),
+            "cfg.yaml: setting local.voxel_size must be [0.01, 1000], got inf (not finite)");
+  EXPECT_EQ(errorOf("voxel: -.inf\n"), "cfg.yaml: setting voxel must be [0.01, 100], got -inf (not finite)");
+}
+
+}  // namespace
+}  // namespace hba::pyramid

@@ -1,5 +1,7 @@
 #include "folder_snapshot.hpp"
 
+#include <system_error>
+
 #include "test_support.hpp"
 
 namespace hba::test {
@@ -22,9 +24,15 @@ std::uint64_t contentHash(const std::string& bytes) {
 FolderSnapshot snapshotFolder(const fs::path& root) {
   FolderSnapshot snapshot;
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
-    const std::string relative = fs::relative(entry.path(), root).string();
-    // Folders count too (an added empty folder is a write into the input).
-    snapshot[relative] = entry.is_regular_file() ? contentHash(readText(entry.path())) : 0;
+    // Lexically: fs::relative resolves links, and throws on a loop.
+    const std::string relative = entry.path().lexically_relative(root).string();
+    // Folders count too (an added empty folder is a write into the input);
+    // a link by where it points and what it leads to (it may lead nowhere,
+    // or into a loop: no exception for those).
+    std::error_code ec;
+    const std::string link = entry.is_symlink(ec) ? "->" + fs::read_symlink(entry.path(), ec).string() : "";
+    const bool file = entry.is_regular_file(ec);
+    snapshot[relative] = file || !link.empty() ? contentHash(link + (file ? readText(entry.path()) : "")) : 0;
   }
   return snapshot;
 }

@@ -60,6 +60,10 @@ TEST(DegenerateData, EmptyScanIsReportedOrSkipped) {
   writeRoom(tmp / "data", 12);
   io::writePcd(tmp / "data" / "pcd" / "5.pcd", PointCloud{});
   const test::CommandResult run = test::runOptimize(tmp / "data", tmp / "out");
+  // A warning names the scan once, however often the run reads it.
+  const std::string warning = (tmp / "data" / "pcd" / "5.pcd").string() + ": the scan has no points";
+  EXPECT_NE(run.output.find(warning), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find(warning), run.output.rfind(warning)) << run.output;
   if (run.exit_code != 0) {
     expectContains(errorLines(run.output), "5.pcd");  // the message names the empty scan
     EXPECT_FALSE(fs::exists(tmp / "out" / "pose.json"));
@@ -78,6 +82,14 @@ TEST(DegenerateData, AllScansEmptyIsAnErrorOrPosesUnchanged) {
   const std::vector<Pose> poses = test::straightPath(12);
   test::writeSceneDataset(tmp / "data", test::roomScene(0), poses, poses);
   const test::CommandResult run = test::runOptimize(tmp / "data", tmp / "out");
+  // Twelve empty scans in one folder: three named, then one line for the rest.
+  std::size_t named = 0;
+  for (std::size_t at = run.output.find(": the scan has no points"); at != std::string::npos;
+       at = run.output.find(": the scan has no points", at + 1)) {
+    ++named;
+  }
+  EXPECT_EQ(named, 3u) << run.output;
+  expectContains(run.output, "more files in this folder have the same problem (scans with no points)");
   if (run.exit_code == 0) {
     test::expectFiniteOptimizeOutputs(tmp / "out", 12);
     EXPECT_LT(test::largestTranslation(test::readOptimizedPoses(tmp / "out"), poses), 1e-6);

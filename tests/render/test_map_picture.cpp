@@ -5,6 +5,8 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <regex>
+#include <string>
 
 #include "../eval/synthetic_scans.hpp"
 #include "hba/core/error.hpp"
@@ -93,6 +95,34 @@ TEST(MapPicture, BadSettingsAreRejected) {
   EXPECT_THROW(renderPanels({}, RenderSettings{}), Error);
 }
 
+// The colours span the 2-98 % of heights, the side view's axis nearly all of
+// them: its caption said "z -5.1..42.9 m" beside a bar of -1.0 to 27 m. Now it
+// gives both ranges, and the colour range reads as the bar does.
+TEST(MapPicture, SideCaptionAndColourBarAgree) {
+  MapPanel panel = wallPanel("map");
+  const std::size_t wall = panel.map.size();
+  for (std::size_t i = 0; i < wall / 50; ++i) panel.map.add(Vec3f(5.0f, 0.0f, 40.0f));  // 2 %: a tree top
+  RenderSettings settings;
+  settings.width = 900;
+  settings.height = 600;
+  const Picture picture = renderPanels({panel}, settings);
+  std::smatch colour, extent, low, high;
+  const std::string number = "(-?[0-9]+(?:\\.[0-9])?)";
+  ASSERT_TRUE(
+      std::regex_search(picture.side_caption, extent, std::regex(", z " + number + "\\.\\." + number + " m")))
+      << picture.side_caption;
+  ASSERT_TRUE(std::regex_search(picture.side_caption, colour,
+                                std::regex("colour " + number + "\\.\\." + number + " m \\(2-98 %\\)")))
+      << picture.side_caption;
+  ASSERT_TRUE(std::regex_match(picture.bar_low, low, std::regex("z " + number + " m"))) << picture.bar_low;
+  ASSERT_TRUE(std::regex_match(picture.bar_high, high, std::regex(number + " m \\(2-98 %\\)")))
+      << picture.bar_high;
+  EXPECT_EQ(colour[1], low[1]);
+  EXPECT_EQ(colour[2], high[1]);
+  EXPECT_EQ(extent[2], "40");  // the axis reaches the tree top; the colours stop below it
+  EXPECT_LT(std::stod(high[1]), 40.0);
+}
+
 TEST(Colormap, RunsFromDarkBlueToDarkRed) {
   EXPECT_GT(turbo(0.0).b, turbo(0.0).r);
   EXPECT_GT(turbo(1.0).r, turbo(1.0).b);
@@ -129,6 +159,26 @@ TEST(RenderCli, BeforeAfterPictureOfASyntheticRun) {
                                     " --crop 1,2 -o " + (tmp / "x.png").string());
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(tmp / "x.png"));
+}
+
+// `hba render --compare` adds a zoom row under the requested height where
+// planes got thinner: it logged the requested size, not the written one.
+TEST(RenderCli, TheLogGivesTheSizeWritten) {
+  test::TempDir tmp;
+  const std::string hba = test::cliPath().string();
+  const std::string sim = (tmp / "sim").string();
+  ASSERT_EQ(test::runCommand(hba + " -q simulate --frames 30 --seed 3 -o " + sim).exit_code, 0);
+  // The drifted odometry against the truth: planes get thinner, a zoom row.
+  const auto run = test::runCommand(hba + " render " + sim + " --compare " + sim + "/gt.txt" +
+                                    " --width 1000 --height 700 -o " + (tmp / "cmp.png").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  int w = 0, h = 0, channels = 0;
+  ASSERT_TRUE(stbi_info((tmp / "cmp.png").c_str(), &w, &h, &channels));
+  EXPECT_EQ(w, 1000);
+  EXPECT_GT(h, 700) << "no zoom row: the test proves nothing";
+  EXPECT_NE(run.output.find("cmp.png (" + std::to_string(w) + "x" + std::to_string(h) + ")"),
+            std::string::npos)
+      << run.output;
 }
 
 // Pictures of scans held in memory are the PNGs `hba render` draws from the

@@ -121,8 +121,13 @@ TEST(SimOutput, RefusesANonEmptyFolderUnlessForced) {
   EXPECT_EQ(hba::test::readText(dir / "data" / "precious.txt"), "keep me");
   EXPECT_FALSE(fs::exists(dir / "data" / "pose.json"));
 
+  // --force replaces only what hba wrote: a folder of the user's stays.
   WriteOptions forced;
   forced.force = true;
+  EXPECT_THROW(writeSimulation(simulation, dir / "data", forced), Error);
+  EXPECT_EQ(hba::test::readText(dir / "data" / "precious.txt"), "keep me");
+  // An earlier output (its marker) is replaced whole.
+  hba::test::writeText(dir / "data" / ".hba-output", "");
   writeSimulation(simulation, dir / "data", forced);
   EXPECT_FALSE(fs::exists(dir / "data" / "precious.txt"));
   EXPECT_TRUE(fs::exists(dir / "data" / "pose.json"));

@@ -58,6 +58,8 @@ std::string readText(const fs::path& path) {
 std::map<std::string, std::string> fileContents(const fs::path& root) {
   std::map<std::string, std::string> files;
   for (const fs::directory_entry& entry : fs::recursive_directory_iterator(root)) {
+    // hba's output marker (.hba-output) says who wrote the folder, not what it holds.
+    if (entry.path().filename() == ".hba-output") continue;
     if (entry.is_regular_file()) files[fs::relative(entry.path(), root).string()] = readText(entry.path());
   }
   return files;

@@ -37,7 +37,8 @@ CommandResult runCommand(const std::string& command);
 // Writes `content` to `path` verbatim (for hand-made corrupt inputs).
 void writeText(const std::filesystem::path& path, const std::string& content);
 std::string readText(const std::filesystem::path& path);
-// Relative path -> bytes of every regular file under `root`.
+// Relative path -> bytes of every regular file under `root` but hba's
+// output marker.
 std::map<std::string, std::string> fileContents(const std::filesystem::path& root);
 
 }  // namespace hba::test

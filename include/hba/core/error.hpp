@@ -13,6 +13,14 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A value the caller chose (a flag, a setting in a --config file) outside
+// what it may be, or a settings file that cannot be read as settings: the
+// caller's mistake, not the data's. The command-line tool exits 2 for it.
+class ValueError : public Error {
+ public:
+  using Error::Error;
+};
+
 // "<path>: <problem>", the one format every reader and writer uses.
 [[noreturn]] void failAt(const std::filesystem::path& path, const std::string& problem);
 

@@ -29,9 +29,19 @@ Association associateByIndex(std::size_t reference_count, std::size_t estimate_c
 
 // Each estimated stamp with the nearest reference stamp if |dt| <= max_diff;
 // a reference pose is used at most once (the closer estimate wins). Stamps
-// need not be sorted. Throws hba::Error if nothing matches.
+// need not be sorted. Empty when nothing matches.
+Association pairByTime(const std::vector<double>& reference_stamps,
+                       const std::vector<double>& estimate_stamps, double max_diff);
+// pairByTime, but throws hba::Error when nothing matches, with both sides'
+// counts and time ranges.
 Association associateByTime(const std::vector<double>& reference_stamps,
                             const std::vector<double>& estimate_stamps, double max_diff);
+
+// "N stamps from A to B s" (the smallest and largest), for messages.
+std::string describeStamps(const std::vector<double>& stamps);
+
+// Whether `mode` pairs these two trajectories by time (Auto: both have stamps).
+bool pairsByTime(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode);
 
 // Dispatches on `mode` (Auto as documented above). Throws hba::Error.
 Association associate(const Trajectory& reference, const Trajectory& estimate, AssociationMode mode,

@@ -160,9 +160,12 @@ struct HbaReport {
   double seconds_keyframes = 0.0;   // building keyframe clouds
   double seconds_graph = 0.0;       // pose graph solves
   double seconds_total = 0.0;
-  // The last outer iteration moved no pose beyond tolerance (else the
-  // iteration limit stopped them; the default is one pass).
-  bool poses_settled = false;
+  // Why the outer iterations stopped: "iteration limit" (--iterations; the
+  // default is one pass), "poses settled" (the last moved no pose beyond the
+  // settle tolerances) or "moves stopped shrinking"; and as a sentence with
+  // the figures ("settled after 3 rounds: largest move ...").
+  std::string rounds_stopped = "iteration limit";
+  std::string rounds_reason;
   // Final poses against the input (the iterations' figures are the
   // hierarchy's alone).
   double largest_translation_update = 0.0;  // m

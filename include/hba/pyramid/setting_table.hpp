@@ -5,11 +5,11 @@
 // in docs/settings.md are all made from that list, so a new setting is one
 // entry there plus the code that uses it.
 #include <functional>
-#include <limits>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "hba/core/number_range.hpp"
 #include "hba/pyramid/settings.hpp"
 
 namespace hba::pyramid {
@@ -26,13 +26,7 @@ enum class SettingType {
 
 // Numbers a setting takes: between min and max (either end open), and 0
 // too when `zero` names what 0 means ("off", "automatic").
-struct SettingRange {
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_open = false;
-  bool max_open = false;
-  std::string zero;
-};
+using SettingRange = NumberRange;
 
 struct Setting {
   // YAML key, also the name in report.json. "local.voxel_size" is the key
@@ -56,7 +50,8 @@ struct Setting {
   // (stride < window).
   std::string below;
   // A shorthand sets these settings (keys) at once and has no value of its
-  // own: it is read and applied before them, so the specific key wins.
+  // own: it is read and applied before them, so the specific key wins. Its
+  // type and default are the first one's, its range what all of them take.
   std::vector<std::string> sets;
 
   bool shorthand() const { return !sets.empty(); }
@@ -67,10 +62,6 @@ const std::vector<Setting>& settingTable();
 
 // The setting with this key (not an alias); throws hba::Error if none.
 const Setting& settingByKey(const std::string& key);
-
-// The setting whose type, range and default a shorthand shares (the first
-// it sets); the setting itself otherwise.
-const Setting& valueSetting(const Setting& setting);
 
 // The YAML maps that group settings ("local", "global"), with a line each.
 struct SettingSection {
@@ -84,9 +75,19 @@ const std::vector<SettingSection>& settingSections();
 std::string rangeText(const Setting& setting);
 // The value as YAML's plain form: 0.1, 20000000, true, pose_graph.
 std::string valueText(const SettingValue& value);
-// Throws hba::Error "setting KEY must be ..." when `value` is out of range or
-// of the wrong kind.
+// "" if `value` is one `setting` takes, else "must be RANGE".
+std::string settingProblem(const Setting& setting, const SettingValue& value);
+// Throws hba::ValueError "setting KEY must be ..." when `value` is out of
+// range or of the wrong kind.
 void checkSettingValue(const Setting& setting, const SettingValue& value);
+// A number setting's value written as text (a flag's value, a YAML scalar),
+// checked against its range; or "must be RANGE, got TEXT (why)" in
+// `problem` ("too large", "not a whole number", "not finite", ...).
+struct ParsedSetting {
+  SettingValue value;
+  std::string problem;  // "" when `value` holds the value
+};
+ParsedSetting parseSettingNumber(const Setting& setting, const std::string& text);
 // Sets `setting` (every setting a shorthand stands for) to `value`.
 void applySetting(const Setting& setting, const SettingValue& value, HbaSettings& settings);
 

@@ -98,9 +98,12 @@ struct HbaSettings {
   // -j sets it.
   int threads = 0;
 
-  int outer_iterations{};           // bottom-up + top-down rounds at most
-  double outer_tolerance_m = 1e-3;  // stop when no pose moved more than this
-  double outer_tolerance_deg = 1e-3;
+  // Bottom-up + top-down rounds at most; they stop before when a round
+  // moves no pose beyond the settle tolerances, or no less than the round
+  // before (docs/pyramid.md).
+  int outer_iterations{};
+  double settle_translation_m{};
+  double settle_rotation_deg{};
 
   // The settings each BA runs with: `information.point_sigma` scales every
   // motion prior into plane-cost units, and the refinement's slide check

@@ -37,8 +37,14 @@ std::vector<std::uint8_t> encodePng(const Image& image);
 // in place (no stacked copy). They must be equally wide. Throws hba::Error.
 std::vector<std::uint8_t> encodePng(const std::vector<const Image*>& stack);
 
-// Encodes as PNG and writes atomically. Throws hba::Error naming the file.
-void writePng(const std::filesystem::path& path, const Image& image);
-void writePng(const std::filesystem::path& path, const std::vector<const Image*>& stack);
+// A written picture's size in pixels.
+struct PictureSize {
+  int width = 0, height = 0;
+};
+
+// Encodes as PNG and writes atomically; returns the size written (a stack
+// is as tall as its images together). Throws hba::Error naming the file.
+PictureSize writePng(const std::filesystem::path& path, const Image& image);
+PictureSize writePng(const std::filesystem::path& path, const std::vector<const Image*>& stack);
 
 }  // namespace hba::render

@@ -77,6 +77,9 @@ struct TopViewTransform {
 struct Picture {
   Image image;
   std::vector<TopViewTransform> top_views;  // one per panel
+  // The text drawn: the colour bar's two ends ("z -1.0 m", "27 m (2-98 %)")
+  // and the side views' caption (empty without side views).
+  std::string bar_low, bar_high, side_caption;
 };
 
 // Draws the panels side by side with one shared view. Throws hba::Error.
@@ -87,14 +90,17 @@ Picture renderPanels(const std::vector<MapPanel>& panels, const RenderSettings& 
 // ("initial poses" left, "optimized poses" right) with the trajectories
 // drawn on them; `ground_truth` (may be null) is drawn on both after a rigid
 // alignment onto `after`, since ground truth may live in another frame.
-// The PNG is written atomically. Throws hba::Error.
-void writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
-                      const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
-                      const std::filesystem::path& out_png, const RenderSettings& settings = {});
+// Without a crop, a row below zooms on where planes got thinnest (7/10 of
+// settings.height tall), when some did. The PNG is written atomically;
+// returns its size. Throws hba::Error.
+PictureSize writeBeforeAfter(const io::ScanSource& scans, const std::vector<Pose>& before,
+                             const std::vector<Pose>& after, const std::vector<Pose>* ground_truth,
+                             const std::filesystem::path& out_png, const RenderSettings& settings = {});
 
 // One panel: the map of `poses` with that trajectory (and ground truth).
-void writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                     const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
-                     const RenderSettings& settings = {});
+// Returns the size written.
+PictureSize writeMapPicture(const io::ScanSource& scans, const std::vector<Pose>& poses,
+                            const std::vector<Pose>* ground_truth, const std::filesystem::path& out_png,
+                            const RenderSettings& settings = {});
 
 }  // namespace hba::render

@@ -1,0 +1,49 @@
+#pragma once
+// A cloud with double coordinates, as a file stores them: for programs that
+// hand hba world coordinates and want every bit back (the Python module).
+// hba's own PointCloud keeps floats relative to an origin, which holds a map
+// to a float step of its extent (tens of micrometres over a kilometre), not
+// to the last bit of a float64 or the 1e-7 scale of a LAS file in degrees.
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+#include "hba/core/types.hpp"
+#include "hba/io/scan_file.hpp"
+
+namespace hba::io {
+
+struct WideCloud {
+  std::vector<Vec3> points;
+  std::vector<float> intensity;  // empty, or one value per point
+
+  Vec3 world(std::size_t i) const { return points[i]; }
+  std::size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+  bool hasIntensity() const { return !intensity.empty(); }
+  void reserve(std::size_t n, bool with_intensity) {
+    points.reserve(n);
+    if (with_intensity) intensity.reserve(n);
+  }
+  // Appends a point. Use one overload for a whole cloud: with intensity or without.
+  void add(const Vec3& p) { points.push_back(p); }
+  void add(const Vec3& p, float value) {
+    points.push_back(p);
+    intensity.push_back(value);
+  }
+};
+
+// The formats and checks of readScan, each coordinate as the file stores it:
+// float64 fields and LAS's scaled integers exactly, float32 ones widened.
+// NaN/Inf points are dropped. Throws hba::Error.
+WideCloud readScanWide(const std::filesystem::path& path);
+// The same for a file of the given format, whatever its name.
+WideCloud readScanWide(const std::filesystem::path& path, ScanFormat format);
+
+// The formats of writeScan, keeping every coordinate: .pcd and .ply get
+// float64 x y z when one is not exactly a float32 (float32 otherwise, as
+// writeScan), .las stores millimetres (the format's integers), .bin (float32
+// only) refuses coordinates a float32 would round. Throws hba::Error.
+void writeScanWide(const std::filesystem::path& path, const WideCloud& cloud);
+
+}  // namespace hba::io
