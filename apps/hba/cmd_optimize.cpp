@@ -89,8 +89,8 @@ void run(const Args& args) {
   report["memory_estimate"] = memory;
   writeReport(out, report);
 
-  const bool drawn =
-      !args.no_render && writePicture(scans, result, settings.scan_voxel, dataset.trajectory().poses, gt, out);
+  const bool drawn = !args.no_render &&
+                     writePicture(scans, result, settings.scan_voxel, dataset.trajectory().poses, gt, out);
   staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging->destination().string());

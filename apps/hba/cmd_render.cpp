@@ -51,10 +51,11 @@ void run(RenderArgs& args) {
   args.settings.budget = MemoryBudget::ofAvailableMemory();
   render::PictureSize size;  // the size written, not the one asked: --compare may add a zoom row
   try {
-    size = args.compare.empty()
-               ? render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings)
-               : render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare),
-                                          gt_ptr, args.output, args.settings);
+    size =
+        args.compare.empty()
+            ? render::writeMapPicture(scans, dataset.trajectory().poses, gt_ptr, args.output, args.settings)
+            : render::writeBeforeAfter(scans, dataset.trajectory().poses, readPosesFor(dataset, args.compare),
+                                       gt_ptr, args.output, args.settings);
   } catch (const MemoryExceeded& e) {
     failAt(args.output, std::string("not written: ") + e.what() + "; a larger --voxel keeps fewer points");
   }

@@ -83,9 +83,8 @@ nlohmann::json settingValue(const py::handle& value, const std::string& name) {
     // settings that take one.
     const pyramid::Setting* setting = settingNamed(name);
     if (setting && setting->type != pyramid::SettingType::Choice) {
-      refuse(name,
-             "is the string " + reprOf(value) + ", not a " +
-                 (setting->type == pyramid::SettingType::Switch ? "bool" : "number"));
+      refuse(name, "is the string " + reprOf(value) + ", not a " +
+                       (setting->type == pyramid::SettingType::Switch ? "bool" : "number"));
     }
     return value.cast<std::string>();
   }
