@@ -216,16 +216,21 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
     input_sum.add(input_rms, fixed.points());
     hierarchy_sum.add(current_rms, fixed.points());
     std::vector<Pose> poses = current;
+    const bool refines_block = settings.refine && report.layers > 1;
     // A margin of 0.5 %: equal maps differ by rounding and plane edges.
     if (!(current_rms <= input_rms * 1.005)) {  // NaN counts as worse
       c.hierarchy_rejected = true;
       poses = input;
+      // Said as it is: without the refinement the hierarchy's work is
+      // simply lost here (--no-refine returns the input, loops closed).
       warn(report, fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
-                               "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): "
-                               "refining from the input",
-                               block.first, block.end - 1, input_rms, current_rms));
+                               "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
+                               block.first, block.end - 1, input_rms, current_rms,
+                               refines_block ? "refining from the input"
+                                       : "keeping the input poses (with the closure stage's loops), "
+                                         "unrefined"));
     }
-    if (settings.refine && report.layers > 1) {  // one layer is one global BA already
+    if (refines_block) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                             steps.begin() + static_cast<long>(block.end - 1));
       const ba::PositionPriors positions =

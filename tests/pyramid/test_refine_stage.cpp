@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "consistency.hpp"
 #include "hba/core/error.hpp"
@@ -101,10 +102,19 @@ TEST(RefineStage, RefusesAHierarchyThatBlurredTheMap) {
   const std::vector<Pose> result = run(broken, settings, report);
   EXPECT_TRUE(report.consistency.hierarchy_rejected);
   EXPECT_GT(report.consistency.hierarchy_rms, report.consistency.input_rms);
-  EXPECT_FALSE(report.warnings.empty());
+  ASSERT_FALSE(report.warnings.empty());
+  // Without the refinement nothing is refined: the warning says what is returned.
+  EXPECT_NE(report.warnings.front().find("keeping the input poses"), std::string::npos) << report.warnings.front();
+  EXPECT_EQ(report.warnings.front().find("refining"), std::string::npos) << report.warnings.front();
   for (std::size_t i = 0; i < result.size(); ++i) {
     EXPECT_LT((result[i].t - simulated().initial[i].t).norm(), 1e-9) << "frame " << i;
   }
+  // With it, the refinement starts from the input, and says so.
+  HbaReport refined;
+  run(broken, HbaSettings(), refined);
+  ASSERT_FALSE(refined.warnings.empty());
+  EXPECT_NE(refined.warnings.front().find("refining from the input"), std::string::npos)
+      << refined.warnings.front();
 }
 
 // From a drifting start the planes found first are not all the planes:
