@@ -10,6 +10,7 @@
 #include "hba/core/error.hpp"
 #include "hba/pyramid/memory_estimate.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "hba/pyramid/window_size.hpp"
 
 namespace hba::cli::optimize {
 namespace {
@@ -85,8 +86,11 @@ nlohmann::json toJson(const MemoryEstimate& estimate, const pyramid::ScanDensity
 
 }  // namespace
 
-nlohmann::json checkMemory(const io::ScanSource& scans, const pyramid::HbaSettings& settings, bool ignore) {
-  const pyramid::ScanDensity density = pyramid::sampleScanDensity(scans, settings);
+nlohmann::json checkMemory(const io::ScanSource& scans, const pyramid::HbaSettings& given, bool ignore) {
+  const pyramid::ScanDensity density = pyramid::sampleScanDensity(scans, given);
+  // The windows the run will use (an automatic window from the same density).
+  const pyramid::HbaSettings settings =
+      pyramid::withWindowSize(given, pyramid::chooseWindowSize(given, density.points));
   const MemoryEstimate estimate = pyramid::estimateMemory(scans.size(), density, settings);
   const std::optional<AvailableMemory> available = availableMemory();
   const pyramid::StageMemory& peak = estimate.largest();

@@ -20,7 +20,7 @@ import machine
 import report_md
 from measure import MME_MAX_FRAMES, SCAN_VOXEL_M
 from process import CommandFailed
-from scenarios import HKU1, NCLT, DataStore, scenario_set
+from scenarios import HKU1, NCLT, SPARSE_TWIN, DataStore, scenario_set
 from tools import Tools
 
 REPO = Path(__file__).resolve().parents[2]
@@ -58,7 +58,7 @@ def log(message):
 
 
 def chosen(names):
-    known = {s.name: s for s in scenario_set(False) + scenario_set(True) + [HKU1, NCLT]}
+    known = {s.name: s for s in scenario_set(False) + scenario_set(True) + [HKU1, NCLT, SPARSE_TWIN]}
     wanted = [n.strip() for n in names.split(",") if n.strip()]
     unknown = [n for n in wanted if n not in known]
     if unknown:

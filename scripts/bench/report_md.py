@@ -40,7 +40,8 @@ def _scenarios(context):
     rows = []
     for name, record in context["records"].items():
         poses = {"drift": "drift (simulated odometry)", "loop": "loop-closed (simulated)",
-                 "real": "FAST-LIO2 odometry"}[record["variant"]]
+                 "real": "FAST-LIO2 odometry",
+                 "sparse": "good odometry, sparse scans (simulated, nclt's twin)"}[record["variant"]]
         rows.append((f"`{name}`", record["sensor"], record["frames"],
                      f"{record['duration_s']:.0f} s", poses,
                      "yes" if "accuracy_before" in record else "no (MME only)"))

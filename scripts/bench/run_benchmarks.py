@@ -103,7 +103,7 @@ def measure_all(args, scenarios, records, log):
     chosen = chosen_scenarios(scenarios, args.only)
     for index, scenario in enumerate(chosen, start=1):
         log.scenario = f"{index}/{len(chosen)} {scenario.name}: "
-        if scenario.variant == "real" and not args.hku1.is_dir():
+        if scenario.variant in ("real", "sparse") and not args.hku1.is_dir():
             log(f"skipped: {args.hku1} not found")
             continue
         try:

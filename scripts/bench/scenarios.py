@@ -35,12 +35,19 @@ def simulated(sensor, frames, variant):
 
 HKU1 = Scenario("hku1", "real", HKU1_FRAMES, "real")
 NCLT = Scenario("nclt", "real", 1141, "real")
+# nclt's twin with ground truth (issue #36): sparse VLP-16 scans along 1.1 km
+# of KITTI 00's path, a good odometry; ten-scan windows do worse than it.
+SPARSE_TWIN = Scenario("sim-vlp16-1500-sparse", "vlp16", 1500, "sparse")
+SPARSE_TWIN_FLAGS = ["--downsample", "0.5", "--drift-translation", "0.002", "--drift-rotation", "0.002",
+                     "--jitter-rotation", "0.02", "--jitter-translation", "0.005", "--noise", "0.03",
+                     "--scene", "open"]
 
 
 def scenario_set(quick):
     hdl32_frames, livox_frames = (QUICK_HDL32_FRAMES, 100) if quick else (FULL_HDL32_FRAMES, 1000)
     hdl32 = [simulated("hdl32", n, variant) for n in hdl32_frames for variant in ("drift", "loop")]
-    return hdl32 + [simulated("livox", livox_frames, "drift"), HKU1]
+    sparse = [] if quick else [SPARSE_TWIN]
+    return hdl32 + [simulated("livox", livox_frames, "drift"), HKU1] + sparse
 
 
 @dataclass
@@ -69,6 +76,12 @@ class DataStore:
         if scenario.variant == "real":
             folder = self.real_dirs[scenario.name]
             return Inputs(folder, folder / "odom_poses.txt", False)
+        if scenario.variant == "sparse":
+            # KITTI 00's path from the shared data beside hku1's folder.
+            path = Path(self.real_dirs["hku1"]).parent / "trajectories" / "kitti00_gt.txt"
+            twin = self._simulated(scenario.name,
+                                   self._flags(scenario, ["--trajectory", str(path), *SPARSE_TWIN_FLAGS]))
+            return Inputs(twin.folder, twin.folder / "pose.json", False, twin.folder / "gt.txt", [twin.command])
         scans = self._simulated(f"sim-{scenario.sensor}-{scenario.frames}",
                                 self._flags(scenario, []))
         if scenario.variant == "drift":

@@ -18,6 +18,7 @@
 #include "hba/core/stopwatch.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/settings_file.hpp"
+#include "hba/pyramid/window_size.hpp"
 #include "outer_rounds.hpp"
 #include "refine_stage.hpp"
 #include "shared_outcomes.hpp"
@@ -293,8 +294,13 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   validate(scans, initial, settings, closures);
   // Every parallel part runs on this many threads: TBB's within the arena,
   // Ceres's through the pose graph's settings.
-  HbaSettings resolved = settings;
+  const WindowSize window_size = chooseWindowSize(settings, scans);
+  HbaSettings resolved = withWindowSize(settings, window_size);
   resolved.threads = resolvedThreadCount(settings);
+  if (window_size.automatic) {
+    spdlog::info("windows of {} scans every {} (automatic: {:.0f} points a scan, {:.0f} a window at least)",
+                 window_size.window, window_size.stride, window_size.points_per_scan, kWindowPoints);
+  }
   tbb::task_arena arena(resolved.threads);
   // Each scan read and downsampled once: the self-check and the refinement
   // read them all again (and its groups once more).
@@ -325,6 +331,10 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
                            closures.session_starts, group);
   });
   result.report.threads = resolved.threads;
+  result.report.window = window_size.window;
+  result.report.stride = window_size.stride;
+  result.report.window_automatic = window_size.automatic;
+  result.report.points_per_scan = window_size.points_per_scan;
   result.report.processes = group.size();
   result.poses = translated(result.poses, origin + shift);
   if (layer_one->kept())

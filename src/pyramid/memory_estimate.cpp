@@ -8,6 +8,7 @@
 #include "group_refinement.hpp"
 #include "hba/core/error.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "hba/pyramid/window_size.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "window_batches.hpp"
 
@@ -111,7 +112,9 @@ const StageMemory& MemoryEstimate::largest() const {
                            [](const StageMemory& a, const StageMemory& b) { return a.bytes < b.bytes; });
 }
 
-MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, const HbaSettings& settings) {
+MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, const HbaSettings& given) {
+  // The windows the run will use: an automatic one from the same density.
+  const HbaSettings settings = withWindowSize(given, chooseWindowSize(given, density.points));
   MemoryEstimate estimate;
   estimate.layers = layerCount(frames, settings);
   estimate.top_frames = topFrames(frames, estimate.layers, settings);

@@ -227,8 +227,8 @@ std::vector<Pose> refineAndCheck(const io::ScanSource& scans, const std::vector<
                                "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
                                block.first, block.end - 1, input_rms, current_rms,
                                refines_block ? "refining from the input"
-                                       : "keeping the input poses (with the closure stage's loops), "
-                                         "unrefined"));
+                                             : "keeping the input poses (with the closure stage's loops), "
+                                               "unrefined"));
     }
     if (refines_block) {  // one layer is one global BA already
       const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),

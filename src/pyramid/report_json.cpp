@@ -114,6 +114,11 @@ nlohmann::json reportToJson(const HbaReport& r) {
             {"final_rejected", c.final_rejected},
             {"regions", regions}}},
           {"layers", r.layers},
+          {"windows",
+           {{"window", r.window},
+            {"stride", r.stride},
+            {"automatic", r.window_automatic},
+            {"points_per_scan", r.points_per_scan}}},
           {"threads", r.threads},
           {"processes", r.processes},
           // "converged: false" read as a failure after the default single pass.

@@ -190,13 +190,15 @@ std::vector<Setting> makeTable() {
   t.push_back(shorthand("ba_iterations", "--ba-iterations", {"local.max_iterations", "global.max_iterations"},
                         "LM iterations per association of every BA"));
 
+  // Automatic windows (0) hold enough points to place their frames better
+  // than the odometry (window_size.hpp): ten dense scans, more sparse ones.
   Setting window = integer(
-      "window", "--window", 10, atLeast(2), [](HbaSettings& h) -> int& { return h.window; },
-      "frames per local window, w");
+      "window", "--window", 10, zeroOr("automatic", 2, kInf), [](HbaSettings& h) -> int& { return h.window; },
+      "frames per local window, w; automatic: the scans of 150 000 points, at least 10");
   t.push_back(window);
   Setting stride = integer(
-      "stride", "--stride", 5, atLeast(1), [](HbaSettings& h) -> int& { return h.stride; },
-      "frames between window starts, s < w");
+      "stride", "--stride", 5, zeroOr("half the window", 1, kInf),
+      [](HbaSettings& h) -> int& { return h.stride; }, "frames between window starts, s < w");
   stride.below = "window";
   t.push_back(stride);
   t.push_back(integer(

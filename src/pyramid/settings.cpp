@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hba/core/error.hpp"
 #include "hba/pyramid/setting_table.hpp"
 #include "hba/pyramid/window_plan.hpp"
 
@@ -54,6 +55,8 @@ int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
 }
 
 int layerCount(std::size_t frames, const HbaSettings& settings) {
+  if (settings.window <= 0 || settings.stride <= 0)
+    throw Error("layerCount: the window is automatic; choose it first (window_size.hpp)");
   return settings.layers > 0
              ? std::min(settings.layers, maxLayerCount(frames, settings.window, settings.stride))
              : defaultLayerCount(frames, settings);

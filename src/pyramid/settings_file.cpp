@@ -220,6 +220,8 @@ void checkSettings(const HbaSettings& settings) {
     checkSettingValue(s, value);
     if (s.below.empty()) continue;
     const SettingValue limit = settingByKey(s.below).get(settings);
+    // 0 is automatic: chosen below its limit (window_size.hpp).
+    if (std::get<long long>(value) == 0 || std::get<long long>(limit) == 0) continue;
     if (!(std::get<long long>(value) < std::get<long long>(limit))) {
       const Setting& other = settingByKey(s.below);
       throw ValueError("setting " + s.key + " must be below " + s.below + " (" + s.flag + " " +

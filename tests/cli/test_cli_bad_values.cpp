@@ -73,13 +73,13 @@ const std::vector<BadValue> kRows = {
     {"eval --gt DATA/gt.txt --est DATA/gt.txt", "--delta 2.5", "whole number"},
     {"info DATA", "--sample -1", "0 (all) or [1, 1000000000]"},
     {"info DATA", "--sample 1.5", "not a whole number"},
-    {"optimize DATA -o OUT/o", "--window -3", "must be >= 2, got -3"},
+    {"optimize DATA -o OUT/o", "--window -3", "must be 0 (automatic) or >= 2, got -3"},
     {"optimize DATA -o OUT/o", "--window 99999999999999999999", "(too large: at most 2147483647)"},
     {"optimize DATA -o OUT/o", "--window 2.5", "not a whole number"},
     {"optimize DATA -o OUT/o", "--voxel -1", "must be [0.01, 100], got -1"},
     {"optimize DATA -o OUT/o", "--voxel 500", "(too large)"},
     {"optimize DATA -o OUT/o", "--voxel inf", "(not finite)"},
-    {"optimize DATA -o OUT/o", "--stride 0", ">= 1"},
+    {"optimize DATA -o OUT/o", "--stride -1", "0 (half the window) or >= 1"},
     {"optimize DATA -o OUT/o", "--stride 10", "stride must be below window"},
     {"optimize DATA -o OUT/o", "--iterations 100000", "must be [1, 100], got 100000 (too large)"},
     {"optimize DATA -o OUT/o", "--iterations 0", "[1, 100]"},
@@ -146,7 +146,7 @@ TEST_F(CliBadValues, EveryNumericFlagRefusesBadValuesAsUsage) {
 // A --config file's bad values are usage errors too, naming the file and key.
 TEST_F(CliBadValues, ConfigFileValuesAreUsageErrors) {
   const std::vector<std::pair<std::string, std::string>> files = {
-      {"window: -3\n", "setting window must be >= 2, got -3"},
+      {"window: -3\n", "setting window must be 0 (automatic) or >= 2, got -3"},
       {"voxel: .inf\n", "setting voxel must be [0.01, 100]"},
       {"iterations: 100000\n", "setting iterations must be [1, 100], got 100000 (too large)"},
       {"window: 99999999999999999999\n", "(too large: at most 2147483647)"},

@@ -114,7 +114,9 @@ TEST_F(CliConventions, PrintedConfigRoundTrips) {
   ASSERT_EQ(printed.exit_code, 0) << printed.err;
   expectContains(printed.out, "window: 12");
   expectContains(printed.out, "refine: false");
-  expectContains(printed.out, "# frames per local window, w (--window)");
+  expectContains(printed.out,
+                 "# frames per local window, w; automatic: the scans of 150 000 points, at least 10; 0 = "
+                 "automatic (--window)");
   test::writeText(dir / "settings.yaml", printed.out);
   const SplitResult again =
       runSplit("optimize --print-config --config " + quoted(dir / "settings.yaml"), dir);

@@ -15,6 +15,7 @@
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/window_size.hpp"
 #include "hba/sim/simulation.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "simulated_sequence.hpp"
@@ -63,6 +64,26 @@ TEST(HierarchicalBa, ReducesTheDriftOfASimulatedDrive) {
   EXPECT_GE(result.report.layers, 2);
   EXPECT_FALSE(result.report.iterations.empty());
   EXPECT_TRUE(result.report.warnings.empty());
+}
+
+// --window 0: chosen from the scans' points (small Livox scans: more than
+// ten), reported, and the drift still goes; the default windows are
+// reported as given.
+TEST(HierarchicalBa, AutomaticWindowsAreChosenFromThePointsAndReported) {
+  HbaSettings settings;
+  settings.window = 0;
+  settings.stride = 0;
+  const HbaResult result = optimize(settings);
+  EXPECT_TRUE(result.report.window_automatic);
+  EXPECT_GT(result.report.points_per_scan, 0.0);
+  EXPECT_GT(result.report.window, 10);
+  EXPECT_GE(result.report.window * result.report.points_per_scan, kWindowPoints);
+  EXPECT_EQ(result.report.stride, result.report.window / 2);
+  EXPECT_LT(ate(simulated().truth, result.poses), ate(simulated().truth, simulated().initial) / 5.0);
+  const HbaResult given = optimize(HbaSettings());
+  EXPECT_FALSE(given.report.window_automatic);
+  EXPECT_EQ(given.report.window, 10);
+  EXPECT_EQ(given.report.stride, 5);
 }
 
 TEST(HierarchicalBa, DirectAssignAlsoImproves) {

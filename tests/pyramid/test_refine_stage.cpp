@@ -104,7 +104,8 @@ TEST(RefineStage, RefusesAHierarchyThatBlurredTheMap) {
   EXPECT_GT(report.consistency.hierarchy_rms, report.consistency.input_rms);
   ASSERT_FALSE(report.warnings.empty());
   // Without the refinement nothing is refined: the warning says what is returned.
-  EXPECT_NE(report.warnings.front().find("keeping the input poses"), std::string::npos) << report.warnings.front();
+  EXPECT_NE(report.warnings.front().find("keeping the input poses"), std::string::npos)
+      << report.warnings.front();
   EXPECT_EQ(report.warnings.front().find("refining"), std::string::npos) << report.warnings.front();
   for (std::size_t i = 0; i < result.size(); ++i) {
     EXPECT_LT((result[i].t - simulated().initial[i].t).norm(), 1e-9) << "frame " << i;

@@ -160,11 +160,12 @@ TEST(SettingsFile, AKeyGivenTwiceIsAnErrorNamingBothLines) {
 }
 
 TEST(SettingsFile, BadNumbersSayWhatTheyGotAndWhy) {
-  EXPECT_EQ(errorOf("window: -3\n"), "cfg.yaml: setting window must be >= 2, got -3");
-  EXPECT_EQ(
-      errorOf("window: 99999999999999999999\n"),
-      "cfg.yaml: setting window must be >= 2, got 99999999999999999999 (too large: at most 2147483647)");
-  EXPECT_EQ(errorOf("window: 2.5\n"), "cfg.yaml: 'window' has a value of the wrong type; it takes >= 2");
+  EXPECT_EQ(errorOf("window: -3\n"), "cfg.yaml: setting window must be 0 (automatic) or >= 2, got -3");
+  EXPECT_EQ(errorOf("window: 99999999999999999999\n"),
+            "cfg.yaml: setting window must be 0 (automatic) or >= 2, got 99999999999999999999 (too large: at "
+            "most 2147483647)");
+  EXPECT_EQ(errorOf("window: 2.5\n"),
+            "cfg.yaml: 'window' has a value of the wrong type; it takes 0 (automatic) or >= 2");
   EXPECT_NE(errorOf("window: 10.0\n"), "");  // a whole number is written as one, as Python's window=10.0
   EXPECT_EQ(errorOf("voxel: 500\n"), "cfg.yaml: setting voxel must be [0.01, 100], got 500 (too large)");
   EXPECT_NE(errorOf("downsample_scans: .nan\n"), "");
