@@ -15,7 +15,8 @@ WindowSize chooseWindowSize(const HbaSettings& settings, double points_per_scan)
   if (size.window == 0) {
     size.automatic = true;
     size.points_per_scan = points_per_scan;
-    const double frames = points_per_scan > 0.0 ? std::ceil(kWindowPoints / points_per_scan) : kMaxAutomaticWindow;
+    const double frames =
+        points_per_scan > 0.0 ? std::ceil(kWindowPoints / points_per_scan) : kMaxAutomaticWindow;
     size.window = static_cast<int>(std::clamp<double>(frames, kMinAutomaticWindow, kMaxAutomaticWindow));
     // A stride given stays below the window chosen.
     if (settings.stride > 0) size.window = std::max(size.window, settings.stride + 1);

@@ -65,7 +65,8 @@ TEST(WindowSize, AStrideNotBelowTheWindowGivenIsRefused) {
 TEST(WindowSize, ReadFromTheScansOnlyWhenAutomatic) {
   std::vector<PointCloud> scans(40);
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    for (int k = 0; k < 5000; ++k) scans[i].add(Vec3f(0.5f * static_cast<float>(k % 100), 0.5f * static_cast<float>(k / 100), 0.0f));
+    for (int k = 0; k < 5000; ++k)
+      scans[i].add(Vec3f(0.5f * static_cast<float>(k % 100), 0.5f * static_cast<float>(k / 100), 0.0f));
   }
   const io::MemoryScanSource source(scans);
   const WindowSize size = chooseWindowSize(automatic(), source);
