@@ -331,10 +331,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
                            closures.session_starts, group);
   });
   result.report.threads = resolved.threads;
-  result.report.window = window_size.window;
-  result.report.stride = window_size.stride;
-  result.report.window_automatic = window_size.automatic;
-  result.report.points_per_scan = window_size.points_per_scan;
+  result.report.windows = window_size;
   result.report.processes = group.size();
   result.poses = translated(result.poses, origin + shift);
   if (layer_one->kept())

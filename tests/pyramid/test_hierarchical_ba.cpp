@@ -74,16 +74,16 @@ TEST(HierarchicalBa, AutomaticWindowsAreChosenFromThePointsAndReported) {
   settings.window = 0;
   settings.stride = 0;
   const HbaResult result = optimize(settings);
-  EXPECT_TRUE(result.report.window_automatic);
-  EXPECT_GT(result.report.points_per_scan, 0.0);
-  EXPECT_GT(result.report.window, 10);
-  EXPECT_GE(result.report.window * result.report.points_per_scan, kWindowPoints);
-  EXPECT_EQ(result.report.stride, result.report.window / 2);
+  EXPECT_TRUE(result.report.windows.automatic);
+  EXPECT_GT(result.report.windows.points_per_scan, 0.0);
+  EXPECT_GT(result.report.windows.window, 10);
+  EXPECT_GE(result.report.windows.window * result.report.windows.points_per_scan, kWindowPoints);
+  EXPECT_EQ(result.report.windows.stride, result.report.windows.window / 2);
   EXPECT_LT(ate(simulated().truth, result.poses), ate(simulated().truth, simulated().initial) / 5.0);
   const HbaResult given = optimize(HbaSettings());
-  EXPECT_FALSE(given.report.window_automatic);
-  EXPECT_EQ(given.report.window, 10);
-  EXPECT_EQ(given.report.stride, 5);
+  EXPECT_FALSE(given.report.windows.automatic);
+  EXPECT_EQ(given.report.windows.window, 10);
+  EXPECT_EQ(given.report.windows.stride, 5);
 }
 
 TEST(HierarchicalBa, DirectAssignAlsoImproves) {

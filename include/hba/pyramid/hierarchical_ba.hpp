@@ -12,6 +12,7 @@
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_inputs.hpp"
 #include "hba/pyramid/settings.hpp"
+#include "hba/pyramid/window_size.hpp"
 
 namespace hba::pyramid {
 
@@ -142,14 +143,9 @@ struct ClosureReport {
 
 struct HbaReport {
   int layers = 0;
-  // The layer-1 windows used (window_size.hpp): frames, stride, whether
-  // chosen from the scans' points (and how many a scan held on average).
-  int window = 0;
-  int stride = 0;
-  bool window_automatic = false;
-  double points_per_scan = 0.0;
-  int threads = 0;    // that every parallel part ran on, the pose graph included
-  int processes = 1;  // the group's members the windows were spread over (mpirun's ranks)
+  WindowSize windows;  // the layer-1 windows used (window_size.hpp)
+  int threads = 0;     // that every parallel part ran on, the pose graph included
+  int processes = 1;   // the group's members the windows were spread over (mpirun's ranks)
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
