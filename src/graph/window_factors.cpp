@@ -4,7 +4,9 @@
 #include <string>
 
 #include "anchored_covariance.hpp"
+#include "clamped_inverse.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 
 namespace hba::graph {
 namespace {
@@ -24,6 +26,8 @@ std::vector<std::size_t> partnersOf(std::size_t from, std::size_t count, FactorP
         for (std::size_t to = 1; to < count; ++to) partners.push_back(to);
       }
       break;
+    case FactorPairs::Joint:
+      break;  // one WindowShapeFactor instead
   }
   return partners;
 }
@@ -64,6 +68,40 @@ std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
     }
   }
   return factors;
+}
+
+WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
+                                    const std::vector<Pose>& optimized_window_poses,
+                                    const std::vector<std::size_t>& nodes,
+                                    const InformationSettings& settings) {
+  const std::vector<Pose>& poses = optimized_window_poses;
+  validateWindowHessian(hessian, poses, settings);
+  checkNodes(nodes, poses.size());
+  static_assert(kGaugeFrame == 0, "the shape is measured from the window's gauge frame");
+
+  WindowShapeFactor factor;
+  factor.nodes = nodes;
+  const std::size_t frames = poses.size() - 1;
+  const auto size = static_cast<Eigen::Index>(6 * frames);
+  for (std::size_t k = 1; k < poses.size(); ++k) factor.relative.push_back(relative(poses[0], poses[k]));
+  const auto covariance = anchoredCovariance(hessian, kGaugeFrame, settings);
+  if (!covariance) {
+    factor.information = settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
+    return factor;
+  }
+  // Linearized at the measurement (E = I): e_k ~ J_k d_k with frame 0 held,
+  // so cov(e) = J cov J^T for the block diagonal J of the J_k.
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(size, size);
+  for (std::size_t k = 1; k < poses.size(); ++k) {
+    const auto block = static_cast<Eigen::Index>(6 * (k - 1));
+    jacobian.block<6, 6>(block, block) =
+        relativePoseErrorJacobians(factor.relative[k - 1], poses[0], poses[k]).d_to;
+  }
+  const Eigen::MatrixXd error_covariance = jacobian * *covariance * jacobian.transpose();
+  const auto information = clampedInverse(error_covariance, settings.min_eigen_ratio);
+  factor.information =
+      information ? *information : settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
+  return factor;
 }
 
 }  // namespace hba::graph

@@ -162,15 +162,17 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
 
   // Top-down: a pose graph over all layer-1 poses with every window's factors,
   // started from the direct assignment (close to the answer, so LM has little to do).
-  std::vector<graph::RelativePoseFactor> factors = top.windows.front().factors;
+  graph::FactorGraph graph;
+  auto addWindow = [&graph](const WindowOutcome& window) {
+    for (const auto& factor : window.factors) graph.add(factor);
+    for (const auto& shape : window.shapes) graph.add(shape);
+  };
+  addWindow(top.windows.front());
   for (const auto& outcome : local) {
-    for (const auto& window : outcome.windows) {
-      factors.insert(factors.end(), window.factors.begin(), window.factors.end());
-    }
+    for (const auto& window : outcome.windows) addWindow(window);
   }
   // The closure stage's loops and priors stay in: the windows know nothing
   // of the loops, and the priors set the frame.
-  graph::FactorGraph graph(factors);
   for (const auto& loop : closed.loops) graph.add(loop);
   for (const auto& prior : closed.priors) graph.add(prior);
   const auto graph_start = Clock::now();

@@ -37,6 +37,7 @@ struct WindowOutcome {
   Window window;
   std::vector<Pose> optimized;  // frame 0 keeps its input pose (gauge)
   std::vector<graph::RelativePoseFactor> factors;
+  std::vector<graph::WindowShapeFactor> shapes;  // one under FactorPairs::Joint, else none
   bool has_planes = false;
 };
 

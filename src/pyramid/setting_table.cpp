@@ -247,9 +247,10 @@ std::vector<Setting> makeTable() {
       [](HbaSettings& h) -> TopDownMode& { return h.top_down; },
       "how the corrections come down: pose_graph (the paper) or direct_assign"));
   t.push_back(withAliases(choice<FactorPairs>(
-                              "pairs", "--pairs", FactorPairs::Adjacent,
+                              "pairs", "--pairs", FactorPairs::Joint,
                               [](HbaSettings& h) -> FactorPairs& { return h.factor_pairs; },
-                              "window frame pairs that become pose-graph factors"),
+                              "how a window becomes pose-graph factors: joint (one factor of its whole "
+                              "shape), or pairs of its frames: adjacent (the paper), all, from_first"),
                           {"factor_pairs"}));
   t.push_back(real(
       "point_sigma", "--point-sigma", 0.02, {0.0, kInf, true, false, ""},

@@ -5,9 +5,13 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "closure_stage.hpp"
+#include "hba/core/error.hpp"
 #include "hba/dist/bytes.hpp"
 #include "hba/dist/group.hpp"
+#include "hba/graph/factors.hpp"
 
 namespace hba::pyramid {
 
@@ -34,6 +38,32 @@ std::vector<Factor> getFactors(dist::ByteReader& in) {
     f.information = in.get<Mat6>();
   }
   return factors;
+}
+
+// Whole-window factors: nodes, measurements and the dense information.
+inline void putShapes(dist::ByteWriter& out, const std::vector<graph::WindowShapeFactor>& shapes) {
+  out.put<std::uint64_t>(shapes.size());
+  for (const graph::WindowShapeFactor& f : shapes) {
+    out.putVector(std::vector<std::uint64_t>(f.nodes.begin(), f.nodes.end()));
+    dist::putPoses(out, f.relative);
+    out.putVector(std::vector<double>(f.information.data(), f.information.data() + f.information.size()));
+  }
+}
+
+inline std::vector<graph::WindowShapeFactor> getShapes(dist::ByteReader& in) {
+  std::vector<graph::WindowShapeFactor> shapes(in.get<std::uint64_t>());
+  for (graph::WindowShapeFactor& f : shapes) {
+    const auto nodes = in.getVector<std::uint64_t>();
+    f.nodes.assign(nodes.begin(), nodes.end());
+    f.relative = dist::getPoses(in);
+    const auto numbers = in.getVector<double>();
+    const auto size = static_cast<Eigen::Index>(6 * f.relative.size());
+    if (static_cast<Eigen::Index>(numbers.size()) != size * size) {
+      throw Error("window exchange: a window-shape factor's information has the wrong size");
+    }
+    f.information = Eigen::Map<const Eigen::MatrixXd>(numbers.data(), size, size);
+  }
+  return shapes;
 }
 
 // The first member's poses, in every member.

@@ -18,6 +18,7 @@ void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   out.put<std::uint64_t>(o.window.count);
   dist::putPoses(out, o.optimized);
   putFactors(out, o.factors);
+  putShapes(out, o.shapes);
   out.put<std::uint8_t>(o.has_planes);
   out.put(s.cost_before);
   out.put(s.cost_after);
@@ -37,6 +38,7 @@ WindowSummary getSummary(dist::ByteReader& in) {
   o.window.count = in.get<std::uint64_t>();
   o.optimized = dist::getPoses(in);
   o.factors = getFactors<graph::RelativePoseFactor>(in);
+  o.shapes = getShapes(in);
   o.has_planes = in.get<std::uint8_t>() != 0;
   s.cost_before = in.get<double>();
   s.cost_after = in.get<double>();

@@ -14,8 +14,19 @@ WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba
   out.outcome.has_planes = result.num_planes > 0;
   const auto first = layer.nodes.begin() + static_cast<long>(window.first);
   const std::vector<std::size_t> nodes(first, first + static_cast<long>(window.count));
-  out.outcome.factors =
-      graph::windowFactors(result.hessian, result.poses, nodes, settings.factor_pairs, settings.information);
+  // Windows too large for one dense factor fall back to the paper's pairs.
+  const bool joint =
+      settings.factor_pairs == graph::FactorPairs::Joint && nodes.size() <= graph::kMaxJointFrames;
+  if (joint) {
+    out.outcome.shapes.push_back(
+        graph::windowShapeFactor(result.hessian, result.poses, nodes, settings.information));
+  } else {
+    const graph::FactorPairs pairs = settings.factor_pairs == graph::FactorPairs::Joint
+                                         ? graph::FactorPairs::Adjacent
+                                         : settings.factor_pairs;
+    out.outcome.factors =
+        graph::windowFactors(result.hessian, result.poses, nodes, pairs, settings.information);
+  }
   out.cost_before = result.initial_cost;
   out.cost_after = result.final_cost;
   out.planes = result.num_planes;

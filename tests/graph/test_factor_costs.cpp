@@ -43,6 +43,9 @@ FactorGraph oneFactorOfEachKind(std::mt19937& rng) {
   graph.add(LoopClosureFactor{1, 0, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
   graph.add(PosePriorFactor{1, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
   graph.add(PositionPriorFactor{0, randomVec3(rng, 5.0), randomInformation<3>(rng)});
+  // A window of three frames whose gauge frame is not the first node.
+  graph.add(WindowShapeFactor{
+      {2, 0, 3}, {randomPose(rng, 5.0, 1.2), randomPose(rng, 5.0, 1.2)}, randomInformation<12>(rng)});
   return graph;
 }
 
@@ -76,9 +79,9 @@ Eigen::VectorXd residualAt(const ceres::CostFunction& cost, const std::vector<Po
 TEST(FactorCosts, EveryKindIsCounted) {
   std::mt19937 rng(31);
   const FactorGraph graph = oneFactorOfEachKind(rng);
-  EXPECT_EQ(graph.size(), 4u);
-  for (const FactorKind kind :
-       {FactorKind::Relative, FactorKind::LoopClosure, FactorKind::PosePrior, FactorKind::PositionPrior}) {
+  EXPECT_EQ(graph.size(), 5u);
+  for (const FactorKind kind : {FactorKind::Relative, FactorKind::LoopClosure, FactorKind::PosePrior,
+                                FactorKind::PositionPrior, FactorKind::WindowShape}) {
     EXPECT_EQ(graph.count(kind), 1u);
   }
 }
@@ -87,7 +90,7 @@ TEST(FactorCosts, SquaredResidualIsTheFactorsCost) {
   std::mt19937 rng(32);
   for (int trial = 0; trial < 10; ++trial) {
     const FactorGraph graph = oneFactorOfEachKind(rng);
-    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng)};
+    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng), randomPose(rng)};
     for (const auto& model : graph.models()) {
       const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
       std::vector<PoseBlock> blocks;
@@ -106,7 +109,7 @@ TEST(FactorCosts, TangentJacobiansMatchCentralDifferences) {
   const double h = 1e-6;
   for (int trial = 0; trial < 10; ++trial) {
     const FactorGraph graph = oneFactorOfEachKind(rng);
-    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng)};
+    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng), randomPose(rng)};
     for (const auto& model : graph.models()) {
       const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
       std::vector<PoseBlock> blocks;

@@ -39,6 +39,35 @@ std::set<std::pair<std::size_t, std::size_t>> nodePairs(const std::vector<Relati
   return out;
 }
 
+// Window frame k at node 2k: the odd nodes between are in no factor.
+std::vector<std::size_t> evenNodes(std::size_t count) {
+  std::vector<std::size_t> nodes(count);
+  for (std::size_t k = 0; k < count; ++k) nodes[k] = 2 * k;
+  return nodes;
+}
+
+// The window's poses at its nodes, all but the first disturbed.
+std::vector<Pose> disturbedStart(const Window& w, const std::vector<std::size_t>& nodes, std::mt19937& rng) {
+  std::vector<Pose> initial(nodes.back() + 1);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    initial[nodes[k]] = k == 0 ? w.poses[0] : w.poses[k] * se3Exp(randomVec6(rng, 0.5, 0.1));
+  }
+  return initial;
+}
+
+// Solving `graph` (one window's factors) from `initial` must bring the
+// window's optimized poses back exactly (its first frame holds the gauge).
+void expectShapeRestored(const Window& w, const std::vector<std::size_t>& nodes,
+                         const std::vector<Pose>& initial, const FactorGraph& graph) {
+  PoseGraphSettings settings;
+  settings.function_tolerance = 1e-16;
+  const PoseGraphResult result = optimizeFactorGraph(initial, graph, settings);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    EXPECT_LT((result.poses[nodes[k]].t - w.poses[k].t).norm(), 1e-6) << k;
+    EXPECT_LT(result.poses[nodes[k]].q.angularDistance(w.poses[k].q), 1e-6) << k;
+  }
+}
+
 TEST(WindowFactors, PairChoicesMapWindowFramesToLayerOneNodes) {
   std::mt19937 rng(31);
   const Window w = makeWindow(rng, 4);
@@ -75,22 +104,91 @@ TEST(WindowFactors, PoseGraphOfAWindowRestoresItsOptimizedShape) {
   // window's relative poses back exactly (first frame fixed).
   std::mt19937 rng(33);
   const Window w = makeWindow(rng, 6);
-  std::vector<std::size_t> nodes(6);
-  for (std::size_t k = 0; k < 6; ++k) nodes[k] = 2 * k;  // odd nodes untouched
-  std::vector<Pose> initial(11);
-  for (std::size_t k = 0; k < 6; ++k) {
-    initial[nodes[k]] = k == 0 ? w.poses[0] : w.poses[k] * se3Exp(randomVec6(rng, 0.5, 0.1));
-  }
+  const std::vector<std::size_t> nodes = evenNodes(6);
+  const std::vector<Pose> initial = disturbedStart(w, nodes, rng);
   for (const FactorPairs pairs : {FactorPairs::Adjacent, FactorPairs::AllPairs}) {
-    PoseGraphSettings settings;
-    settings.function_tolerance = 1e-16;
-    const PoseGraphResult result =
-        optimizePoseGraph(initial, windowFactors(w.hessian, w.poses, nodes, pairs), settings);
-    for (std::size_t k = 0; k < 6; ++k) {
-      EXPECT_LT((result.poses[nodes[k]].t - w.poses[k].t).norm(), 1e-6) << k;
-      EXPECT_LT(result.poses[nodes[k]].q.angularDistance(w.poses[k].q), 1e-6) << k;
-    }
+    FactorGraph graph(windowFactors(w.hessian, w.poses, nodes, pairs));
+    expectShapeRestored(w, nodes, initial, graph);
   }
+}
+
+TEST(WindowShapeFactor, ItsCostIsTheWindowsSecondOrderCostModel) {
+  // The window's cost near its optimum is (1/2) d^T H d; as a negative
+  // log-likelihood (cost / 2 sigma^2), times 2 for e^T Omega e: d^T F d with
+  // F = H / (2 sigma^2). The joint factor must give that for any small move
+  // of the frames, the gauge frame's included (both ignore a rigid motion).
+  std::mt19937 rng(35);
+  const Window w = makeWindow(rng, 5);
+  const std::vector<std::size_t> nodes = {0, 1, 2, 3, 4};
+  const InformationSettings settings;
+  const WindowShapeFactor shape = windowShapeFactor(w.hessian, w.poses, nodes, settings);
+  ASSERT_EQ(shape.relative.size(), 4u);
+  ASSERT_EQ(shape.information.rows(), 24);
+  FactorGraph graph;
+  graph.add(shape);
+  const Eigen::MatrixXd fisher = w.hessian / (2.0 * settings.point_sigma * settings.point_sigma);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd d(30);
+    std::vector<Pose> moved = w.poses;
+    for (std::size_t k = 0; k < 5; ++k) {
+      const Vec6 dk = randomVec6(rng, 1e-4, 1e-5);
+      d.segment<6>(static_cast<Eigen::Index>(6 * k)) = dk;
+      moved[k] = test::perturbWorld(w.poses[k], dk);
+    }
+    const double expected = d.dot(fisher * d);
+    const double cost = factorGraphCost(moved, graph);
+    EXPECT_NEAR(cost, expected, 1e-3 * expected) << trial;
+  }
+}
+
+TEST(WindowShapeFactor, OfTwoFramesIsTheirRelativeFactor) {
+  std::mt19937 rng(36);
+  const Window w = makeWindow(rng, 2);
+  const WindowShapeFactor shape = windowShapeFactor(w.hessian, w.poses, {7, 3});
+  const auto pair = windowFactors(w.hessian, w.poses, {7, 3}, FactorPairs::Adjacent);
+  ASSERT_EQ(pair.size(), 1u);
+  EXPECT_EQ(shape.nodes, (std::vector<std::size_t>{7, 3}));
+  EXPECT_LT((shape.relative[0].t - pair[0].measurement.t).norm(), 1e-12);
+  EXPECT_LT((shape.information - pair[0].information).norm(), 1e-9 * pair[0].information.norm());
+  EXPECT_TRUE(windowFactors(w.hessian, w.poses, {7, 3}, FactorPairs::Joint).empty());
+}
+
+TEST(WindowShapeFactor, PoseGraphOfAWindowRestoresItsOptimizedShape) {
+  std::mt19937 rng(37);
+  const Window w = makeWindow(rng, 6);
+  const std::vector<std::size_t> nodes = evenNodes(6);
+  FactorGraph graph;
+  graph.add(windowShapeFactor(w.hessian, w.poses, nodes));
+  expectShapeRestored(w, nodes, disturbedStart(w, nodes, rng), graph);
+}
+
+TEST(WindowShapeFactor, RejectsInconsistentArgumentsAndBadFactors) {
+  std::mt19937 rng(38);
+  const Window w = makeWindow(rng, 3);
+  EXPECT_THROW(windowShapeFactor(w.hessian, w.poses, {0, 1}), Error);
+  EXPECT_THROW(windowShapeFactor(w.hessian, w.poses, {0, 4, 4}), Error);
+  const std::vector<Pose> poses(5);
+  auto solve = [&poses](const WindowShapeFactor& f) {
+    FactorGraph graph;
+    graph.add(f);
+    return optimizeFactorGraph(poses, graph, PoseGraphSettings{});
+  };
+  const WindowShapeFactor good = windowShapeFactor(w.hessian, w.poses, {0, 1, 2});
+  WindowShapeFactor repeated = good;
+  repeated.nodes = {0, 1, 1};
+  EXPECT_THROW(solve(repeated), Error);
+  WindowShapeFactor outside = good;
+  outside.nodes = {0, 1, 5};
+  EXPECT_THROW(solve(outside), Error);
+  WindowShapeFactor short_measurements = good;
+  short_measurements.relative.pop_back();
+  EXPECT_THROW(solve(short_measurements), Error);
+  WindowShapeFactor wrong_size = good;
+  wrong_size.information = Eigen::MatrixXd::Identity(6, 6);
+  EXPECT_THROW(solve(wrong_size), Error);
+  WindowShapeFactor negative = good;
+  negative.information = -Eigen::MatrixXd::Identity(12, 12);
+  EXPECT_THROW(solve(negative), Error);
 }
 
 TEST(WindowFactors, RejectsInconsistentArguments) {

@@ -79,7 +79,11 @@ TEST(OptimizeLayer, EachWindowGetsWhatItsOwnBaGives) {
       EXPECT_EQ(window.optimized[k].t, alone.poses[k].t) << "frame " << k;
       EXPECT_EQ(window.optimized[k].q.coeffs(), alone.poses[k].q.coeffs()) << "frame " << k;
     }
-    EXPECT_EQ(window.factors.size(), kUneven[j].count - 1);
+    // The default: one factor of the window's whole shape, over its frames.
+    EXPECT_TRUE(window.factors.empty());
+    ASSERT_EQ(window.shapes.size(), 1u);
+    EXPECT_EQ(window.shapes[0].nodes.size(), kUneven[j].count);
+    EXPECT_EQ(window.shapes[0].nodes.front(), kUneven[j].first);
     // Keyframe j is window j's plane points (stored as floats, exactly).
     const PointCloud keyframe = buildKeyframe(clouds, alone.poses, alone.plane_point_indices, 0.2);
     ASSERT_EQ(run.keyframes[j].size(), keyframe.size());

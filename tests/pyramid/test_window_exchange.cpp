@@ -7,6 +7,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/dist/bytes.hpp"
+#include "shared_outcomes.hpp"
 #include "window_exchange.hpp"
 
 namespace hba::pyramid {
@@ -91,6 +92,26 @@ TEST(WindowExchange, BytesComeBackAndAShortMessageIsRefused) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("ends early"), std::string::npos) << e.what();
   }
+}
+
+TEST(WindowExchange, WindowShapeFactorsComeBackWhole) {
+  graph::WindowShapeFactor shape;
+  shape.nodes = {4, 9, 14};
+  shape.relative = {Pose(Quat(Eigen::AngleAxisd(0.3, Vec3::UnitZ())), Vec3(1, 2, 3)),
+                    Pose(Quat::Identity(), Vec3(-1, 0.5, 7))};
+  shape.information = Eigen::MatrixXd::Random(12, 12);
+  dist::ByteWriter out;
+  putShapes(out, {shape, shape});
+  const dist::Bytes bytes = out.take();
+  dist::ByteReader in(bytes);
+  const std::vector<graph::WindowShapeFactor> back = getShapes(in);
+  EXPECT_TRUE(in.done());
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].nodes, shape.nodes);
+  ASSERT_EQ(back[1].relative.size(), 2u);
+  EXPECT_EQ(back[1].relative[0].t, shape.relative[0].t);
+  EXPECT_EQ(back[1].relative[0].q.coeffs(), shape.relative[0].q.coeffs());
+  EXPECT_EQ(back[1].information, shape.information);  // column order kept
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ class FactorGraph {
   void add(const LoopClosureFactor& factor);
   void add(const PosePriorFactor& factor);
   void add(const PositionPriorFactor& factor);
+  void add(const WindowShapeFactor& factor);
 
   std::size_t size() const { return models_.size(); }
   bool empty() const { return models_.empty(); }

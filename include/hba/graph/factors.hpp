@@ -3,6 +3,9 @@
 // (hba/graph/factor_graph.hpp) takes any of them; optimizeFactorGraph
 // (hba/graph/pose_graph.hpp) solves it. See docs/graph.md.
 #include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "hba/core/pose.hpp"
 #include "hba/core/types.hpp"
@@ -47,7 +50,19 @@ struct PositionPriorFactor {
   Mat3 information = Mat3::Identity();
 };
 
+// The shape of one whole BA window: the relative pose of each of its frames
+// k = 1 .. K-1 from its first, T_0^-1 T_k, measured together, with one
+// joint information matrix over the stacked residuals (those of
+// hba/core/relative_pose_error.hpp, frame 1's first). Unlike K-1 separate
+// factors, it keeps how the window's frames move together: the second-order
+// model of the window's own cost, each point counted once.
+struct WindowShapeFactor {
+  std::vector<std::size_t> nodes;  // K >= 2 distinct nodes, the first is the window's gauge
+  std::vector<Pose> relative;      // K-1 measurements, relative[k-1] for frame k
+  Eigen::MatrixXd information;     // 6(K-1) x 6(K-1), symmetric positive semi-definite
+};
+
 // Which of the above a factor is, for counting and reports.
-enum class FactorKind { Relative, LoopClosure, PosePrior, PositionPrior };
+enum class FactorKind { Relative, LoopClosure, PosePrior, PositionPrior, WindowShape };
 
 }  // namespace hba::graph

@@ -19,7 +19,13 @@ enum class FactorPairs {
   Adjacent,   // (k, k+1): K-1 factors, the paper's choice
   AllPairs,   // every (i, j) with i < j: K(K-1)/2 factors
   FromFirst,  // (0, k): K-1 factors, the BA's own gauge frame to every frame
+  Joint,      // none: one WindowShapeFactor (windowShapeFactor below) instead
 };
+
+// Windows of more frames than this get adjacent factors under
+// FactorPairs::Joint instead: the joint factor's information is dense, of
+// (6(K-1))^2 numbers, and so is the pose graph's system over its frames.
+inline constexpr std::size_t kMaxJointFrames = 128;
 
 // `hessian` (6K x 6K) and `optimized_window_poses` (K) come from one BA window
 // (hba::ba::BaResult); `nodes[k]` is the pose-graph node of window frame k
@@ -33,6 +39,18 @@ std::vector<RelativePoseFactor> windowFactors(const Eigen::MatrixXd& hessian,
                                               const std::vector<std::size_t>& nodes, FactorPairs pairs,
                                               const InformationSettings& settings = {});
 
+// The whole window as one factor (FactorPairs::Joint): the relative pose of
+// every frame from the first, and as information the inverse of their joint
+// covariance with the first frame held (the gauge-fixed Fisher information
+// of the window, mapped into the residuals' tangent). Its cost is then the
+// window's own second-order cost model: K-1 separate factors would drop how
+// the frames' errors go together, and all pairs would count each point K-1
+// times. Same inputs and errors as windowFactors.
+WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
+                                    const std::vector<Pose>& optimized_window_poses,
+                                    const std::vector<std::size_t>& nodes,
+                                    const InformationSettings& settings = {});
+
 }  // namespace hba::graph
 
 namespace hba {
@@ -41,6 +59,7 @@ struct EnumNames<graph::FactorPairs> {
   static constexpr const char* what = "factor pairs";
   static constexpr EnumName<graph::FactorPairs> names[] = {{graph::FactorPairs::Adjacent, "adjacent"},
                                                            {graph::FactorPairs::AllPairs, "all"},
-                                                           {graph::FactorPairs::FromFirst, "from_first"}};
+                                                           {graph::FactorPairs::FromFirst, "from_first"},
+                                                           {graph::FactorPairs::Joint, "joint"}};
 };
 }  // namespace hba

@@ -57,7 +57,7 @@ struct HbaSettings {
 
   graph::InformationSettings information;
   TopDownMode top_down{};
-  FactorPairs factor_pairs{};
+  FactorPairs factor_pairs = FactorPairs::Joint;
   // The top-down pose graph's solver (its threads come from `threads`).
   graph::PoseGraphSettings graph;
 

@@ -1,0 +1,122 @@
+// Window-shape factors: a whole BA window's relative poses from its first
+// frame, with their joint information (see WindowShapeFactor).
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include <ceres/cost_function.h>
+
+#include "factor_model.hpp"
+#include "hba/core/error.hpp"
+#include "hba/core/relative_pose_error.hpp"
+#include "information_root.hpp"
+#include "pose_block.hpp"
+#include "world_pose_manifold.hpp"
+
+namespace hba::graph {
+namespace {
+
+using RowMajorJacobian = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
+
+// Residual S * [e_1; ...; e_{K-1}], e_k the relative-pose error of frame k
+// from frame 0; parameter blocks are the K PoseBlocks in node order.
+class WindowShapeCost final : public ceres::CostFunction {
+ public:
+  WindowShapeCost(std::vector<Pose> relative, Eigen::MatrixXd sqrt_information)
+      : relative_(std::move(relative)), sqrt_information_(std::move(sqrt_information)) {
+    set_num_residuals(static_cast<int>(6 * relative_.size()));
+    for (std::size_t k = 0; k <= relative_.size(); ++k) mutable_parameter_block_sizes()->push_back(7);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const Eigen::Index n = sqrt_information_.rows();
+    const Pose first = poseFromBlock(parameters[0]);
+    Eigen::VectorXd error(n);
+    Eigen::MatrixXd d_first;  // d error / d first's tangent, n x 6
+    const bool want_first = jacobians && jacobians[0];
+    if (want_first) d_first.setZero(n, 6);
+    for (std::size_t k = 1; k <= relative_.size(); ++k) {
+      const Eigen::Index row = static_cast<Eigen::Index>(6 * (k - 1));
+      const Pose frame = poseFromBlock(parameters[k]);
+      if (!jacobians) {
+        error.segment<6>(row) = relativePoseError(relative_[k - 1], first, frame);
+        continue;
+      }
+      const RelativePoseErrorJacobians e = relativePoseErrorJacobians(relative_[k - 1], first, frame);
+      error.segment<6>(row) = e.error;
+      if (want_first) d_first.middleRows<6>(row) = e.d_from;
+      if (jacobians[k]) {
+        // Only frame k's own six error rows depend on it.
+        Eigen::Map<RowMajorJacobian> d_frame(jacobians[k], n, 7);
+        d_frame.noalias() = sqrt_information_.middleCols<6>(row) * e.d_to * tangentToAmbient(frame.q);
+      }
+    }
+    Eigen::Map<Eigen::VectorXd>(residuals, n).noalias() = sqrt_information_ * error;
+    if (want_first) {
+      Eigen::Map<RowMajorJacobian> d_gauge(jacobians[0], n, 7);
+      d_gauge.noalias() = sqrt_information_ * d_first * tangentToAmbient(first.q);
+    }
+    return true;
+  }
+
+ private:
+  std::vector<Pose> relative_;
+  Eigen::MatrixXd sqrt_information_;
+};
+
+class WindowShapeFactorModel final : public FactorModel {
+ public:
+  explicit WindowShapeFactorModel(const WindowShapeFactor& f) : factor_(f) {}
+  FactorKind kind() const override { return FactorKind::WindowShape; }
+  const char* name() const override { return "window shape"; }
+  std::vector<std::size_t> nodes() const override { return factor_.nodes; }
+  LossGroup lossGroup() const override { return LossGroup::Window; }
+
+  void validate(std::size_t num_poses, const std::string& label) const override {
+    const std::size_t k = factor_.nodes.size();
+    if (k < 2) throw Error(label + " needs at least two nodes");
+    if (factor_.relative.size() + 1 != k) {
+      throw Error(label + " has " + std::to_string(factor_.relative.size()) + " measurements for " +
+                  std::to_string(k) + " nodes (one fewer expected)");
+    }
+    const auto size = static_cast<Eigen::Index>(6 * (k - 1));
+    if (factor_.information.rows() != size || factor_.information.cols() != size) {
+      throw Error(label + ": information is " + std::to_string(factor_.information.rows()) + "x" +
+                  std::to_string(factor_.information.cols()) + ", expected " + std::to_string(size) + "x" +
+                  std::to_string(size));
+    }
+    std::vector<std::size_t> sorted = factor_.nodes;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      throw Error(label + " links a node to itself");
+    }
+    for (const std::size_t node : factor_.nodes) checkNode(node, num_poses, label);
+    for (const Pose& measurement : factor_.relative) checkFinite(measurement, label);
+    informationRoot<Eigen::Dynamic>(factor_.information, label + ": information");
+  }
+
+  double cost(const std::vector<Pose>& poses) const override {
+    Eigen::VectorXd error(factor_.information.rows());
+    for (std::size_t k = 1; k < factor_.nodes.size(); ++k) {
+      error.segment<6>(static_cast<Eigen::Index>(6 * (k - 1))) =
+          relativePoseError(factor_.relative[k - 1], poses[factor_.nodes[0]], poses[factor_.nodes[k]]);
+    }
+    return error.dot(factor_.information * error);
+  }
+
+  ceres::CostFunction* newCost() const override {
+    return new WindowShapeCost(factor_.relative,
+                               informationRoot<Eigen::Dynamic>(factor_.information, "window shape information"));
+  }
+
+ private:
+  WindowShapeFactor factor_;
+};
+
+}  // namespace
+
+void FactorGraph::add(const WindowShapeFactor& factor) {
+  models_.push_back(std::make_shared<const WindowShapeFactorModel>(factor));
+}
+
+}  // namespace hba::graph
