@@ -105,8 +105,8 @@ class WindowShapeFactorModel final : public FactorModel {
   }
 
   ceres::CostFunction* newCost() const override {
-    return new WindowShapeCost(factor_.relative,
-                               informationRoot<Eigen::Dynamic>(factor_.information, "window shape information"));
+    return new WindowShapeCost(
+        factor_.relative, informationRoot<Eigen::Dynamic>(factor_.information, "window shape information"));
   }
 
  private:

@@ -50,11 +50,20 @@ TEST(WindowSummary, FactorsJoinTheLayerOneFramesTheWindowAnchors) {
   for (std::size_t i = 0; i < layer.nodes.size(); ++i) layer.nodes[i] = 3 * i;
   const Window window{5, 7};
   const ba::BaResult result = runWindowBa(layer, window, cloudsOf(window), HbaSettings().localBa());
-  const WindowSummary summary = summarizeWindow(layer, window, result, HbaSettings());
+  // The default: one factor of the whole window over nodes 3 i, i = 5 .. 11.
+  const WindowSummary joint = summarizeWindow(layer, window, result, HbaSettings());
+  EXPECT_TRUE(joint.outcome.factors.empty());
+  ASSERT_EQ(joint.outcome.shapes.size(), 1u);
+  ASSERT_EQ(joint.outcome.shapes[0].nodes.size(), 7u);
+  for (std::size_t k = 0; k < 7; ++k) EXPECT_EQ(joint.outcome.shapes[0].nodes[k], 3 * (5 + k));
+  // Adjacent pairs (the paper's): frames 5-6, ..., 10-11.
+  HbaSettings pairs;
+  pairs.factor_pairs = FactorPairs::Adjacent;
+  const WindowSummary summary = summarizeWindow(layer, window, result, pairs);
+  EXPECT_TRUE(summary.outcome.shapes.empty());
   EXPECT_EQ(summary.outcome.window.first, 5u);
   EXPECT_EQ(summary.outcome.window.count, 7u);
   EXPECT_TRUE(summary.outcome.has_planes);
-  // Adjacent pairs (the default): frames 5-6, ..., 10-11, anchored at 3 i.
   ASSERT_EQ(summary.outcome.factors.size(), 6u);
   for (std::size_t k = 0; k < 6; ++k) {
     EXPECT_EQ(summary.outcome.factors[k].from, 3 * (5 + k));
