@@ -90,14 +90,20 @@ WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
     return factor;
   }
   // Linearized at the measurement (E = I): e_k ~ J_k d_k with frame 0 held,
-  // so cov(e) = J cov J^T for the block diagonal J of the J_k.
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(size, size);
+  // so cov(e_i, e_j) = J_i cov(d_i, d_j) J_j^T, block by block.
+  std::vector<Mat6> jacobians;
   for (std::size_t k = 1; k < poses.size(); ++k) {
-    const auto block = static_cast<Eigen::Index>(6 * (k - 1));
-    jacobian.block<6, 6>(block, block) =
-        relativePoseErrorJacobians(factor.relative[k - 1], poses[0], poses[k]).d_to;
+    jacobians.push_back(relativePoseErrorJacobians(factor.relative[k - 1], poses[0], poses[k]).d_to);
   }
-  const Eigen::MatrixXd error_covariance = jacobian * *covariance * jacobian.transpose();
+  Eigen::MatrixXd error_covariance(size, size);
+  for (std::size_t i = 0; i < frames; ++i) {
+    for (std::size_t j = 0; j < frames; ++j) {
+      const auto row = static_cast<Eigen::Index>(6 * i);
+      const auto col = static_cast<Eigen::Index>(6 * j);
+      error_covariance.block<6, 6>(row, col) =
+          jacobians[i] * covariance->block<6, 6>(row, col) * jacobians[j].transpose();
+    }
+  }
   const auto information = clampedInverse(error_covariance, settings.min_eigen_ratio);
   factor.information =
       information ? *information : settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
