@@ -197,7 +197,7 @@ std::vector<Setting> makeTable() {
       "frames per local window, w; automatic: the scans of 150 000 points, at least 10");
   t.push_back(window);
   Setting stride = integer(
-      "stride", "--stride", 5, zeroOr("half the window", 1, kInf),
+      "stride", "--stride", 0, zeroOr("half the window", 1, kInf),
       [](HbaSettings& h) -> int& { return h.stride; }, "frames between window starts, s < w");
   stride.below = "window";
   t.push_back(stride);

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "hba/pyramid/window_size.hpp"
+
 #include <algorithm>
 
 #include "hba/io/scan_source.hpp"
@@ -51,7 +53,8 @@ TEST(MemoryEstimate, TheGlobalBaGrowsWithTheSquareOfItsFrames) {
 TEST(MemoryEstimate, TheLayersAreTheRunsOwn) {
   HbaSettings settings;  // the default rule: 314 frames -> 62 -> 12 (hku1)
   const MemoryEstimate estimate = estimateMemory(314, ScanDensity{}, settings);
-  EXPECT_EQ(estimate.layers, layerCount(314, settings));
+  // The default stride (half the window) resolved, as the run resolves it.
+  EXPECT_EQ(estimate.layers, layerCount(314, withWindowSize(settings, chooseWindowSize(settings, 0.0))));
   EXPECT_EQ(estimate.layers, 3);
   EXPECT_EQ(estimate.top_frames, 12u);
   settings.layers = 99;  // more than the sequence holds

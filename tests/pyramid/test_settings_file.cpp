@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "hba/pyramid/window_size.hpp"
+
 #include "hba/core/error.hpp"
 #include "hba/pyramid/settings_file.hpp"
 
@@ -9,7 +11,8 @@ namespace {
 TEST(SettingsFile, DefaultsAreThePapers) {
   const HbaSettings s;
   EXPECT_EQ(s.window, 10);
-  EXPECT_EQ(s.stride, 5);
+  EXPECT_EQ(s.stride, 0);  // half the window: the paper's 5
+  EXPECT_EQ(chooseWindowSize(s, 0.0).stride, 5);
   EXPECT_DOUBLE_EQ(s.local.planes.eigen_ratio, 0.05);
   EXPECT_DOUBLE_EQ(s.global.planes.eigen_ratio, 0.1);
   EXPECT_DOUBLE_EQ(s.local.planes.voxel_size, 4.0);
