@@ -84,9 +84,11 @@ WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
   const std::size_t frames = poses.size() - 1;
   const auto size = static_cast<Eigen::Index>(6 * frames);
   for (std::size_t k = 1; k < poses.size(); ++k) factor.relative.push_back(relative(poses[0], poses[k]));
+  // No information at all: a factor that barely holds the frames.
+  const Eigen::MatrixXd fallback = settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
   const auto covariance = anchoredCovariance(hessian, kGaugeFrame, settings);
   if (!covariance) {
-    factor.information = settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
+    factor.information = fallback;
     return factor;
   }
   // Linearized at the measurement (E = I): e_k ~ J_k d_k with frame 0 held,
@@ -105,8 +107,7 @@ WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
     }
   }
   const auto information = clampedInverse(error_covariance, settings.min_eigen_ratio);
-  factor.information =
-      information ? *information : settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
+  factor.information = information ? *information : fallback;
   return factor;
 }
 
