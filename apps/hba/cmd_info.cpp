@@ -81,7 +81,8 @@ PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
   // Reading thousands of headers is I/O latency bound: overlap the reads.
   tbb::parallel_for(std::size_t(0), indices.size(), [&](std::size_t k) {
     try {
-      counts[k] = io::storedPointCount(dataset.scanPath(indices[k]));
+      counts[k] = dataset.recording() ? dataset.loadScan(indices[k]).size()
+                                      : io::storedPointCount(dataset.scanPath(indices[k]));
     } catch (...) {
       failures[k] = std::current_exception();
     }
@@ -98,9 +99,14 @@ PointStats pointStats(const io::Dataset& dataset, std::size_t sample) {
 Summary summarize(const io::Dataset& dataset, std::size_t sample) {
   Summary summary;
   summary.points = pointStats(dataset, sample);
-  io::ScanFileFields first = io::describeScanFields(dataset.scanPath(0));
-  summary.fields = std::move(first.fields);
-  summary.scan_encoding = std::move(first.encoding);
+  if (const rec::Recording* recording = dataset.recording()) {
+    summary.fields = recording->cloudFields();
+    summary.scan_encoding = "sensor_msgs/PointCloud2 on " + recording->cloudTopic();
+  } else {
+    io::ScanFileFields first = io::describeScanFields(dataset.scanPath(0));
+    summary.fields = std::move(first.fields);
+    summary.scan_encoding = std::move(first.encoding);
+  }
   const Trajectory& trajectory = dataset.trajectory();
   summary.length_m = pathLength(trajectory.poses);
   summary.extent_min = summary.extent_max = trajectory.poses.front().t;
@@ -124,14 +130,28 @@ std::string joined(const std::vector<std::string>& words) {
   return out;
 }
 
+void printRecording(const rec::Recording& recording) {
+  std::cout << "recording:   " << recording.path().string() << " (" << recording.format() << ")\n"
+            << "topics:\n"
+            << rec::describeTopics(recording.topics()) << "\n"
+            << "scans:       " << recording.size() << " of the " << recording.cloudMessages()
+            << " messages on " << recording.cloudTopic() << " (frame '" << recording.cloudFrame() << "')\n"
+            << "poses:       " << recording.poseTopic() << ", interpolated at each scan's stamp\n";
+  for (const std::string& warning : recording.warnings()) std::cout << "warning:     " << warning << "\n";
+}
+
 void printText(const io::Dataset& dataset, const Summary& s) {
-  const std::string extension = dataset.scanPath(0).extension().string();
-  std::cout << "dataset:     " << dataset.root().string() << "\n"
-            << "layout:      " << dataset.layout() << "\n"
-            << "scans:       " << dataset.size() << " (" << extension << ") in "
-            << dataset.scansDir().string() << "\n"
-            << "poses:       " << dataset.trajectory().size() << " (" << hba::toString(dataset.poseFormat())
-            << ") from " << dataset.posesFile().string() << "\n";
+  if (dataset.recording()) {
+    printRecording(*dataset.recording());
+  } else {
+    const std::string extension = dataset.scanPath(0).extension().string();
+    std::cout << "dataset:     " << dataset.root().string() << "\n"
+              << "layout:      " << dataset.layout() << "\n"
+              << "scans:       " << dataset.size() << " (" << extension << ") in "
+              << dataset.scansDir().string() << "\n"
+              << "poses:       " << dataset.trajectory().size() << " (" << hba::toString(dataset.poseFormat())
+              << ") from " << dataset.posesFile().string() << "\n";
+  }
   if (!dataset.calibrationFile().empty()) {
     std::cout << "calibration: camera poses turned into LiDAR poses with Tr of "
               << dataset.calibrationFile().string() << "\n";
@@ -146,10 +166,11 @@ void printText(const io::Dataset& dataset, const Summary& s) {
                            printable(s.extent_min.y()), printable(s.extent_max.y()),
                            printable(s.extent_min.z()), printable(s.extent_max.z()));
   if (s.has_duration) {
-    const std::string source =
-        dataset.stampsSource() == "times file"   ? dataset.timesFile().filename().string()
-        : dataset.stampsSource() == "scan names" ? "the scan names"
-                                                 : dataset.posesFile().filename().string();
+    const std::string source = dataset.stampsSource() == "times file"
+                                   ? dataset.timesFile().filename().string()
+                               : dataset.stampsSource() == "scan names" ? "the scan names"
+                               : dataset.recording()                    ? "the clouds' headers"
+                                                     : dataset.posesFile().filename().string();
     std::cout << fmt::format("duration:    {:.2f} s (timestamps from {})\n", s.duration_s, source);
   } else {
     std::cout << "duration:    unknown (no timestamps: give --times FILE)\n";
@@ -173,7 +194,7 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"layout", dataset.layout()},
       {"scans_dir", dataset.scansDir().string()},
       {"scan_count", dataset.size()},
-      {"scan_extension", dataset.scanPath(0).extension().string()},
+      {"scan_extension", dataset.recording() ? "" : dataset.scanPath(0).extension().string()},
       {"poses_file", dataset.posesFile().string()},
       {"pose_format", hba::toString(dataset.poseFormat())},
       {"pose_count", dataset.trajectory().size()},
@@ -194,6 +215,18 @@ void printJson(const io::Dataset& dataset, const Summary& s) {
       {"extent_max", {s.extent_max.x(), s.extent_max.y(), s.extent_max.z()}},
       {"duration_s", s.has_duration ? nlohmann::json(s.duration_s) : nlohmann::json(nullptr)},
   };
+  if (const rec::Recording* recording = dataset.recording()) {
+    nlohmann::json topics = nlohmann::json::array();
+    for (const rec::RecordingTopic& topic : recording->topics()) {
+      topics.push_back({{"topic", topic.topic}, {"type", topic.type}, {"messages", topic.messages}});
+    }
+    out["recording"] = {{"format", recording->format()},
+                        {"topics", topics},
+                        {"cloud_topic", recording->cloudTopic()},
+                        {"cloud_frame", recording->cloudFrame()},
+                        {"cloud_messages", recording->cloudMessages()},
+                        {"pose_topic", recording->poseTopic()}};
+  }
   std::cout << jsonText(out, 2) << "\n";
 }
 
@@ -212,7 +245,8 @@ void runInfo(const InfoOptions& options) {
 void registerInfoCommand(CLI::App& app) {
   auto options = std::make_shared<InfoOptions>();
   auto* command = app.add_subcommand(
-      "info", "Show what a dataset folder holds: layout, scans, poses, points, trajectory");
+      "info",
+      "Show what a dataset folder or recording holds: layout (topics), scans, poses, points, trajectory");
   options->dataset.addTo(command);
   command
       ->add_option("--sample", options->sample,

@@ -13,5 +13,6 @@ void registerEvalCommand(CLI::App& app);
 void registerMmeCommand(CLI::App& app);
 void registerMapCommand(CLI::App& app);
 void registerRenderCommand(CLI::App& app);
+void registerExtractCommand(CLI::App& app);
 
 }  // namespace hba::cli

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hba/core/error.hpp"
+#include "number_checks.hpp"
 
 namespace hba::cli {
 
@@ -60,7 +61,8 @@ Pose parsePoseArgument(const std::string& text, const std::string& flag) {
 }
 
 void DatasetArgs::addTo(CLI::App* command) {
-  command->add_option("DIR", dir, "Dataset folder (HBA, scans+trajectory, or KITTI layout)")->required();
+  command->add_option("DIR", dir, "Dataset folder (HBA, scans+trajectory, or KITTI layout) or a ROS 1 bag")
+      ->required();
   command->add_option("--scans", scans, "Folder of scans (overrides detection)");
   command->add_option("--poses", poses, "Trajectory file (overrides detection)");
   command->add_option("--format", format, "Format of the --poses file")->check(oneOf<io::PoseFormat>());
@@ -83,6 +85,17 @@ void DatasetArgs::addTo(CLI::App* command) {
                           "KITTI calib.txt: the poses are of camera 0, turned into LiDAR poses with Tr");
   conventions->add_flag("--scans-in-world", scans_in_world,
                         "The scans were saved in the world frame (moved by their pose)");
+  auto* topics = command->add_option_group("Recordings", "When DIR is a ROS 1 bag (docs/recordings.md)");
+  topics->add_option("--cloud-topic", recording.cloud_topic,
+                     "The sensor_msgs/PointCloud2 topic (default: the only one)");
+  topics->add_option("--pose-topic", recording.pose_topic,
+                     "The trajectory topic: nav_msgs/Odometry, geometry_msgs/PoseStamped, "
+                     "PoseWithCovarianceStamped or nav_msgs/Path (default: the only one)");
+  topics
+      ->add_option("--time-offset", recording.time_offset,
+                   "Seconds added to each scan's stamp before its pose is looked up")
+      ->check(realIn(-1e6, 1e6, "s"))
+      ->capture_default_str();
 }
 
 io::Dataset DatasetArgs::open() const {
@@ -95,6 +108,7 @@ io::Dataset DatasetArgs::open() const {
   if (!extrinsic.empty()) overrides.extrinsic = parsePoseArgument(extrinsic, "--extrinsic");
   if (!calibration.empty()) overrides.calibration = calibration;
   overrides.scans_in_world = scans_in_world;
+  overrides.recording = recording;
   io::Dataset dataset = io::Dataset::open(dir, overrides);
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.
   spdlog::debug("dataset {}: layout {}, {} scans in {}, poses {} ({})", dataset.root().string(),

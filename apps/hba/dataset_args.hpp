@@ -1,7 +1,9 @@
 #pragma once
 // The dataset arguments shared by every command that reads a sequence:
-// DIR plus the overrides --scans, --poses, --format, --times and the
-// convention flags --invert-poses, --extrinsic, --calib, --scans-in-world.
+// DIR (or a recording) plus the overrides --scans, --poses, --format,
+// --times, the convention flags --invert-poses, --extrinsic, --calib,
+// --scans-in-world, and a recording's --cloud-topic, --pose-topic,
+// --time-offset.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -19,6 +21,7 @@ struct DatasetArgs {
   std::string extrinsic;
   std::string calibration;
   bool scans_in_world = false;
+  rec::RecordingOptions recording;
 
   // Adds the positional DIR and the override flags to `command`.
   void addTo(CLI::App* command);

@@ -101,6 +101,7 @@ int run(int argc, char** argv) {
   hba::cli::registerMmeCommand(app);
   hba::cli::registerMapCommand(app);
   hba::cli::registerRenderCommand(app);
+  hba::cli::registerExtractCommand(app);
 
   // Threads and log level must be set before any subcommand callback runs.
   std::unique_ptr<tbb::global_control> thread_limit;

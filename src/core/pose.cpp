@@ -39,6 +39,10 @@ Pose Pose::operator*(const Pose& other) const {
 
 Pose relative(const Pose& a, const Pose& b) { return a.inverse() * b; }
 
+Pose interpolate(const Pose& a, const Pose& b, double s) {
+  return Pose(a.q.slerp(s, b.q).normalized(), (1.0 - s) * a.t + s * b.t);
+}
+
 std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset) {
   std::vector<Pose> out = poses;
   for (Pose& pose : out) pose.t += offset;

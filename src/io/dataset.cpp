@@ -175,7 +175,46 @@ std::vector<Pose> Dataset::toInputFrame(const std::vector<Pose>& sensor_poses) c
   return out;
 }
 
+// A recording: its scans and interpolated poses; the pose conventions
+// (--invert-poses, --extrinsic, --scans-in-world) apply as to a folder.
+Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& overrides) {
+  if (overrides.scans_dir || overrides.times_file || overrides.calibration) {
+    failAt(path,
+           "a recording brings its own scans and stamps: --scans, --times and --calib are for folders "
+           "(choose topics with --cloud-topic and --pose-topic)");
+  }
+  Dataset dataset;
+  dataset.recording_ =
+      std::make_shared<const rec::Recording>(rec::Recording::open(path, overrides.recording));
+  const rec::Recording& recording = *dataset.recording_;
+  dataset.root_ = dataset.scans_dir_ = dataset.poses_file_ = path;
+  dataset.layout_ = "ros1-bag";
+  dataset.trajectory_ = recording.trajectory();
+  dataset.stamps_source_ = "recording";
+  if (overrides.poses_file) {
+    // Poses given for the recording's scans (an earlier run's output).
+    dataset.poses_file_ = *overrides.poses_file;
+    dataset.pose_format_ =
+        overrides.pose_format ? *overrides.pose_format : detectPoseFormat(dataset.poses_file_);
+    const Trajectory given = readPoses(dataset.poses_file_, dataset.pose_format_);
+    if (given.size() != recording.size()) {
+      failAt(dataset.poses_file_, countsDiffer(recording.size(), path, given.size(), dataset.poses_file_));
+    }
+    dataset.trajectory_.poses = given.poses;
+  }
+  for (const std::string& note : recording.notes())
+    dataset.notes_.push_back({DatasetNote::Level::Info, note});
+  for (const std::string& warning : recording.warnings()) {
+    dataset.notes_.push_back({DatasetNote::Level::Warning, warning});
+  }
+  dataset.checkStampsIncrease();
+  dataset.convertPoses(overrides);
+  dataset.scans_in_world_ = overrides.scans_in_world;
+  return dataset;
+}
+
 Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
+  if (rec::isRecording(dir)) return openRecording(dir, overrides);
   requireFolder(dir, "dataset folder");
   Dataset dataset;
   dataset.root_ = dir;
@@ -202,7 +241,7 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
 PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
-    PointCloud scan = readScan(path);
+    PointCloud scan = recording_ ? recording_->loadScan(i) : readScan(path);
     if (scan.empty()) {
       warnAboutFile(
           path, "scans with no points",

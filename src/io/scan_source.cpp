@@ -25,6 +25,7 @@ PointCloud DatasetScanSource::load(std::size_t i) const {
 }
 
 double DatasetScanSource::sizeHint(std::size_t i) const {
+  if (dataset_.recording()) return 1.0;  // one file for all scans
   std::error_code error;
   const auto bytes = std::filesystem::file_size(dataset_.scanPath(i), error);
   return error ? 1.0 : static_cast<double>(bytes);

@@ -26,6 +26,10 @@ struct Pose {
 // Relative pose a^-1 * b: b expressed in the frame of a.
 Pose relative(const Pose& a, const Pose& b);
 
+// The pose a share s of the way from a to b (0: a, 1: b): the position
+// linearly, the orientation along the shortest arc (slerp).
+Pose interpolate(const Pose& a, const Pose& b, double s);
+
 // A sequence of poses with optional timestamps (empty, or one per pose).
 struct Trajectory {
   std::vector<Pose> poses;

@@ -7,6 +7,8 @@
 //              FAST-LIO2 / SC-SLAM pipelines; other scan-folder + trajectory pairs too
 //  - kitti:    DIR/velodyne/NNNNNN.bin + a KITTI pose file; calib.txt's Tr is
 //              applied when the poses are of the camera
+//  - ros1-bag: a ROS 1 bag given instead of DIR: the scans of its point cloud
+//              topic, each with the pose of its trajectory topic at its stamp
 // Explicit overrides (scans folder, poses file, pose format) always win.
 // A times.txt beside the trajectory (or --times) supplies timestamps when the
 // trajectory has none; scans named by time are ordered by it and, with a
@@ -19,6 +21,7 @@
 // are loaded lazily by index.
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +29,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/rec/recording.hpp"
 
 namespace hba::io {
 
@@ -38,6 +42,7 @@ struct DatasetOverrides {
   std::optional<Pose> extrinsic;                     // T_body_sensor: the file holds poses of another body
   std::optional<std::filesystem::path> calibration;  // KITTI calib.txt: the file holds camera-0 poses
   bool scans_in_world = false;                       // the scans were saved already moved into the world
+  rec::RecordingOptions recording;                   // topics and time offset of a recording (a bag)
 };
 
 // One thing discovery decided or noticed (which file it picked, what it
@@ -54,8 +59,9 @@ class Dataset {
   // unreadable, scan and pose counts that differ, ...).
   static Dataset open(const std::filesystem::path& dir, const DatasetOverrides& overrides = {});
 
-  std::size_t size() const { return scan_paths_.size(); }
-  const std::string& layout() const { return layout_; }  // "hba", "scans", "kitti", "explicit"
+  std::size_t size() const { return recording_ ? recording_->size() : scan_paths_.size(); }
+  // "hba", "scans", "kitti", "explicit", "ros1-bag"
+  const std::string& layout() const { return layout_; }
   const std::filesystem::path& root() const { return root_; }
   const std::filesystem::path& scansDir() const { return scans_dir_; }
   const std::filesystem::path& posesFile() const { return poses_file_; }
@@ -74,7 +80,12 @@ class Dataset {
   std::vector<Pose> toInputFrame(const std::vector<Pose>& sensor_poses) const;
   bool scansInWorld() const { return scans_in_world_; }
   const std::vector<DatasetNote>& notes() const { return notes_; }
-  const std::filesystem::path& scanPath(std::size_t i) const { return scan_paths_.at(i); }
+  // Scan i's file; a recording's scans have none (its own path).
+  const std::filesystem::path& scanPath(std::size_t i) const {
+    return recording_ ? root_ : scan_paths_.at(i);
+  }
+  // The recording the scans come from, or null for a folder.
+  const rec::Recording* recording() const { return recording_.get(); }
   // Reads scan i from disk, in the sensor frame (scans saved in the world
   // frame are moved back by their pose). Throws hba::Error naming the file.
   PointCloud loadScan(std::size_t i) const;
@@ -86,6 +97,7 @@ class Dataset {
   void checkStampsIncrease();
   void noteStampUnit(const std::filesystem::path& file, const std::string& unit);
   void convertPoses(const DatasetOverrides& overrides);
+  static Dataset openRecording(const std::filesystem::path& path, const DatasetOverrides& overrides);
 
   std::string layout_;
   std::filesystem::path root_, scans_dir_, poses_file_, times_file_, calibration_file_;
@@ -96,6 +108,7 @@ class Dataset {
   PoseFormat pose_format_ = PoseFormat::Kitti;
   Trajectory trajectory_;
   std::vector<std::filesystem::path> scan_paths_;
+  std::shared_ptr<const rec::Recording> recording_;
   std::vector<DatasetNote> notes_;
 };
 

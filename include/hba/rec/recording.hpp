@@ -1,0 +1,81 @@
+#pragma once
+// A recording (today a ROS 1 bag) as a sequence hba can optimize: the scans
+// of one point cloud topic, each with the pose of one trajectory topic
+// interpolated at the scan's stamp. Topics are chosen automatically when
+// only one of each kind is there; otherwise the caller names them.
+// Opening reads every cloud message's header once (their stamps) and the
+// whole trajectory; scans are then read one at a time, on demand.
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::rec {
+
+struct RecordingOptions {
+  std::string cloud_topic;  // empty: the only PointCloud2 topic
+  std::string pose_topic;   // empty: the only trajectory topic
+  double time_offset = 0.0;  // s, added to every scan's stamp before its pose is looked up
+};
+
+struct RecordingTopic {
+  std::string topic;
+  std::string type;
+  std::size_t messages = 0;
+};
+
+class Ros1Bag;
+
+class Recording {
+ public:
+  // Throws hba::Error naming the file: not a recording hba reads, no cloud
+  // or trajectory topic (or several, listed), a trajectory that covers no scan.
+  static Recording open(const std::filesystem::path& path, const RecordingOptions& options = {});
+  ~Recording();
+  Recording(Recording&&) noexcept;
+  Recording& operator=(Recording&&) noexcept;
+
+  const std::filesystem::path& path() const { return path_; }
+  const std::string& format() const { return format_; }  // "ROS 1 bag"
+  const std::vector<RecordingTopic>& topics() const { return topics_; }
+  const std::string& cloudTopic() const { return cloud_topic_; }
+  const std::string& poseTopic() const { return pose_topic_; }
+  const std::string& cloudFrame() const { return cloud_frame_; }
+  // The first cloud's field names, as recorded ("x y z intensity ...").
+  const std::vector<std::string>& cloudFields() const { return cloud_fields_; }
+
+  // The scans kept (those the trajectory covers), their stamps and poses.
+  std::size_t size() const { return trajectory_.size(); }
+  const Trajectory& trajectory() const { return trajectory_; }
+  std::size_t cloudMessages() const { return cloud_messages_; }
+  // Sentences for the log: what was chosen, what was dropped and why.
+  const std::vector<std::string>& notes() const { return notes_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  // Scan i in its sensor frame. Thread-safe. Throws hba::Error.
+  PointCloud loadScan(std::size_t i) const;
+
+ private:
+  Recording();
+  struct Clouds;
+  std::filesystem::path path_;
+  std::string format_, cloud_topic_, pose_topic_, cloud_frame_;
+  std::vector<RecordingTopic> topics_;
+  std::vector<std::string> cloud_fields_;
+  Trajectory trajectory_;
+  std::size_t cloud_messages_ = 0;
+  std::vector<std::string> notes_, warnings_;
+  std::unique_ptr<Clouds> clouds_;
+};
+
+// The topics as a table for messages: one line per topic, its type and count.
+std::string describeTopics(const std::vector<RecordingTopic>& topics);
+
+// True when `path` is a file hba reads as a recording (a ROS 1 bag).
+bool isRecording(const std::filesystem::path& path);
+
+}  // namespace hba::rec

@@ -1,0 +1,57 @@
+#pragma once
+// The few ROS message types hba reads, decoded from their ROS 1
+// serialization: point clouds (sensor_msgs/PointCloud2) and trajectories
+// (nav_msgs/Odometry, geometry_msgs/PoseStamped and
+// PoseWithCovarianceStamped, nav_msgs/Path). A message shorter or longer than
+// its type says throws hba::Error naming `what`.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+
+namespace hba::rec {
+
+struct PointField {
+  std::string name;
+  std::uint32_t offset = 0;
+  std::uint8_t datatype = 0;  // 1 int8 .. 6 uint32, 7 float32, 8 float64
+  std::uint32_t count = 1;
+};
+
+// A PointCloud2's layout and a view of its data (inside the message bytes).
+struct PointCloud2View {
+  double stamp = 0.0;  // the header's, s
+  std::string frame_id;
+  std::uint32_t height = 0, width = 0;
+  std::vector<PointField> fields;
+  bool big_endian = false;
+  std::uint32_t point_step = 0, row_step = 0;
+  const std::uint8_t* data = nullptr;
+  std::size_t data_size = 0;
+};
+
+inline constexpr const char* kPointCloud2 = "sensor_msgs/PointCloud2";
+
+PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, const std::string& what);
+
+// The points of a PointCloud2 in its own frame: x, y, z (float32 or
+// float64, either byte order, any padding) and intensity (or reflectivity)
+// when present; points with a non-finite coordinate are left out.
+PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what);
+
+struct StampedPose {
+  double stamp = 0.0;
+  Pose pose;
+  std::string frame_id;        // the frame the pose is in
+  std::string child_frame_id;  // the body it places (Odometry only)
+};
+
+// True for the trajectory types decodePoses reads.
+bool isTrajectoryType(const std::string& type);
+// The poses of one trajectory message: one, or a Path's all.
+std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
+                                     const std::string& what);
+
+}  // namespace hba::rec

@@ -1,0 +1,207 @@
+#include "hba/rec/recording.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+
+#include "hba/core/error.hpp"
+#include "hba/rec/ros1_bag.hpp"
+#include "hba/rec/ros1_messages.hpp"
+
+namespace hba::rec {
+namespace fs = std::filesystem;
+
+struct Recording::Clouds {
+  Ros1Bag bag;
+  std::vector<Ros1MessageRef> kept;  // scan i's message
+};
+
+namespace {
+
+// The topics of one kind; `wanted` names one, else the only one.
+std::string chooseTopic(const fs::path& path, const std::vector<RecordingTopic>& topics, bool (*of_kind)(const std::string&),
+                        const std::string& wanted, const std::string& kind, const std::string& flag) {
+  std::vector<RecordingTopic> candidates;
+  for (const RecordingTopic& topic : topics) {
+    if (of_kind(topic.type)) candidates.push_back(topic);
+  }
+  if (!wanted.empty()) {
+    for (const RecordingTopic& topic : topics) {
+      if (topic.topic != wanted) continue;
+      if (!of_kind(topic.type)) {
+        failAt(path, flag + " " + wanted + " is a " + topic.type + ", not a " + kind + ". Its topics:\n" +
+                         describeTopics(topics));
+      }
+      return wanted;
+    }
+    failAt(path, "no topic " + wanted + " (" + flag + "). Its topics:\n" + describeTopics(topics));
+  }
+  if (candidates.empty()) failAt(path, "no " + kind + " topic. Its topics:\n" + describeTopics(topics));
+  if (candidates.size() > 1) {
+    failAt(path, std::to_string(candidates.size()) + " " + kind + " topics: choose one with " + flag +
+                     ". They are:\n" + describeTopics(candidates));
+  }
+  return candidates.front().topic;
+}
+
+bool isCloudType(const std::string& type) { return type == kPointCloud2; }
+
+std::vector<std::uint32_t> connectionsOf(const Ros1Bag& bag, const std::string& topic) {
+  std::vector<std::uint32_t> ids;
+  for (const Ros1Connection& c : bag.connections()) {
+    if (c.topic == topic) ids.push_back(c.id);
+  }
+  return ids;
+}
+
+std::string typeOf(const Ros1Bag& bag, const std::string& topic) {
+  for (const Ros1Connection& c : bag.connections()) {
+    if (c.topic == topic) return c.type;
+  }
+  return "";
+}
+
+// The trajectory's poses by stamp: a Path's last message, or every message.
+std::vector<StampedPose> readTrajectory(const Ros1Bag& bag, const std::string& topic) {
+  const std::string type = typeOf(bag, topic);
+  std::vector<Ros1MessageRef> messages = bag.messages(connectionsOf(bag, topic));
+  if (type == "nav_msgs/Path" && !messages.empty()) messages = {messages.back()};
+  std::vector<StampedPose> poses;
+  for (const Ros1MessageRef& message : messages) {
+    const std::string what = fmt::format("{}: {} message at {:.3f} s", bag.path().string(), topic, message.record_time);
+    for (StampedPose& pose : decodePoses(type, bag.read(message), what)) poses.push_back(std::move(pose));
+  }
+  std::stable_sort(poses.begin(), poses.end(), [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+  // Repeated stamps (a republished pose) keep their first.
+  poses.erase(std::unique(poses.begin(), poses.end(),
+                          [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
+              poses.end());
+  return poses;
+}
+
+// The pose at `t` between the trajectory's poses, or false outside it.
+bool poseAt(const std::vector<StampedPose>& trajectory, double t, Pose& pose) {
+  constexpr double kEdge = 1e-3;  // s: a scan stamped this close to an end takes the end's pose
+  if (trajectory.empty() || t < trajectory.front().stamp - kEdge || t > trajectory.back().stamp + kEdge) return false;
+  const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t,
+                                      [](const StampedPose& p, double value) { return p.stamp < value; });
+  if (after == trajectory.begin()) {
+    pose = after->pose;
+  } else if (after == trajectory.end()) {
+    pose = trajectory.back().pose;
+  } else {
+    const StampedPose& before = *(after - 1);
+    const double s = (t - before.stamp) / (after->stamp - before.stamp);
+    pose = interpolate(before.pose, after->pose, s);
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string describeTopics(const std::vector<RecordingTopic>& topics) {
+  std::size_t width = 0, type_width = 0;
+  for (const RecordingTopic& topic : topics) {
+    width = std::max(width, topic.topic.size());
+    type_width = std::max(type_width, topic.type.size());
+  }
+  std::string text;
+  for (const RecordingTopic& topic : topics) {
+    text += fmt::format("  {:<{}}  {:<{}}  {} messages\n", topic.topic, width, topic.type, type_width, topic.messages);
+  }
+  if (!text.empty()) text.pop_back();
+  return text.empty() ? "  (none)" : text;
+}
+
+bool isRecording(const fs::path& path) { return fs::is_regular_file(path) && looksLikeRos1Bag(path); }
+
+Recording::Recording() = default;
+Recording::~Recording() = default;
+Recording::Recording(Recording&&) noexcept = default;
+Recording& Recording::operator=(Recording&&) noexcept = default;
+
+Recording Recording::open(const fs::path& path, const RecordingOptions& options) {
+  Recording recording;
+  recording.path_ = path;
+  recording.format_ = "ROS 1 bag";
+  recording.clouds_ = std::make_unique<Clouds>(Clouds{Ros1Bag::open(path), {}});
+  const Ros1Bag& bag = recording.clouds_->bag;
+
+  std::map<std::string, RecordingTopic> by_topic;
+  for (const Ros1Connection& c : bag.connections()) {
+    RecordingTopic& topic = by_topic[c.topic];
+    topic.topic = c.topic;
+    topic.type = c.type;
+    topic.messages += bag.messageCount(c.id);
+  }
+  for (auto& entry : by_topic) recording.topics_.push_back(entry.second);
+
+  recording.cloud_topic_ =
+      chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic, "point cloud (sensor_msgs/PointCloud2)",
+                  "--cloud-topic");
+  recording.pose_topic_ = chooseTopic(
+      path, recording.topics_, &isTrajectoryType, options.pose_topic,
+      "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
+      "--pose-topic");
+  recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " + recording.pose_topic_ + " (" +
+                             typeOf(bag, recording.pose_topic_) + ")");
+
+  const std::vector<StampedPose> trajectory = readTrajectory(bag, recording.pose_topic_);
+  if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
+
+  // Every cloud's own stamp, and its pose there.
+  const std::vector<Ros1MessageRef> clouds = bag.messages(connectionsOf(bag, recording.cloud_topic_));
+  recording.cloud_messages_ = clouds.size();
+  std::vector<double> dropped;
+  std::vector<std::pair<double, Ros1MessageRef>> stamped;
+  for (const Ros1MessageRef& message : clouds) {
+    const std::string what =
+        fmt::format("{}: {} message at {:.3f} s", path.string(), recording.cloud_topic_, message.record_time);
+    const PointCloud2View view = decodePointCloud2(bag.read(message), what);
+    if (stamped.empty()) {
+      recording.cloud_frame_ = view.frame_id;
+      for (const PointField& field : view.fields) recording.cloud_fields_.push_back(field.name);
+    }
+    stamped.emplace_back(view.stamp + options.time_offset, message);
+  }
+  std::stable_sort(stamped.begin(), stamped.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [stamp, message] : stamped) {
+    Pose pose;
+    if (!poseAt(trajectory, stamp, pose)) {
+      dropped.push_back(stamp);
+      continue;
+    }
+    recording.trajectory_.poses.push_back(pose);
+    recording.trajectory_.stamps.push_back(stamp);
+    recording.clouds_->kept.push_back(message);
+  }
+  const std::string span = fmt::format("{:.3f} to {:.3f} s", trajectory.front().stamp, trajectory.back().stamp);
+  if (recording.trajectory_.empty()) {
+    failAt(path, fmt::format("{} covers none of the {} scans of {} (poses {}, scans {})", recording.pose_topic_,
+                             clouds.size(), recording.cloud_topic_, span,
+                             stamped.empty() ? std::string("none")
+                                             : fmt::format("{:.3f} to {:.3f} s", stamped.front().first,
+                                                           stamped.back().first)));
+  }
+  if (!dropped.empty()) {
+    recording.warnings_.push_back(fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out",
+                                              dropped.size(), clouds.size(), span));
+  }
+  const std::string& pose_frame = trajectory.front().child_frame_id;
+  if (!pose_frame.empty() && !recording.cloud_frame_.empty() && pose_frame != recording.cloud_frame_) {
+    recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ + "', the poses place '" +
+                               pose_frame + "': read as the same frame");
+  }
+  return recording;
+}
+
+PointCloud Recording::loadScan(std::size_t i) const {
+  const Ros1MessageRef& message = clouds_->kept.at(i);
+  const std::string what = fmt::format("{}: scan {} ({} at {:.3f} s)", path_.string(), i, cloud_topic_,
+                                       trajectory_.stamps.at(i));
+  const std::vector<std::uint8_t> bytes = clouds_->bag.read(message);
+  return toPointCloud(decodePointCloud2(bytes, what), what);
+}
+
+}  // namespace hba::rec

@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Writes a scan folder (binary PCD x y z intensity + KITTI poses + times.txt)
+into a ROS 1 bag with Debian's python3-rosbag, the way FAST-LIO2 records it:
+/cloud_registered_body (sensor_msgs/PointCloud2, PCL's PointXYZINormal
+layout: padding, normals, curvature) and /Odometry (nav_msgs/Odometry), plus
+a topic hba has no use for. Variants exercise other layouts and mistakes.
+Exit 77 when python3-rosbag is missing (the tests then skip)."""
+import argparse
+import glob
+import os
+import struct
+import sys
+
+try:
+    import numpy as np
+    import rosbag
+    import rospy
+    from geometry_msgs.msg import PoseStamped
+    from nav_msgs.msg import Odometry
+    from sensor_msgs.msg import PointCloud2, PointField
+    from std_msgs.msg import String
+except ImportError as error:  # skip, not fail
+    print("skip: " + str(error))
+    sys.exit(77)
+
+
+def read_pcd(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    end = data.index(b"DATA binary\n") + len(b"DATA binary\n")
+    header = data[:end].decode()
+    fields = next(l for l in header.splitlines() if l.startswith("FIELDS")).split()[1:]
+    assert fields == ["x", "y", "z", "intensity"], fields
+    return np.frombuffer(data[end:], dtype="<f4").reshape(-1, 4)
+
+
+def quaternion(r):
+    # from a rotation matrix (w x y z), the largest-component branch
+    t = np.trace(r)
+    if t > 0:
+        s = 2.0 * np.sqrt(t + 1.0)
+        return (0.25 * s, (r[2, 1] - r[1, 2]) / s, (r[0, 2] - r[2, 0]) / s, (r[1, 0] - r[0, 1]) / s)
+    i = int(np.argmax(np.diag(r)))
+    j, k = (i + 1) % 3, (i + 2) % 3
+    s = 2.0 * np.sqrt(1.0 + r[i, i] - r[j, j] - r[k, k])
+    q = [0.0, 0.0, 0.0, 0.0]
+    q[0] = (r[k, j] - r[j, k]) / s
+    q[1 + i] = 0.25 * s
+    q[1 + j] = (r[j, i] + r[i, j]) / s
+    q[1 + k] = (r[k, i] + r[i, k]) / s
+    return tuple(q)
+
+
+def cloud_message(points, stamp, layout, big_endian):
+    msg = PointCloud2()
+    msg.header.stamp = stamp
+    msg.header.frame_id = "body"
+    msg.height, msg.width = 1, len(points)
+    order = ">" if big_endian else "<"
+    if layout == "fastlio":  # PointXYZINormal: x y z pad, nx ny nz pad, intensity curvature pad pad
+        names = [("x", 0), ("y", 4), ("z", 8), ("normal_x", 16), ("normal_y", 20), ("normal_z", 24),
+                 ("intensity", 32), ("curvature", 36)]
+        msg.fields = [PointField(n, o, PointField.FLOAT32, 1) for n, o in names]
+        step, kind = 48, "f4"
+        table = np.zeros((len(points), 12), dtype=order + "f4")
+        table[:, 0:3] = points[:, 0:3]
+        table[:, 8] = points[:, 3]
+    elif layout == "float64":  # x y z as float64, a uint16 ring, intensity as uint8
+        msg.fields = [PointField("x", 0, PointField.FLOAT64, 1), PointField("y", 8, PointField.FLOAT64, 1),
+                      PointField("z", 16, PointField.FLOAT64, 1), PointField("ring", 24, PointField.UINT16, 1),
+                      PointField("intensity", 26, PointField.UINT8, 1)]
+        step = 32
+        buf = bytearray(step * len(points))
+        for n, p in enumerate(points):
+            struct.pack_into(order + "dddHB", buf, n * step, float(p[0]), float(p[1]), float(p[2]), n % 32,
+                             int(min(255, max(0, p[3]))))
+        msg.is_bigendian, msg.point_step, msg.row_step = big_endian, step, step * len(points)
+        msg.data = bytes(buf)
+        msg.is_dense = True
+        return msg
+    else:
+        raise ValueError(layout)
+    msg.is_bigendian, msg.point_step, msg.row_step = big_endian, step, step * len(points)
+    msg.data = table.tobytes()
+    msg.is_dense = True
+    return msg
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("folder")
+    parser.add_argument("bag")
+    parser.add_argument("--compression", default="none", choices=["none", "lz4", "bz2"])
+    parser.add_argument("--layout", default="fastlio", choices=["fastlio", "float64"])
+    parser.add_argument("--big-endian", action="store_true")
+    parser.add_argument("--scans", type=int, default=0, help="only the first N")
+    parser.add_argument("--second-cloud-topic", action="store_true")
+    parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "none"])
+    parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
+    parser.add_argument("--odometry-rate", type=int, default=1, help="poses per scan (interpolation)")
+    args = parser.parse_args()
+
+    scans = sorted(glob.glob(os.path.join(args.folder, "Scans", "*.pcd")))
+    poses = np.loadtxt(os.path.join(args.folder, "odom_poses.txt")).reshape(-1, 3, 4)
+    times = np.loadtxt(os.path.join(args.folder, "times.txt"))
+    if args.scans:
+        scans, poses, times = scans[: args.scans], poses[: args.scans], times[: args.scans]
+    with rosbag.Bag(args.bag, "w", compression=args.compression) as bag:
+        for n, (scan, pose, t) in enumerate(zip(scans, poses, times)):
+            stamp = rospy.Time.from_sec(float(t))
+            cloud = cloud_message(read_pcd(scan), stamp, args.layout, args.big_endian)
+            bag.write("/cloud_registered_body", cloud, stamp)
+            if args.second_cloud_topic:
+                bag.write("/cloud_registered", cloud, stamp)
+            if args.pose_type != "none":
+                odo = Odometry() if args.pose_type == "odometry" else PoseStamped()
+                odo.header.stamp = rospy.Time.from_sec(float(t) + args.pose_shift)
+                odo.header.frame_id = "camera_init"
+                target = odo.pose.pose if args.pose_type == "odometry" else odo.pose
+                if args.pose_type == "odometry":
+                    odo.child_frame_id = "body"
+                w, x, y, z = quaternion(pose[:, :3])
+                target.position.x, target.position.y, target.position.z = pose[:, 3]
+                target.orientation.x, target.orientation.y, target.orientation.z, target.orientation.w = x, y, z, w
+                bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
+            if n % 50 == 0:
+                bag.write("/rosout_agg", String(data="scan %d" % n), stamp)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
