@@ -6,12 +6,12 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "dataset_args.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/progress.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
-#include "dataset_args.hpp"
 #include "output_dir.hpp"
 
 namespace hba::cli {
@@ -43,7 +43,8 @@ void runExtract(const ExtractArgs& args) {
     progress.advance();
   }
   io::writePoses(staging.path() / "pose.json", dataset.trajectory(), io::PoseFormat::Hba);
-  if (dataset.trajectory().hasStamps()) io::writeTimes(staging.path() / "times.txt", dataset.trajectory().stamps);
+  if (dataset.trajectory().hasStamps())
+    io::writeTimes(staging.path() / "times.txt", dataset.trajectory().stamps);
   staging.commit();
   spdlog::info("wrote {} scans with their poses to {} (pcd/, pose.json{})", dataset.size(),
                staging.destination().string(), dataset.trajectory().hasStamps() ? ", times.txt" : "");

@@ -61,7 +61,8 @@ class ByteReader {
   // takes at least `min_bytes`), so a corrupt count cannot ask for gigabytes.
   std::uint32_t count(std::size_t min_bytes) {
     const std::uint32_t n = u32();
-    if (min_bytes > 0 && n > remaining() / min_bytes) fail("an array claims " + std::to_string(n) + " elements");
+    if (min_bytes > 0 && n > remaining() / min_bytes)
+      fail("an array claims " + std::to_string(n) + " elements");
     return n;
   }
 

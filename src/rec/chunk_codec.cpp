@@ -24,8 +24,8 @@ std::vector<std::uint8_t> lz4Frame(const std::uint8_t* data, std::size_t size, s
   while (in_pos < size) {
     std::size_t out_size = out.size() - out_pos;
     std::size_t in_size = size - in_pos;
-    const std::size_t hint = LZ4F_decompress(context.get(), out.data() + out_pos, &out_size, data + in_pos,
-                                             &in_size, nullptr);
+    const std::size_t hint =
+        LZ4F_decompress(context.get(), out.data() + out_pos, &out_size, data + in_pos, &in_size, nullptr);
     if (LZ4F_isError(hint)) {
       throw Error(where + ": the lz4 data is corrupt (" + LZ4F_getErrorName(hint) + ")");
     }
@@ -42,11 +42,11 @@ std::vector<std::uint8_t> bz2(const std::uint8_t* data, std::size_t size, std::s
                               const std::string& where) {
   std::vector<std::uint8_t> out(expected);
   auto out_size = static_cast<unsigned int>(expected);
-  const int status =
-      BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(out.data()), &out_size,
-                                 const_cast<char*>(reinterpret_cast<const char*>(data)),
-                                 static_cast<unsigned int>(size), /*small=*/0, /*verbosity=*/0);
-  if (status != BZ_OK) throw Error(where + ": the bz2 data is corrupt (bzip2 error " + std::to_string(status) + ")");
+  const int status = BZ2_bzBuffToBuffDecompress(
+      reinterpret_cast<char*>(out.data()), &out_size, const_cast<char*>(reinterpret_cast<const char*>(data)),
+      static_cast<unsigned int>(size), /*small=*/0, /*verbosity=*/0);
+  if (status != BZ_OK)
+    throw Error(where + ": the bz2 data is corrupt (bzip2 error " + std::to_string(status) + ")");
   out.resize(out_size);
   return out;
 }
@@ -56,6 +56,12 @@ std::vector<std::uint8_t> bz2(const std::uint8_t* data, std::size_t size, std::s
 std::vector<std::uint8_t> decompressChunk(const std::string& compression, const std::uint8_t* data,
                                           std::size_t size, std::size_t uncompressed_size,
                                           const std::string& where) {
+  // A corrupt size must not ask for gigabytes: no codec here packs a
+  // chunk of point clouds a thousand times smaller.
+  if (compression != "none" && uncompressed_size > 1024 * size + (std::size_t{1} << 20)) {
+    throw Error(where + ": the chunk claims " + std::to_string(uncompressed_size) + " bytes from " +
+                std::to_string(size) + " compressed: it is corrupt");
+  }
   std::vector<std::uint8_t> out;
   if (compression == "none") {
     out.assign(data, data + size);

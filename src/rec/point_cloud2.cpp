@@ -47,14 +47,22 @@ struct Column {
   double read(const std::uint8_t* point) const {
     const std::uint8_t* p = point + offset;
     switch (datatype) {
-      case 1: return as<std::int8_t>(p, false);
-      case 2: return as<std::uint8_t>(p, false);
-      case 3: return as<std::int16_t>(p, swap);
-      case 4: return as<std::uint16_t>(p, swap);
-      case 5: return as<std::int32_t>(p, swap);
-      case 6: return as<std::uint32_t>(p, swap);
-      case 7: return as<float>(p, swap);
-      default: return as<double>(p, swap);
+      case 1:
+        return as<std::int8_t>(p, false);
+      case 2:
+        return as<std::uint8_t>(p, false);
+      case 3:
+        return as<std::int16_t>(p, swap);
+      case 4:
+        return as<std::uint16_t>(p, swap);
+      case 5:
+        return as<std::int32_t>(p, swap);
+      case 6:
+        return as<std::uint32_t>(p, swap);
+      case 7:
+        return as<float>(p, swap);
+      default:
+        return as<double>(p, swap);
     }
   }
 };
@@ -76,7 +84,8 @@ std::string fieldNames(const PointCloud2View& cloud) {
 
 Column columnOf(const PointCloud2View& cloud, const PointField& field, const std::string& what) {
   const std::size_t size = sizeOf(field.datatype);
-  if (size == 0) throw Error(what + ": field '" + field.name + "' has unknown datatype " + std::to_string(field.datatype));
+  if (size == 0)
+    throw Error(what + ": field '" + field.name + "' has unknown datatype " + std::to_string(field.datatype));
   if (field.offset + size > cloud.point_step) {
     throw Error(what + ": field '" + field.name + "' (offset " + std::to_string(field.offset) +
                 ") lies outside the point's " + std::to_string(cloud.point_step) + " bytes");
@@ -90,7 +99,8 @@ PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what) {
   const PointField* x = findField(cloud, {"x"});
   const PointField* y = findField(cloud, {"y"});
   const PointField* z = findField(cloud, {"z"});
-  if (!x || !y || !z) throw Error(what + ": the cloud has no x, y and z fields (it has " + fieldNames(cloud) + ")");
+  if (!x || !y || !z)
+    throw Error(what + ": the cloud has no x, y and z fields (it has " + fieldNames(cloud) + ")");
   const Column cx = columnOf(cloud, *x, what), cy = columnOf(cloud, *y, what), cz = columnOf(cloud, *z, what);
   const PointField* intensity = findField(cloud, {"intensity", "reflectivity", "i"});
   Column ci;

@@ -20,8 +20,9 @@ struct Recording::Clouds {
 namespace {
 
 // The topics of one kind; `wanted` names one, else the only one.
-std::string chooseTopic(const fs::path& path, const std::vector<RecordingTopic>& topics, bool (*of_kind)(const std::string&),
-                        const std::string& wanted, const std::string& kind, const std::string& flag) {
+std::string chooseTopic(const fs::path& path, const std::vector<RecordingTopic>& topics,
+                        bool (*of_kind)(const std::string&), const std::string& wanted,
+                        const std::string& kind, const std::string& flag) {
   std::vector<RecordingTopic> candidates;
   for (const RecordingTopic& topic : topics) {
     if (of_kind(topic.type)) candidates.push_back(topic);
@@ -69,10 +70,12 @@ std::vector<StampedPose> readTrajectory(const Ros1Bag& bag, const std::string& t
   if (type == "nav_msgs/Path" && !messages.empty()) messages = {messages.back()};
   std::vector<StampedPose> poses;
   for (const Ros1MessageRef& message : messages) {
-    const std::string what = fmt::format("{}: {} message at {:.3f} s", bag.path().string(), topic, message.record_time);
+    const std::string what =
+        fmt::format("{}: {} message at {:.3f} s", bag.path().string(), topic, message.record_time);
     for (StampedPose& pose : decodePoses(type, bag.read(message), what)) poses.push_back(std::move(pose));
   }
-  std::stable_sort(poses.begin(), poses.end(), [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
   // Repeated stamps (a republished pose) keep their first.
   poses.erase(std::unique(poses.begin(), poses.end(),
                           [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
@@ -83,7 +86,8 @@ std::vector<StampedPose> readTrajectory(const Ros1Bag& bag, const std::string& t
 // The pose at `t` between the trajectory's poses, or false outside it.
 bool poseAt(const std::vector<StampedPose>& trajectory, double t, Pose& pose) {
   constexpr double kEdge = 1e-3;  // s: a scan stamped this close to an end takes the end's pose
-  if (trajectory.empty() || t < trajectory.front().stamp - kEdge || t > trajectory.back().stamp + kEdge) return false;
+  if (trajectory.empty() || t < trajectory.front().stamp - kEdge || t > trajectory.back().stamp + kEdge)
+    return false;
   const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t,
                                       [](const StampedPose& p, double value) { return p.stamp < value; });
   if (after == trajectory.begin()) {
@@ -108,7 +112,8 @@ std::string describeTopics(const std::vector<RecordingTopic>& topics) {
   }
   std::string text;
   for (const RecordingTopic& topic : topics) {
-    text += fmt::format("  {:<{}}  {:<{}}  {} messages\n", topic.topic, width, topic.type, type_width, topic.messages);
+    text += fmt::format("  {:<{}}  {:<{}}  {} messages\n", topic.topic, width, topic.type, type_width,
+                        topic.messages);
   }
   if (!text.empty()) text.pop_back();
   return text.empty() ? "  (none)" : text;
@@ -137,15 +142,14 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   }
   for (auto& entry : by_topic) recording.topics_.push_back(entry.second);
 
-  recording.cloud_topic_ =
-      chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic, "point cloud (sensor_msgs/PointCloud2)",
-                  "--cloud-topic");
+  recording.cloud_topic_ = chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic,
+                                       "point cloud (sensor_msgs/PointCloud2)", "--cloud-topic");
   recording.pose_topic_ = chooseTopic(
       path, recording.topics_, &isTrajectoryType, options.pose_topic,
       "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
       "--pose-topic");
-  recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " + recording.pose_topic_ + " (" +
-                             typeOf(bag, recording.pose_topic_) + ")");
+  recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
+                             recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
 
   const std::vector<StampedPose> trajectory = readTrajectory(bag, recording.pose_topic_);
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
@@ -165,7 +169,8 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     }
     stamped.emplace_back(view.stamp + options.time_offset, message);
   }
-  std::stable_sort(stamped.begin(), stamped.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(stamped.begin(), stamped.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [stamp, message] : stamped) {
     Pose pose;
     if (!poseAt(trajectory, stamp, pose)) {
@@ -176,17 +181,19 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     recording.trajectory_.stamps.push_back(stamp);
     recording.clouds_->kept.push_back(message);
   }
-  const std::string span = fmt::format("{:.3f} to {:.3f} s", trajectory.front().stamp, trajectory.back().stamp);
+  const std::string span =
+      fmt::format("{:.3f} to {:.3f} s", trajectory.front().stamp, trajectory.back().stamp);
   if (recording.trajectory_.empty()) {
-    failAt(path, fmt::format("{} covers none of the {} scans of {} (poses {}, scans {})", recording.pose_topic_,
-                             clouds.size(), recording.cloud_topic_, span,
+    failAt(path, fmt::format("{} covers none of the {} scans of {} (poses {}, scans {})",
+                             recording.pose_topic_, clouds.size(), recording.cloud_topic_, span,
                              stamped.empty() ? std::string("none")
                                              : fmt::format("{:.3f} to {:.3f} s", stamped.front().first,
                                                            stamped.back().first)));
   }
   if (!dropped.empty()) {
-    recording.warnings_.push_back(fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out",
-                                              dropped.size(), clouds.size(), span));
+    recording.warnings_.push_back(
+        fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out", dropped.size(),
+                    clouds.size(), span));
   }
   const std::string& pose_frame = trajectory.front().child_frame_id;
   if (!pose_frame.empty() && !recording.cloud_frame_.empty() && pose_frame != recording.cloud_frame_) {
@@ -198,8 +205,8 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
 
 PointCloud Recording::loadScan(std::size_t i) const {
   const Ros1MessageRef& message = clouds_->kept.at(i);
-  const std::string what = fmt::format("{}: scan {} ({} at {:.3f} s)", path_.string(), i, cloud_topic_,
-                                       trajectory_.stamps.at(i));
+  const std::string what =
+      fmt::format("{}: scan {} ({} at {:.3f} s)", path_.string(), i, cloud_topic_, trajectory_.stamps.at(i));
   const std::vector<std::uint8_t> bytes = clouds_->bag.read(message);
   return toPointCloud(decodePointCloud2(bytes, what), what);
 }

@@ -107,6 +107,10 @@ struct Record {
 Record readRecord(BagFile& file, std::uint64_t pos, const std::string& what) {
   Record record;
   const std::uint32_t header_size = file.u32At(pos, "a record header");
+  if (std::uint64_t{header_size} + 8 > file.size() - pos) {
+    throw Error(what + ": truncated: a record header of " + std::to_string(header_size) + " bytes at byte " +
+                std::to_string(pos) + " runs past the end of the file");
+  }
   std::vector<std::uint8_t> header(header_size);
   file.readAt(pos + 4, header.data(), header.size(), "a record header");
   record.header = parseFields(header.data(), header.size(), what);
@@ -202,7 +206,8 @@ Ros1Bag Ros1Bag::open(const fs::path& path) {
   // After each chunk, its index records: where each message lies in it.
   for (const std::uint64_t chunk_pos : chunks) {
     const Record chunk = readRecord(file, chunk_pos, where + ": chunk at byte " + std::to_string(chunk_pos));
-    if (chunk.op != kChunk) failAt(path, "chunk info points at byte " + std::to_string(chunk_pos) + ", not a chunk");
+    if (chunk.op != kChunk)
+      failAt(path, "chunk info points at byte " + std::to_string(chunk_pos) + ", not a chunk");
     const auto chunk_size = fieldAs<std::uint32_t>(chunk.header, "size", where);
     std::uint64_t next = chunk.end();
     while (next < index_pos) {
@@ -226,8 +231,9 @@ Ros1Bag Ros1Bag::open(const fs::path& path) {
       next = record.end();
     }
   }
-  std::stable_sort(bag.index_.begin(), bag.index_.end(),
-                   [](const Ros1MessageRef& a, const Ros1MessageRef& b) { return a.record_time < b.record_time; });
+  std::stable_sort(
+      bag.index_.begin(), bag.index_.end(),
+      [](const Ros1MessageRef& a, const Ros1MessageRef& b) { return a.record_time < b.record_time; });
   return bag;
 }
 
@@ -235,15 +241,16 @@ std::vector<Ros1MessageRef> Ros1Bag::messages(const std::vector<std::uint32_t>& 
   if (connections.empty()) return index_;
   std::vector<Ros1MessageRef> out;
   for (const Ros1MessageRef& ref : index_) {
-    if (std::find(connections.begin(), connections.end(), ref.connection) != connections.end()) out.push_back(ref);
+    if (std::find(connections.begin(), connections.end(), ref.connection) != connections.end())
+      out.push_back(ref);
   }
   return out;
 }
 
 std::size_t Ros1Bag::messageCount(std::uint32_t connection) const {
-  return static_cast<std::size_t>(std::count_if(index_.begin(), index_.end(), [connection](const Ros1MessageRef& r) {
-    return r.connection == connection;
-  }));
+  return static_cast<std::size_t>(
+      std::count_if(index_.begin(), index_.end(),
+                    [connection](const Ros1MessageRef& r) { return r.connection == connection; }));
 }
 
 std::vector<std::uint8_t> Ros1Bag::read(const Ros1MessageRef& message) const {

@@ -25,20 +25,28 @@ Pose readPose(ByteReader& reader) {
   const double x = reader.f64(), y = reader.f64(), z = reader.f64(), w = reader.f64();
   Quat q(w, x, y, z);
   const double norm = q.norm();
-  if (!(norm > 0.5 && norm < 1.5)) reader.fail("a pose whose quaternion is not a rotation (norm " + std::to_string(norm) + ")");
+  if (!(norm > 0.5 && norm < 1.5))
+    reader.fail("a pose whose quaternion is not a rotation (norm " + std::to_string(norm) + ")");
   return Pose(q.normalized(), t);
 }
 
 void expectEnd(const ByteReader& reader, const std::string& type) {
-  if (reader.remaining() != 0) {
-    reader.fail(std::to_string(reader.remaining()) + " bytes left after a " + type +
-                ": the message does not match its type's definition");
+  if (reader.remaining() != 0)
+    reader.fail(std::to_string(reader.remaining()) + " bytes left after a " + type);
+}
+
+// A message that does not parse as its type says so: the recorder's
+// definition does not match its data (or the bag is corrupt).
+template <typename Decode>
+auto decodeAs(const std::string& type, Decode decode) {
+  try {
+    return decode();
+  } catch (const Error& e) {
+    throw Error(std::string(e.what()) + ": the message does not match the definition of " + type);
   }
 }
 
-}  // namespace
-
-PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, const std::string& what) {
+PointCloud2View decodeCloud(const std::vector<std::uint8_t>& message, const std::string& what) {
   ByteReader reader(message.data(), message.size(), what);
   PointCloud2View cloud;
   const Header header = readHeader(reader);
@@ -65,21 +73,18 @@ PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, cons
   expectEnd(reader, kPointCloud2);
   const std::uint64_t points = std::uint64_t{cloud.height} * cloud.width;
   if (std::uint64_t{cloud.height} * cloud.row_step > cloud.data_size ||
-      (points > 0 && cloud.point_step == 0) || std::uint64_t{cloud.width} * cloud.point_step > cloud.row_step) {
+      (points > 0 && cloud.point_step == 0) ||
+      std::uint64_t{cloud.width} * cloud.point_step > cloud.row_step) {
     reader.fail("a PointCloud2 of " + std::to_string(cloud.height) + " x " + std::to_string(cloud.width) +
                 " points of " + std::to_string(cloud.point_step) + " bytes (rows of " +
-                std::to_string(cloud.row_step) + ") in " + std::to_string(cloud.data_size) + " bytes of data");
+                std::to_string(cloud.row_step) + ") in " + std::to_string(cloud.data_size) +
+                " bytes of data");
   }
   return cloud;
 }
 
-bool isTrajectoryType(const std::string& type) {
-  return type == "nav_msgs/Odometry" || type == "geometry_msgs/PoseStamped" ||
-         type == "geometry_msgs/PoseWithCovarianceStamped" || type == "nav_msgs/Path";
-}
-
-std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
-                                     const std::string& what) {
+std::vector<StampedPose> decodeTrajectory(const std::string& type, const std::vector<std::uint8_t>& message,
+                                          const std::string& what) {
   ByteReader reader(message.data(), message.size(), what);
   std::vector<StampedPose> poses;
   if (type == "nav_msgs/Path") {
@@ -95,17 +100,32 @@ std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<
     if (type == "nav_msgs/Odometry") pose.child_frame_id = reader.string();
     pose.pose = readPose(reader);
     if (type == "nav_msgs/Odometry") {
-      reader.skip(36 * 8);           // pose covariance
-      reader.skip(6 * 8 + 36 * 8);   // twist and its covariance
+      reader.skip(36 * 8);          // pose covariance
+      reader.skip(6 * 8 + 36 * 8);  // twist and its covariance
     } else if (type == "geometry_msgs/PoseWithCovarianceStamped") {
       reader.skip(36 * 8);
-    } else if (type != "geometry_msgs/PoseStamped") {
-      throw Error(what + ": " + type + " is not a trajectory type hba reads");
     }
     poses.push_back(pose);
   }
   expectEnd(reader, type);
   return poses;
+}
+
+}  // namespace
+
+PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, const std::string& what) {
+  return decodeAs(kPointCloud2, [&] { return decodeCloud(message, what); });
+}
+
+std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
+                                     const std::string& what) {
+  if (!isTrajectoryType(type)) throw Error(what + ": " + type + " is not a trajectory type hba reads");
+  return decodeAs(type, [&] { return decodeTrajectory(type, message, what); });
+}
+
+bool isTrajectoryType(const std::string& type) {
+  return type == "nav_msgs/Odometry" || type == "geometry_msgs/PoseStamped" ||
+         type == "geometry_msgs/PoseWithCovarianceStamped" || type == "nav_msgs/Path";
 }
 
 }  // namespace hba::rec

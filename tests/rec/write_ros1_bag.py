@@ -7,6 +7,7 @@ a topic hba has no use for. Variants exercise other layouts and mistakes.
 Exit 77 when python3-rosbag is missing (the tests then skip)."""
 import argparse
 import glob
+import io
 import os
 import struct
 import sys
@@ -97,7 +98,8 @@ def main():
     parser.add_argument("--second-cloud-topic", action="store_true")
     parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "none"])
     parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
-    parser.add_argument("--odometry-rate", type=int, default=1, help="poses per scan (interpolation)")
+    parser.add_argument("--mismatch", action="store_true",
+                        help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
 
     scans = sorted(glob.glob(os.path.join(args.folder, "Scans", "*.pcd")))
@@ -122,7 +124,14 @@ def main():
                 w, x, y, z = quaternion(pose[:, :3])
                 target.position.x, target.position.y, target.position.z = pose[:, 3]
                 target.orientation.x, target.orientation.y, target.orientation.z, target.orientation.w = x, y, z, w
-                bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
+                if args.mismatch:
+                    wrong = PoseStamped(header=odo.header, pose=odo.pose.pose)
+                    buffer = io.BytesIO()
+                    wrong.serialize(buffer)
+                    raw = ("nav_msgs/Odometry", buffer.getvalue(), Odometry._md5sum, Odometry)
+                    bag.write("/Odometry", raw, stamp, raw=True)
+                else:
+                    bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
             if n % 50 == 0:
                 bag.write("/rosout_agg", String(data="scan %d" % n), stamp)
     return 0

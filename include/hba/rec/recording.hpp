@@ -17,8 +17,8 @@
 namespace hba::rec {
 
 struct RecordingOptions {
-  std::string cloud_topic;  // empty: the only PointCloud2 topic
-  std::string pose_topic;   // empty: the only trajectory topic
+  std::string cloud_topic;   // empty: the only PointCloud2 topic
+  std::string pose_topic;    // empty: the only trajectory topic
   double time_offset = 0.0;  // s, added to every scan's stamp before its pose is looked up
 };
 

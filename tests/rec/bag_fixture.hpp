@@ -1,0 +1,82 @@
+#pragma once
+// A small scan folder (binary PCDs, KITTI poses, times.txt) and the ROS 1
+// bag Debian's python3-rosbag writes from it (tests/rec/write_ros1_bag.py).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/io/pcd.hpp"
+#include "test_support.hpp"
+
+namespace hba::test {
+
+struct ScanFolder {
+  std::vector<PointCloud> scans;
+  std::vector<Pose> poses;
+  std::vector<double> stamps;
+};
+
+// `n` scans of random points (integer intensities), poses turning along a
+// curve, stamps 0.1 s apart in Unix time.
+inline ScanFolder writeScanFolder(const std::filesystem::path& dir, std::size_t n) {
+  std::filesystem::create_directories(dir / "Scans");
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coordinate(-30.0f, 30.0f);
+  std::uniform_int_distribution<int> intensity(0, 255);
+  ScanFolder folder;
+  std::ofstream poses(dir / "odom_poses.txt"), times(dir / "times.txt");
+  poses.precision(17);
+  times.precision(17);
+  for (std::size_t k = 0; k < n; ++k) {
+    PointCloud scan;
+    for (int p = 0; p < 200 + static_cast<int>(k); ++p) {
+      scan.add(Vec3f(coordinate(rng), coordinate(rng), coordinate(rng)), static_cast<float>(intensity(rng)));
+    }
+    char name[32];
+    std::snprintf(name, sizeof(name), "%06zu.pcd", k);
+    io::writePcd(dir / "Scans" / name, scan);
+    const double a = 0.07 * static_cast<double>(k);
+    const Quat q = Quat(Eigen::AngleAxisd(a, Vec3::UnitZ()) * Eigen::AngleAxisd(0.3 * a, Vec3::UnitX()));
+    const Pose pose(q, Vec3(2.0 * std::sin(a), 3.0 * a, 0.1 * a));
+    const Mat3 R = pose.R();
+    for (int r = 0; r < 3; ++r) {
+      poses << R(r, 0) << ' ' << R(r, 1) << ' ' << R(r, 2) << ' ' << pose.t[r] << (r < 2 ? ' ' : '\n');
+    }
+    const double stamp = 1600000000.0 + 0.1 * static_cast<double>(k);
+    times << stamp << '\n';
+    folder.scans.push_back(scan);
+    folder.poses.push_back(pose);
+    folder.stamps.push_back(stamp);
+  }
+  return folder;
+}
+
+// Runs the writer; 77 means python3-rosbag is missing. Debian's python
+// first: python3-rosbag installs there, whatever python3 a PATH finds.
+inline int writeBag(const std::filesystem::path& folder, const std::filesystem::path& bag,
+                    const std::string& flags = "") {
+  const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const CommandResult result = runCommand(python + " " + std::string(HBA_ROS1_BAG_WRITER) + " " + folder.string() +
+                                          " " + bag.string() + " " + flags);
+  if (result.exit_code != 0 && result.exit_code != 77) ADD_FAILURE() << result.output;
+  return result.exit_code;
+}
+
+inline double angleBetween(const Pose& a, const Pose& b) { return Eigen::AngleAxisd(a.q.inverse() * b.q).angle(); }
+
+}  // namespace hba::test
+
+// Writes BAG from FOLDER, or skips the test where python3-rosbag is missing.
+#define WRITE_BAG_OR_SKIP(folder, bag, flags)                                                   \
+  do {                                                                                          \
+    const int written = ::hba::test::writeBag(folder, bag, flags);                              \
+    if (written == 77) GTEST_SKIP() << "python3-rosbag is not installed (apt-get install python3-rosbag)"; \
+    ASSERT_EQ(written, 0);                                                                      \
+  } while (false)

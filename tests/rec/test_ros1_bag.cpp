@@ -1,0 +1,120 @@
+// ROS 1 bags written by Debian's python3-rosbag (not by hba) read back:
+// every chunk compression, other field layouts and byte orders, poses
+// interpolated at the scans' stamps.
+#include <gtest/gtest.h>
+
+#include "bag_fixture.hpp"
+#include "hba/io/dataset.hpp"
+#include "hba/rec/recording.hpp"
+#include "hba/rec/ros1_bag.hpp"
+
+namespace hba::rec {
+namespace {
+using test::angleBetween;
+
+void expectSameScan(const PointCloud& read, const PointCloud& written) {
+  ASSERT_EQ(read.size(), written.size());
+  ASSERT_TRUE(read.hasIntensity());
+  for (std::size_t p = 0; p < read.size(); ++p) {
+    ASSERT_EQ(read.points[p], written.points[p]) << "point " << p;
+    ASSERT_EQ(read.intensity[p], written.intensity[p]) << "point " << p;
+  }
+}
+
+class Ros1BagCompression : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(Ros1BagCompression, ReadsWhatRosbagWrote) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", std::string("--compression ") + GetParam());
+
+  const Ros1Bag bag = Ros1Bag::open(dir / "run.bag");
+  std::size_t clouds = 0;
+  for (const Ros1Connection& c : bag.connections()) {
+    if (c.topic == "/cloud_registered_body") {
+      EXPECT_EQ(c.type, "sensor_msgs/PointCloud2");
+      EXPECT_NE(c.definition.find("PointField[] fields"), std::string::npos);
+      clouds += bag.messageCount(c.id);
+    }
+  }
+  EXPECT_EQ(clouds, 12u);
+
+  const Recording recording = Recording::open(dir / "run.bag");
+  EXPECT_EQ(recording.cloudTopic(), "/cloud_registered_body");
+  EXPECT_EQ(recording.poseTopic(), "/Odometry");
+  EXPECT_EQ(recording.cloudFrame(), "body");
+  EXPECT_TRUE(recording.warnings().empty());
+  ASSERT_EQ(recording.size(), 12u);
+  for (std::size_t k = 0; k < 12; ++k) {
+    EXPECT_NEAR(recording.trajectory().stamps[k], folder.stamps[k], 1e-6);
+    EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-9);
+    EXPECT_LT(angleBetween(recording.trajectory().poses[k], folder.poses[k]), 1e-9);
+    expectSameScan(recording.loadScan(k), folder.scans[k]);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Chunks, Ros1BagCompression, ::testing::Values("none", "lz4", "bz2"));
+
+TEST(Ros1Bag, ReadsFloat64BigEndianCloudsWithOtherFields) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 4);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--layout float64 --big-endian");
+  const Recording recording = Recording::open(dir / "run.bag");
+  EXPECT_EQ(recording.cloudFields(), (std::vector<std::string>{"x", "y", "z", "ring", "intensity"}));
+  ASSERT_EQ(recording.size(), 4u);
+  // float32 -> float64 -> float32 is exact; the intensities are whole numbers.
+  for (std::size_t k = 0; k < 4; ++k) expectSameScan(recording.loadScan(k), folder.scans[k]);
+}
+
+TEST(Ros1Bag, InterpolatesPosesAtTheScansStamps) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 10);
+  // Each pose stamped 30 ms after its scan: scan k lies 70 % of the way
+  // from pose k-1 to pose k, and scan 0 before the trajectory.
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--pose-shift 0.03");
+  const Recording recording = Recording::open(dir / "run.bag");
+  ASSERT_EQ(recording.size(), 9u);
+  ASSERT_EQ(recording.warnings().size(), 1u);
+  EXPECT_NE(recording.warnings().front().find("1 of 10 scans lie outside the trajectory"), std::string::npos)
+      << recording.warnings().front();
+  for (std::size_t k = 1; k < 10; ++k) {
+    const Pose& a = folder.poses[k - 1];
+    const Pose& b = folder.poses[k];
+    const Pose& got = recording.trajectory().poses[k - 1];
+    EXPECT_NEAR(recording.trajectory().stamps[k - 1], folder.stamps[k], 1e-6);
+    EXPECT_LT((got.t - (0.3 * a.t + 0.7 * b.t)).norm(), 1e-6);
+    // On the arc from a to b, 70 % of the way.
+    EXPECT_NEAR(angleBetween(a, got), 0.7 * angleBetween(a, b), 1e-6);
+    EXPECT_NEAR(angleBetween(got, b), 0.3 * angleBetween(a, b), 1e-6);
+  }
+}
+
+TEST(Ros1Bag, ReadsPoseStampedTrajectoriesAndTakesAnOffset) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 6);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--pose-type posestamped --pose-shift 0.5");
+  RecordingOptions options;
+  options.time_offset = 0.5;  // the poses' clock runs 0.5 s ahead
+  const Recording recording = Recording::open(dir / "run.bag", options);
+  EXPECT_EQ(recording.poseTopic(), "/pose");
+  ASSERT_EQ(recording.size(), 6u);
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-6);
+}
+
+TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--compression lz4");
+  const io::Dataset from_bag = io::Dataset::open(dir / "run.bag");
+  const io::Dataset from_folder = io::Dataset::open(dir / "folder");
+  EXPECT_EQ(from_bag.layout(), "ros1-bag");
+  ASSERT_EQ(from_bag.size(), from_folder.size());
+  ASSERT_NE(from_bag.recording(), nullptr);
+  for (std::size_t k = 0; k < from_bag.size(); ++k) {
+    expectSameScan(from_bag.loadScan(k), from_folder.loadScan(k));
+    EXPECT_LT((from_bag.trajectory().poses[k].t - from_folder.trajectory().poses[k].t).norm(), 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace hba::rec

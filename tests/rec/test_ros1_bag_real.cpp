@@ -1,0 +1,76 @@
+// hku1 written into ROS 1 bags by python3-rosbag as FAST-LIO2 records it
+// (/cloud_registered_body + /Odometry): `hba optimize BAG` gives the folder
+// run's poses and MME, and `hba extract` gives the folder back.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "bag_fixture.hpp"
+#include "cli_runs.hpp"
+
+namespace hba::rec {
+namespace {
+namespace fs = std::filesystem;
+
+double mmeOf(const std::string& data, const fs::path& poses) {
+  const test::CommandResult result = test::runCommand(test::hbaTool() + " -q mme " + data + " --poses " + poses.string());
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  std::istringstream words(result.output);
+  std::string label;
+  double mme = 0.0;
+  words >> label >> mme;
+  EXPECT_EQ(label, "MME") << result.output;
+  return mme;
+}
+
+TEST(Ros1BagReal, Hku1BagGivesTheFolderRunsPosesAndMme) {
+  const fs::path hku1 = test::sharedDataDir() / "hku1";
+  if (!fs::exists(hku1 / "odom_poses.txt")) GTEST_SKIP() << "../shared/data/hku1 is absent";
+  test::TempDir dir;
+  WRITE_BAG_OR_SKIP(hku1, dir / "hku1.bag", "--compression lz4");
+  const std::string bag = (dir / "hku1.bag").string();
+  const std::string bag_before = test::readText(bag);
+
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + bag + " -o " + (dir / "from_bag").string() + " --no-render");
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + hku1.string() + " -o " + (dir / "from_folder").string() +
+              " --no-render");
+  // The bag's quaternions differ from the folder's rotation matrices in
+  // the 16th digit, and that is all.
+  const double rmse = test::evalRmse("ate", dir / "from_folder" / "poses_kitti.txt",
+                                     dir / "from_bag" / "poses_kitti.txt", dir.path(), "--align none");
+  EXPECT_LT(rmse, 1e-3);
+  const double mme_bag = mmeOf(bag, dir / "from_bag" / "poses_kitti.txt");
+  const double mme_folder = mmeOf(hku1.string(), dir / "from_folder" / "poses_kitti.txt");
+  EXPECT_NEAR(mme_bag, mme_folder, 1e-3);
+  EXPECT_LT(mme_bag, -3.0);
+
+  // extract, then optimize the folder it wrote: the bag run's poses exactly.
+  test::runOk(test::hbaTool() + " -q extract " + bag + " -o " + (dir / "extracted").string());
+  EXPECT_EQ(test::fileContents(dir / "extracted" / "pcd").size(), 314u);
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + (dir / "extracted").string() + " -o " +
+              (dir / "from_extracted").string() + " --no-render");
+  EXPECT_EQ(test::readText(dir / "from_extracted" / "poses_kitti.txt"),
+            test::readText(dir / "from_bag" / "poses_kitti.txt"));
+  EXPECT_EQ(test::readText(bag), bag_before);  // the recording untouched
+}
+
+TEST(Ros1BagReal, ABadRecordingWritesNothing) {
+  test::TempDir dir;
+  test::writeScanFolder(dir / "folder", 3);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "two.bag", "--second-cloud-topic");
+  const std::string before = test::readText(dir / "two.bag");
+  for (const std::string command : {"optimize", "extract"}) {
+    const test::CommandResult result = test::runCommand(test::hbaTool() + " " + command + " " +
+                                                        (dir / "two.bag").string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_NE(result.output.find("choose one with --cloud-topic"), std::string::npos) << result.output;
+    EXPECT_FALSE(fs::exists(dir / "out"));
+  }
+  EXPECT_EQ(test::readText(dir / "two.bag"), before);
+  test::runOk(test::hbaTool() + " -q extract " + (dir / "two.bag").string() + " --cloud-topic /cloud_registered -o " +
+              (dir / "out").string());
+  EXPECT_TRUE(fs::exists(dir / "out" / "pose.json"));
+}
+
+}  // namespace
+}  // namespace hba::rec
