@@ -11,9 +11,11 @@ find_package(nanoflann REQUIRED)
 find_package(Threads REQUIRED)
 
 find_package(liblzf REQUIRED)   # PCD binary_compressed
-# ROS bags' chunks: lz4 (liblz4-dev, through pkg-config) and bzip2 (libbz2-dev).
+# Recordings' chunks: lz4 and zstd (liblz4-dev, libzstd-dev, through pkg-config)
+# and bzip2 (libbz2-dev).
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
+pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
 find_package(BZip2 REQUIRED)
 
 find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)

@@ -1,7 +1,9 @@
 #pragma once
 // Little-endian fields read from a byte range, every read bounds-checked: a
 // record or message shorter than its fields say throws hba::Error naming
-// `what` (the file and the record or message).
+// `what` (the file and the record or message). In CDR (ROS 2's
+// serialization) each number is aligned to its size from the payload's
+// start, and strings carry their terminating zero.
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -15,12 +17,20 @@ class ByteReader {
   ByteReader(const std::uint8_t* data, std::size_t size, std::string what)
       : data_(data), size_(size), what_(std::move(what)) {}
 
+  // From here on, CDR: aligned from this position.
+  void startCdr() {
+    cdr_ = true;
+    origin_ = pos_;
+  }
+  bool cdr() const { return cdr_; }
+
   std::size_t position() const { return pos_; }
   std::size_t remaining() const { return size_ - pos_; }
   const std::uint8_t* here() const { return data_ + pos_; }
 
   template <typename T>
   T read() {
+    if (cdr_) skip((sizeof(T) - (pos_ - origin_) % sizeof(T)) % sizeof(T));
     need(sizeof(T));
     T value;
     std::memcpy(&value, data_ + pos_, sizeof(T));  // the hosts we build for are little-endian
@@ -43,6 +53,10 @@ class ByteReader {
     need(length);
     std::string text(reinterpret_cast<const char*>(data_ + pos_), length);
     pos_ += length;
+    if (cdr_) {
+      if (text.empty() || text.back() != '\0') fail("a CDR string without its terminating zero");
+      text.pop_back();
+    }
     return text;
   }
   // A length-prefixed byte array: where it starts, and its length.
@@ -79,6 +93,8 @@ class ByteReader {
   std::size_t size_;
   std::size_t pos_ = 0;
   std::string what_;
+  bool cdr_ = false;
+  std::size_t origin_ = 0;
 };
 
 }  // namespace hba::rec

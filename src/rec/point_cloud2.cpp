@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "hba/core/error.hpp"
-#include "hba/rec/ros1_messages.hpp"
+#include "hba/rec/ros_messages.hpp"
 
 namespace hba::rec {
 namespace {

@@ -7,14 +7,15 @@
 
 #include "hba/core/error.hpp"
 #include "hba/rec/ros1_bag.hpp"
-#include "hba/rec/ros1_messages.hpp"
+#include "hba/rec/ros_messages.hpp"
+#include "message_store.hpp"
 
 namespace hba::rec {
 namespace fs = std::filesystem;
 
 struct Recording::Clouds {
-  Ros1Bag bag;
-  std::vector<Ros1MessageRef> kept;  // scan i's message
+  std::unique_ptr<MessageStore> store;
+  std::vector<StoredMessage> kept;  // scan i's message
 };
 
 namespace {
@@ -48,31 +49,25 @@ std::string chooseTopic(const fs::path& path, const std::vector<RecordingTopic>&
 
 bool isCloudType(const std::string& type) { return type == kPointCloud2; }
 
-std::vector<std::uint32_t> connectionsOf(const Ros1Bag& bag, const std::string& topic) {
-  std::vector<std::uint32_t> ids;
-  for (const Ros1Connection& c : bag.connections()) {
-    if (c.topic == topic) ids.push_back(c.id);
-  }
-  return ids;
-}
-
-std::string typeOf(const Ros1Bag& bag, const std::string& topic) {
-  for (const Ros1Connection& c : bag.connections()) {
+std::string typeOf(const MessageStore& store, const std::string& topic) {
+  for (const StoredChannel& c : store.channels()) {
     if (c.topic == topic) return c.type;
   }
   return "";
 }
 
 // The trajectory's poses by stamp: a Path's last message, or every message.
-std::vector<StampedPose> readTrajectory(const Ros1Bag& bag, const std::string& topic) {
-  const std::string type = typeOf(bag, topic);
-  std::vector<Ros1MessageRef> messages = bag.messages(connectionsOf(bag, topic));
+std::vector<StampedPose> readTrajectory(const MessageStore& store, const std::string& topic) {
+  const std::string type = typeOf(store, topic);
+  std::vector<StoredMessage> messages = store.messages(topic);
   if (type == "nav_msgs/Path" && !messages.empty()) messages = {messages.back()};
   std::vector<StampedPose> poses;
-  for (const Ros1MessageRef& message : messages) {
+  for (const StoredMessage& message : messages) {
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", bag.path().string(), topic, message.record_time);
-    for (StampedPose& pose : decodePoses(type, bag.read(message), what)) poses.push_back(std::move(pose));
+        fmt::format("{}: {} message at {:.3f} s", store.path().string(), topic, message.time);
+    for (StampedPose& pose : decodePoses(type, store.read(message), store.serialization(), what)) {
+      poses.push_back(std::move(pose));
+    }
   }
   std::stable_sort(poses.begin(), poses.end(),
                    [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
@@ -119,7 +114,9 @@ std::string describeTopics(const std::vector<RecordingTopic>& topics) {
   return text.empty() ? "  (none)" : text;
 }
 
-bool isRecording(const fs::path& path) { return fs::is_regular_file(path) && looksLikeRos1Bag(path); }
+bool isRecording(const fs::path& path) {
+  return fs::is_regular_file(path) && (looksLikeRos1Bag(path) || looksLikeMcap(path));
+}
 
 Recording::Recording() = default;
 Recording::~Recording() = default;
@@ -129,16 +126,16 @@ Recording& Recording::operator=(Recording&&) noexcept = default;
 Recording Recording::open(const fs::path& path, const RecordingOptions& options) {
   Recording recording;
   recording.path_ = path;
-  recording.format_ = "ROS 1 bag";
-  recording.clouds_ = std::make_unique<Clouds>(Clouds{Ros1Bag::open(path), {}});
-  const Ros1Bag& bag = recording.clouds_->bag;
+  recording.clouds_ = std::make_unique<Clouds>(Clouds{openMessageStore(path), {}});
+  const MessageStore& bag = *recording.clouds_->store;
+  recording.format_ = bag.format();
 
   std::map<std::string, RecordingTopic> by_topic;
-  for (const Ros1Connection& c : bag.connections()) {
+  for (const StoredChannel& c : bag.channels()) {
     RecordingTopic& topic = by_topic[c.topic];
     topic.topic = c.topic;
     topic.type = c.type;
-    topic.messages += bag.messageCount(c.id);
+    topic.messages += c.messages;
   }
   for (auto& entry : by_topic) recording.topics_.push_back(entry.second);
 
@@ -155,14 +152,14 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
 
   // Every cloud's own stamp, and its pose there.
-  const std::vector<Ros1MessageRef> clouds = bag.messages(connectionsOf(bag, recording.cloud_topic_));
+  const std::vector<StoredMessage> clouds = bag.messages(recording.cloud_topic_);
   recording.cloud_messages_ = clouds.size();
   std::vector<double> dropped;
-  std::vector<std::pair<double, Ros1MessageRef>> stamped;
-  for (const Ros1MessageRef& message : clouds) {
+  std::vector<std::pair<double, StoredMessage>> stamped;
+  for (const StoredMessage& message : clouds) {
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", path.string(), recording.cloud_topic_, message.record_time);
-    const PointCloud2View view = decodePointCloud2(bag.read(message), what);
+        fmt::format("{}: {} message at {:.3f} s", path.string(), recording.cloud_topic_, message.time);
+    const PointCloud2View view = decodePointCloud2(bag.read(message), bag.serialization(), what);
     if (stamped.empty()) {
       recording.cloud_frame_ = view.frame_id;
       for (const PointField& field : view.fields) recording.cloud_fields_.push_back(field.name);
@@ -204,11 +201,11 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
 }
 
 PointCloud Recording::loadScan(std::size_t i) const {
-  const Ros1MessageRef& message = clouds_->kept.at(i);
+  const StoredMessage& message = clouds_->kept.at(i);
   const std::string what =
       fmt::format("{}: scan {} ({} at {:.3f} s)", path_.string(), i, cloud_topic_, trajectory_.stamps.at(i));
-  const std::vector<std::uint8_t> bytes = clouds_->bag.read(message);
-  return toPointCloud(decodePointCloud2(bytes, what), what);
+  const std::vector<std::uint8_t> bytes = clouds_->store->read(message);
+  return toPointCloud(decodePointCloud2(bytes, clouds_->store->serialization(), what), what);
 }
 
 }  // namespace hba::rec

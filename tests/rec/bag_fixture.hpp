@@ -63,20 +63,41 @@ inline ScanFolder writeScanFolder(const std::filesystem::path& dir, std::size_t 
 inline int writeBag(const std::filesystem::path& folder, const std::filesystem::path& bag,
                     const std::string& flags = "") {
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const CommandResult result = runCommand(python + " " + std::string(HBA_ROS1_BAG_WRITER) + " " + folder.string() +
-                                          " " + bag.string() + " " + flags);
+  const CommandResult result = runCommand(python + " " + std::string(HBA_ROS1_BAG_WRITER) + " " +
+                                          folder.string() + " " + bag.string() + " " + flags);
   if (result.exit_code != 0 && result.exit_code != 77) ADD_FAILURE() << result.output;
   return result.exit_code;
 }
 
-inline double angleBetween(const Pose& a, const Pose& b) { return Eigen::AngleAxisd(a.q.inverse() * b.q).angle(); }
+// Runs the MCAP writer (npm's @mcap/core + @foxglove/rosmsg2-serialization);
+// 77 means node, npm or the registry is missing.
+inline int writeMcap(const std::filesystem::path& folder, const std::filesystem::path& mcap,
+                     const std::string& compression = "zstd", std::size_t scans = 0) {
+  const CommandResult result =
+      runCommand("bash " + std::string(HBA_MCAP_WRITER) + " " + folder.string() + " " + mcap.string() + " " +
+                 compression + " " + std::to_string(scans));
+  if (result.exit_code != 0 && result.exit_code != 77) ADD_FAILURE() << result.output;
+  return result.exit_code;
+}
+
+inline double angleBetween(const Pose& a, const Pose& b) {
+  return Eigen::AngleAxisd(a.q.inverse() * b.q).angle();
+}
 
 }  // namespace hba::test
 
 // Writes BAG from FOLDER, or skips the test where python3-rosbag is missing.
-#define WRITE_BAG_OR_SKIP(folder, bag, flags)                                                   \
-  do {                                                                                          \
-    const int written = ::hba::test::writeBag(folder, bag, flags);                              \
+#define WRITE_BAG_OR_SKIP(folder, bag, flags)                                                              \
+  do {                                                                                                     \
+    const int written = ::hba::test::writeBag(folder, bag, flags);                                         \
     if (written == 77) GTEST_SKIP() << "python3-rosbag is not installed (apt-get install python3-rosbag)"; \
-    ASSERT_EQ(written, 0);                                                                      \
+    ASSERT_EQ(written, 0);                                                                                 \
+  } while (false)
+
+// Writes an MCAP file from FOLDER, or skips where node or npm is missing.
+#define WRITE_MCAP_OR_SKIP(folder, mcap, compression)                              \
+  do {                                                                             \
+    const int written = ::hba::test::writeMcap(folder, mcap, compression);         \
+    if (written == 77) GTEST_SKIP() << "node, npm or the npm registry is missing"; \
+    ASSERT_EQ(written, 0);                                                         \
   } while (false)

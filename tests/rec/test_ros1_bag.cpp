@@ -98,7 +98,8 @@ TEST(Ros1Bag, ReadsPoseStampedTrajectoriesAndTakesAnOffset) {
   const Recording recording = Recording::open(dir / "run.bag", options);
   EXPECT_EQ(recording.poseTopic(), "/pose");
   ASSERT_EQ(recording.size(), 6u);
-  for (std::size_t k = 0; k < 6; ++k) EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-6);
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-6);
 }
 
 TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {

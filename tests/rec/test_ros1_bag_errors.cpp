@@ -43,7 +43,8 @@ TEST(Ros1BagErrors, TwoCloudTopicsAreListedAndOneCanBeChosen) {
   options.cloud_topic = "/cloud_registered";
   EXPECT_EQ(openError(dir / "run.bag", options), "");
   options.cloud_topic = "/Odometry";
-  EXPECT_NE(openError(dir / "run.bag", options).find("is a nav_msgs/Odometry, not a point cloud"), std::string::npos);
+  EXPECT_NE(openError(dir / "run.bag", options).find("is a nav_msgs/Odometry, not a point cloud"),
+            std::string::npos);
   options.cloud_topic = "/points";
   EXPECT_NE(openError(dir / "run.bag", options).find("no topic /points"), std::string::npos);
 }
@@ -52,7 +53,8 @@ TEST(Ros1BagErrors, NoTrajectoryOrOneThatCoversNoScan) {
   test::TempDir dir;
   test::writeScanFolder(dir / "folder", 3);
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "none.bag", "--pose-type none");
-  EXPECT_NE(openError(dir / "none.bag").find("no trajectory"), std::string::npos) << openError(dir / "none.bag");
+  EXPECT_NE(openError(dir / "none.bag").find("no trajectory"), std::string::npos)
+      << openError(dir / "none.bag");
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "late.bag", "--pose-shift 1000");
   const std::string late = openError(dir / "late.bag");
   EXPECT_NE(late.find("/Odometry covers none of the 3 scans"), std::string::npos) << late;
@@ -77,10 +79,11 @@ TEST(Ros1BagErrors, TruncatedUnknownCompressionAndMismatchedDefinitions) {
 
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "mismatch.bag", "--mismatch");
   const std::string mismatch = openError(dir / "mismatch.bag");
-  EXPECT_NE(mismatch.find("does not match the definition of nav_msgs/Odometry"), std::string::npos) << mismatch;
+  EXPECT_NE(mismatch.find("does not match the definition of nav_msgs/Odometry"), std::string::npos)
+      << mismatch;
 
   test::writeText(dir / "text.bag", "not a bag at all\n");
-  EXPECT_NE(openError(dir / "text.bag").find("not a ROS 1 bag"), std::string::npos);
+  EXPECT_NE(openError(dir / "text.bag").find("neither a ROS 1 bag nor an MCAP file"), std::string::npos);
 }
 
 // Random damage anywhere in a bag: a clear error or a readable bag, never
@@ -97,7 +100,8 @@ TEST(Ros1BagErrors, CorruptBytesNeverCrash) {
   for (int trial = 0; trial < 300; ++trial) {
     std::string damaged = bytes;
     // Damage the index and headers more often: the data bytes are only numbers.
-    const std::size_t at = trial % 2 ? where(rng) : std::max<std::size_t>(bytes.size() - 1 - where(rng) % 4096, 0);
+    const std::size_t at =
+        trial % 2 ? where(rng) : std::max<std::size_t>(bytes.size() - 1 - where(rng) % 4096, 0);
     damaged[at] = static_cast<char>(value(rng));
     test::writeText(dir / "damaged.bag", damaged);
     if (!openError(dir / "damaged.bag").empty()) ++refused;

@@ -13,7 +13,8 @@ namespace {
 namespace fs = std::filesystem;
 
 double mmeOf(const std::string& data, const fs::path& poses) {
-  const test::CommandResult result = test::runCommand(test::hbaTool() + " -q mme " + data + " --poses " + poses.string());
+  const test::CommandResult result =
+      test::runCommand(test::hbaTool() + " -q mme " + data + " --poses " + poses.string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   std::istringstream words(result.output);
   std::string label;
@@ -31,9 +32,10 @@ TEST(Ros1BagReal, Hku1BagGivesTheFolderRunsPosesAndMme) {
   const std::string bag = (dir / "hku1.bag").string();
   const std::string bag_before = test::readText(bag);
 
-  test::runOk(test::hbaTool() + " -q -j 2 optimize " + bag + " -o " + (dir / "from_bag").string() + " --no-render");
-  test::runOk(test::hbaTool() + " -q -j 2 optimize " + hku1.string() + " -o " + (dir / "from_folder").string() +
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + bag + " -o " + (dir / "from_bag").string() +
               " --no-render");
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + hku1.string() + " -o " +
+              (dir / "from_folder").string() + " --no-render");
   // The bag's quaternions differ from the folder's rotation matrices in
   // the 16th digit, and that is all.
   const double rmse = test::evalRmse("ate", dir / "from_folder" / "poses_kitti.txt",
@@ -60,15 +62,15 @@ TEST(Ros1BagReal, ABadRecordingWritesNothing) {
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "two.bag", "--second-cloud-topic");
   const std::string before = test::readText(dir / "two.bag");
   for (const std::string command : {"optimize", "extract"}) {
-    const test::CommandResult result = test::runCommand(test::hbaTool() + " " + command + " " +
-                                                        (dir / "two.bag").string() + " -o " + (dir / "out").string());
+    const test::CommandResult result = test::runCommand(
+        test::hbaTool() + " " + command + " " + (dir / "two.bag").string() + " -o " + (dir / "out").string());
     EXPECT_EQ(result.exit_code, 1) << result.output;
     EXPECT_NE(result.output.find("choose one with --cloud-topic"), std::string::npos) << result.output;
     EXPECT_FALSE(fs::exists(dir / "out"));
   }
   EXPECT_EQ(test::readText(dir / "two.bag"), before);
-  test::runOk(test::hbaTool() + " -q extract " + (dir / "two.bag").string() + " --cloud-topic /cloud_registered -o " +
-              (dir / "out").string());
+  test::runOk(test::hbaTool() + " -q extract " + (dir / "two.bag").string() +
+              " --cloud-topic /cloud_registered -o " + (dir / "out").string());
   EXPECT_TRUE(fs::exists(dir / "out" / "pose.json"));
 }
 

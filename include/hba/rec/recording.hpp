@@ -1,5 +1,5 @@
 #pragma once
-// A recording (today a ROS 1 bag) as a sequence hba can optimize: the scans
+// A recording (a ROS 1 bag or an MCAP file) as a sequence hba can optimize: the scans
 // of one point cloud topic, each with the pose of one trajectory topic
 // interpolated at the scan's stamp. Topics are chosen automatically when
 // only one of each kind is there; otherwise the caller names them.
@@ -75,7 +75,7 @@ class Recording {
 // The topics as a table for messages: one line per topic, its type and count.
 std::string describeTopics(const std::vector<RecordingTopic>& topics);
 
-// True when `path` is a file hba reads as a recording (a ROS 1 bag).
+// True when `path` is a file hba reads as a recording (a ROS 1 bag, MCAP).
 bool isRecording(const std::filesystem::path& path);
 
 }  // namespace hba::rec

@@ -1,9 +1,11 @@
 #pragma once
-// The few ROS message types hba reads, decoded from their ROS 1
-// serialization: point clouds (sensor_msgs/PointCloud2) and trajectories
+// The few ROS message types hba reads, decoded from ROS 1's serialization
+// or ROS 2's (CDR): point clouds (sensor_msgs/PointCloud2) and trajectories
 // (nav_msgs/Odometry, geometry_msgs/PoseStamped and
-// PoseWithCovarianceStamped, nav_msgs/Path). A message shorter or longer than
-// its type says throws hba::Error naming `what`.
+// PoseWithCovarianceStamped, nav_msgs/Path). Types are named as ROS 1 does
+// ("sensor_msgs/PointCloud2"; rosTypeName turns ROS 2's names into these).
+// A message shorter or longer than its type says throws hba::Error naming
+// `what`.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,6 +14,11 @@
 #include "hba/core/pose.hpp"
 
 namespace hba::rec {
+
+enum class Serialization { Ros1, Cdr };
+
+// "sensor_msgs/msg/PointCloud2" -> "sensor_msgs/PointCloud2"; others as they are.
+std::string rosTypeName(const std::string& type);
 
 struct PointField {
   std::string name;
@@ -34,7 +41,8 @@ struct PointCloud2View {
 
 inline constexpr const char* kPointCloud2 = "sensor_msgs/PointCloud2";
 
-PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, const std::string& what);
+PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, Serialization serialization,
+                                  const std::string& what);
 
 // The points of a PointCloud2 in its own frame: x, y, z (float32 or
 // float64, either byte order, any padding) and intensity (or reflectivity)
@@ -52,6 +60,6 @@ struct StampedPose {
 bool isTrajectoryType(const std::string& type);
 // The poses of one trajectory message: one, or a Path's all.
 std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
-                                     const std::string& what);
+                                     Serialization serialization, const std::string& what);
 
 }  // namespace hba::rec

@@ -1,4 +1,4 @@
-#include "hba/rec/ros1_messages.hpp"
+#include "hba/rec/ros_messages.hpp"
 
 #include "byte_reader.hpp"
 #include "hba/core/error.hpp"
@@ -11,9 +11,25 @@ struct Header {
   std::string frame_id;
 };
 
+// A reader of one message: CDR after its 4-byte encapsulation header.
+ByteReader messageReader(const std::vector<std::uint8_t>& message, Serialization serialization,
+                         const std::string& what) {
+  ByteReader reader(message.data(), message.size(), what);
+  if (serialization == Serialization::Cdr) {
+    const std::uint8_t zero = reader.u8(), kind = reader.u8();
+    reader.skip(2);  // options
+    if (zero != 0 || kind != 1) {
+      reader.fail("not little-endian CDR (encapsulation " + std::to_string(zero) + " " +
+                  std::to_string(kind) + ")");
+    }
+    reader.startCdr();
+  }
+  return reader;
+}
+
 Header readHeader(ByteReader& reader) {
   Header header;
-  reader.u32();  // seq
+  if (!reader.cdr()) reader.u32();  // ROS 1's seq
   header.stamp = reader.time();
   header.frame_id = reader.string();
   return header;
@@ -30,7 +46,13 @@ Pose readPose(ByteReader& reader) {
   return Pose(q.normalized(), t);
 }
 
-void expectEnd(const ByteReader& reader, const std::string& type) {
+void expectEnd(ByteReader& reader, const std::string& type) {
+  // CDR writers may pad a message to a multiple of 4 or 8 bytes.
+  if (reader.cdr() && reader.remaining() < 8) {
+    bool zeros = true;
+    for (std::size_t k = 0; k < reader.remaining(); ++k) zeros = zeros && reader.here()[k] == 0;
+    if (zeros) return;
+  }
   if (reader.remaining() != 0)
     reader.fail(std::to_string(reader.remaining()) + " bytes left after a " + type);
 }
@@ -46,8 +68,9 @@ auto decodeAs(const std::string& type, Decode decode) {
   }
 }
 
-PointCloud2View decodeCloud(const std::vector<std::uint8_t>& message, const std::string& what) {
-  ByteReader reader(message.data(), message.size(), what);
+PointCloud2View decodeCloud(const std::vector<std::uint8_t>& message, Serialization serialization,
+                            const std::string& what) {
+  ByteReader reader = messageReader(message, serialization, what);
   PointCloud2View cloud;
   const Header header = readHeader(reader);
   cloud.stamp = header.stamp;
@@ -84,8 +107,8 @@ PointCloud2View decodeCloud(const std::vector<std::uint8_t>& message, const std:
 }
 
 std::vector<StampedPose> decodeTrajectory(const std::string& type, const std::vector<std::uint8_t>& message,
-                                          const std::string& what) {
-  ByteReader reader(message.data(), message.size(), what);
+                                          Serialization serialization, const std::string& what) {
+  ByteReader reader = messageReader(message, serialization, what);
   std::vector<StampedPose> poses;
   if (type == "nav_msgs/Path") {
     readHeader(reader);
@@ -113,14 +136,20 @@ std::vector<StampedPose> decodeTrajectory(const std::string& type, const std::ve
 
 }  // namespace
 
-PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, const std::string& what) {
-  return decodeAs(kPointCloud2, [&] { return decodeCloud(message, what); });
+std::string rosTypeName(const std::string& type) {
+  const std::size_t at = type.find("/msg/");
+  return at == std::string::npos ? type : type.substr(0, at) + "/" + type.substr(at + 5);
+}
+
+PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, Serialization serialization,
+                                  const std::string& what) {
+  return decodeAs(kPointCloud2, [&] { return decodeCloud(message, serialization, what); });
 }
 
 std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
-                                     const std::string& what) {
+                                     Serialization serialization, const std::string& what) {
   if (!isTrajectoryType(type)) throw Error(what + ": " + type + " is not a trajectory type hba reads");
-  return decodeAs(type, [&] { return decodeTrajectory(type, message, what); });
+  return decodeAs(type, [&] { return decodeTrajectory(type, message, serialization, what); });
 }
 
 bool isTrajectoryType(const std::string& type) {
