@@ -17,6 +17,7 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
 pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
 find_package(BZip2 REQUIRED)
+find_package(SQLite3 REQUIRED)  # ROS 2 sqlite3 bags (libsqlite3-dev)
 
 find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)
 # MPI for the tool only (the library links no transport): AUTO takes it

@@ -42,6 +42,6 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # building against the library needs the -dev packages its config finds.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS
-    "libeigen3-dev, libceres-dev, libtbb-dev, libspdlog-dev, libfmt-dev, libyaml-cpp-dev, nlohmann-json3-dev, libnanoflann-dev, liblzf-dev, liblz4-dev, libzstd-dev, libbz2-dev, libstb-dev, libpng-dev")
+    "libeigen3-dev, libceres-dev, libtbb-dev, libspdlog-dev, libfmt-dev, libyaml-cpp-dev, nlohmann-json3-dev, libnanoflann-dev, liblzf-dev, liblz4-dev, libzstd-dev, libbz2-dev, libsqlite3-dev, libstb-dev, libpng-dev")
 set(CPACK_GENERATOR DEB)
 include(CPack)

@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libceres-dev libtbb-dev
   libcli11-dev libspdlog-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libpng-dev libstb-dev libnanoflann-dev liblzf-dev liblz4-dev libzstd-dev libbz2-dev
+  libpng-dev libstb-dev libnanoflann-dev liblzf-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   pybind11-dev python3-dev python3-numpy
   libopenmpi-dev openmpi-bin
   clang-format

@@ -63,7 +63,8 @@ Pose parsePoseArgument(const std::string& text, const std::string& flag) {
 void DatasetArgs::addTo(CLI::App* command) {
   command
       ->add_option("DIR", dir,
-                   "Dataset folder (HBA, scans+trajectory, or KITTI layout) or a recording (ROS 1 bag, MCAP)")
+                   "Dataset folder (HBA, scans+trajectory, or KITTI layout) or a recording (ROS 1 bag, MCAP, "
+                   ".db3, rosbag2 folder)")
       ->required();
   command->add_option("--scans", scans, "Folder of scans (overrides detection)");
   command->add_option("--poses", poses, "Trajectory file (overrides detection)");
@@ -87,8 +88,7 @@ void DatasetArgs::addTo(CLI::App* command) {
                           "KITTI calib.txt: the poses are of camera 0, turned into LiDAR poses with Tr");
   conventions->add_flag("--scans-in-world", scans_in_world,
                         "The scans were saved in the world frame (moved by their pose)");
-  auto* topics =
-      command->add_option_group("Recordings", "When DIR is a ROS 1 bag or an MCAP file (docs/recordings.md)");
+  auto* topics = command->add_option_group("Recordings", "When DIR is a recording (docs/recordings.md)");
   topics->add_option("--cloud-topic", recording.cloud_topic,
                      "The sensor_msgs/PointCloud2 topic (default: the only one)");
   topics->add_option("--pose-topic", recording.pose_topic,

@@ -188,7 +188,7 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
       std::make_shared<const rec::Recording>(rec::Recording::open(path, overrides.recording));
   const rec::Recording& recording = *dataset.recording_;
   dataset.root_ = dataset.scans_dir_ = dataset.poses_file_ = path;
-  dataset.layout_ = recording.format() == "MCAP" ? "mcap" : "ros1-bag";
+  dataset.layout_ = recording.format() == "ROS 1 bag" ? "ros1-bag" : "ros2-bag";
   dataset.trajectory_ = recording.trajectory();
   dataset.stamps_source_ = "recording";
   if (overrides.poses_file) {

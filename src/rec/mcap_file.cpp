@@ -32,8 +32,8 @@ enum Op : std::uint8_t {
   kDataEnd = 0x0F,
 };
 
-std::vector<std::uint8_t> readBytes(std::ifstream& in, std::uint64_t pos, std::uint64_t n, std::uint64_t file_size,
-                                    const fs::path& path) {
+std::vector<std::uint8_t> readBytes(std::ifstream& in, std::uint64_t pos, std::uint64_t n,
+                                    std::uint64_t file_size, const fs::path& path) {
   if (pos > file_size || n > file_size - pos) {
     failAt(path, "truncated: a record at byte " + std::to_string(pos) + " runs past the end of the file (" +
                      std::to_string(file_size) + " bytes); the recording was cut short");
@@ -49,11 +49,14 @@ std::vector<std::uint8_t> decompress(const std::string& compression, const std::
                                      std::uint64_t size, const std::string& where) {
   if (compression.empty()) return decompressChunk("none", data.data(), data.size(), size, where);
   if (compression != "zstd") return decompressChunk(compression, data.data(), data.size(), size, where);
-  if (size > 1024 * data.size() + (std::size_t{1} << 20)) throw Error(where + ": the chunk claims an impossible size");
+  if (size > 1024 * data.size() + (std::size_t{1} << 20))
+    throw Error(where + ": the chunk claims an impossible size");
   std::vector<std::uint8_t> out(size);
   const std::size_t got = ZSTD_decompress(out.data(), out.size(), data.data(), data.size());
   if (ZSTD_isError(got)) throw Error(where + ": the zstd data is corrupt (" + ZSTD_getErrorName(got) + ")");
-  if (got != size) throw Error(where + ": the chunk holds " + std::to_string(got) + " bytes, its header says " + std::to_string(size));
+  if (got != size)
+    throw Error(where + ": the chunk holds " + std::to_string(got) + " bytes, its header says " +
+                std::to_string(size));
   return out;
 }
 
@@ -70,7 +73,8 @@ class McapFile : public MessageStore {
     for (const StoredMessage& m : messages_) {
       if (topic_of_.at(m.channel) == topic) out.push_back(m);
     }
-    std::stable_sort(out.begin(), out.end(), [](const StoredMessage& a, const StoredMessage& b) { return a.time < b.time; });
+    std::stable_sort(out.begin(), out.end(),
+                     [](const StoredMessage& a, const StoredMessage& b) { return a.time < b.time; });
     return out;
   }
 
@@ -103,7 +107,8 @@ class McapFile : public MessageStore {
   }
 
  private:
-  static std::vector<std::uint8_t> messageData(const std::uint8_t* record, std::size_t size, const std::string& where) {
+  static std::vector<std::uint8_t> messageData(const std::uint8_t* record, std::size_t size,
+                                               const std::string& where) {
     ByteReader reader(record, size, where);
     reader.read<std::uint16_t>();  // channel
     reader.u32();                  // sequence
@@ -145,7 +150,9 @@ class McapFile : public MessageStore {
       const std::string encoding = reader.string();
       if (topic_of_.count(id)) return;  // repeated (chunks may repeat channels)
       const auto type = schemas_.find(schema);
-      if (type == schemas_.end()) reader.fail("channel " + topic + " names schema " + std::to_string(schema) + ", not defined before it");
+      if (type == schemas_.end())
+        reader.fail("channel " + topic + " names schema " + std::to_string(schema) +
+                    ", not defined before it");
       if (encoding != "cdr") {
         channels_.push_back({id, topic, type->second + " (" + encoding + ", not read)", 0});
       } else {
@@ -158,7 +165,8 @@ class McapFile : public MessageStore {
       const std::uint64_t log_time = reader.u64();
       const auto it = std::find_if(channels_.begin(), channels_.end(),
                                    [channel](const StoredChannel& c) { return c.id == channel; });
-      if (it == channels_.end()) reader.fail("a message on channel " + std::to_string(channel) + ", not defined before it");
+      if (it == channels_.end())
+        reader.fail("a message on channel " + std::to_string(channel) + ", not defined before it");
       ++it->messages;
       messages_.push_back({chunk, offset, channel, static_cast<double>(log_time) * 1e-9});
     }
@@ -173,7 +181,9 @@ class McapFile : public MessageStore {
     if (std::memcmp(magic.data(), kMagic, 8) != 0) failAt(path_, "not an MCAP file");
     std::uint64_t pos = 8;
     while (true) {
-      if (pos == size_) failAt(path_, "truncated: the file ends at byte " + std::to_string(pos) + " before its footer; the recording was cut short");
+      if (pos == size_)
+        failAt(path_, "truncated: the file ends at byte " + std::to_string(pos) +
+                          " before its footer; the recording was cut short");
       const std::vector<std::uint8_t> head = readBytes(in, pos, 9, size_, path_);
       const std::uint8_t op = head[0];
       std::uint64_t length = 0;
@@ -185,7 +195,8 @@ class McapFile : public MessageStore {
         takeRecord(op, content.data(), content.size(), StoredMessage::kNoChunk, pos, where);
       } else if (op == kChunk) {
         const std::vector<std::uint8_t> records = chunkRecords(in, pos);
-        ByteReader reader(records.data(), records.size(), path_.string() + ": chunk at byte " + std::to_string(pos));
+        ByteReader reader(records.data(), records.size(),
+                          path_.string() + ": chunk at byte " + std::to_string(pos));
         while (reader.remaining() > 0) {
           const std::size_t offset = reader.position();
           const std::uint8_t inner = reader.u8();
@@ -195,7 +206,8 @@ class McapFile : public MessageStore {
           reader.skip(inner_length);
         }
       } else if (length > size_ - pos - 9) {
-        failAt(path_, "truncated: a record at byte " + std::to_string(pos) + " runs past the end of the file");
+        failAt(path_,
+               "truncated: a record at byte " + std::to_string(pos) + " runs past the end of the file");
       }
       pos += 9 + length;
     }

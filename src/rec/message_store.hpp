@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/rec/ros1_bag.hpp"
 #include "hba/rec/ros_messages.hpp"
 
 namespace hba::rec {
@@ -43,11 +44,16 @@ class MessageStore {
   virtual std::vector<std::uint8_t> read(const StoredMessage& message) const = 0;
 };
 
-// The container at `path`, told by its first bytes; throws hba::Error for
-// a file that is none hba reads.
+// The container at `path`, a file told by its first bytes or a rosbag2
+// folder (metadata.yaml); throws hba::Error for one hba does not read.
 std::unique_ptr<MessageStore> openMessageStore(const std::filesystem::path& path);
+bool looksLikeRecordingFile(const std::filesystem::path& path);
+bool looksLikeRosbag2Folder(const std::filesystem::path& path);
+
 bool looksLikeMcap(const std::filesystem::path& path);
+bool looksLikeSqlite(const std::filesystem::path& path);
 std::unique_ptr<MessageStore> openMcap(const std::filesystem::path& path);
+std::unique_ptr<MessageStore> openSqlite(const std::filesystem::path& path);
 std::unique_ptr<MessageStore> openRos1Store(const std::filesystem::path& path);
 
 }  // namespace hba::rec

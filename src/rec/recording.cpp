@@ -115,7 +115,7 @@ std::string describeTopics(const std::vector<RecordingTopic>& topics) {
 }
 
 bool isRecording(const fs::path& path) {
-  return fs::is_regular_file(path) && (looksLikeRos1Bag(path) || looksLikeMcap(path));
+  return looksLikeRecordingFile(path) || looksLikeRosbag2Folder(path);
 }
 
 Recording::Recording() = default;

@@ -50,11 +50,4 @@ std::unique_ptr<MessageStore> openRos1Store(const std::filesystem::path& path) {
   return std::make_unique<Ros1Store>(Ros1Bag::open(path));
 }
 
-std::unique_ptr<MessageStore> openMessageStore(const std::filesystem::path& path) {
-  if (looksLikeRos1Bag(path)) return openRos1Store(path);
-  if (looksLikeMcap(path)) return openMcap(path);
-  if (!std::filesystem::exists(path)) failAt(path, "no such file");
-  failAt(path, "neither a ROS 1 bag nor an MCAP file (hba reads those two recordings)");
-}
-
 }  // namespace hba::rec

@@ -80,24 +80,36 @@ inline int writeMcap(const std::filesystem::path& folder, const std::filesystem:
   return result.exit_code;
 }
 
+// A rosbag2 folder of sqlite3 files (`split` of them): the CDR messages of
+// the MCAP writer's serializer stored by write_db3.py with Python's sqlite3.
+inline int writeDb3(const std::filesystem::path& folder, const std::filesystem::path& out, int split = 1) {
+  const std::filesystem::path lines = out.string() + ".jsonl";
+  const int written = writeMcap(folder, lines, "cdr");
+  if (written != 0) return written;
+  const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const CommandResult result = runCommand(python + " " + std::string(HBA_DB3_WRITER) + " " + lines.string() +
+                                          " " + out.string() + " --split " + std::to_string(split));
+  if (result.exit_code != 0) ADD_FAILURE() << result.output;
+  return result.exit_code;
+}
+
 inline double angleBetween(const Pose& a, const Pose& b) {
   return Eigen::AngleAxisd(a.q.inverse() * b.q).angle();
 }
 
 }  // namespace hba::test
 
-// Writes BAG from FOLDER, or skips the test where python3-rosbag is missing.
-#define WRITE_BAG_OR_SKIP(folder, bag, flags)                                                              \
-  do {                                                                                                     \
-    const int written = ::hba::test::writeBag(folder, bag, flags);                                         \
-    if (written == 77) GTEST_SKIP() << "python3-rosbag is not installed (apt-get install python3-rosbag)"; \
-    ASSERT_EQ(written, 0);                                                                                 \
+// Runs a writer (an int-returning call); skips the test where it says 77.
+#define WRITTEN_OR_SKIP(call, missing)            \
+  do {                                            \
+    const int written = (call);                   \
+    if (written == 77) GTEST_SKIP() << (missing); \
+    ASSERT_EQ(written, 0);                        \
   } while (false)
-
-// Writes an MCAP file from FOLDER, or skips where node or npm is missing.
-#define WRITE_MCAP_OR_SKIP(folder, mcap, compression)                              \
-  do {                                                                             \
-    const int written = ::hba::test::writeMcap(folder, mcap, compression);         \
-    if (written == 77) GTEST_SKIP() << "node, npm or the npm registry is missing"; \
-    ASSERT_EQ(written, 0);                                                         \
-  } while (false)
+#define WRITE_BAG_OR_SKIP(folder, bag, flags) \
+  WRITTEN_OR_SKIP(::hba::test::writeBag(folder, bag, flags), "python3-rosbag is not installed")
+#define WRITE_MCAP_OR_SKIP(folder, mcap, compression)                \
+  WRITTEN_OR_SKIP(::hba::test::writeMcap(folder, mcap, compression), \
+                  "node, npm or the npm registry is missing")
+#define WRITE_DB3_OR_SKIP(folder, out, split) \
+  WRITTEN_OR_SKIP(::hba::test::writeDb3(folder, out, split), "node, npm or the npm registry is missing")

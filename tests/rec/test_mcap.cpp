@@ -21,7 +21,7 @@ TEST_P(McapCompression, ReadsWhatMcapCoreWrote) {
   WRITE_MCAP_OR_SKIP(dir / "folder", dir / "run.mcap", GetParam());
   const Recording recording = Recording::open(dir / "run.mcap");
   EXPECT_EQ(recording.format(), "MCAP");
-  EXPECT_EQ(io::Dataset::open(dir / "run.mcap").layout(), "mcap");
+  EXPECT_EQ(io::Dataset::open(dir / "run.mcap").layout(), "ros2-bag");
   EXPECT_EQ(recording.cloudTopic(), "/cloud_registered_body");
   EXPECT_EQ(recording.poseTopic(), "/Odometry");
   EXPECT_EQ(recording.cloudFrame(), "body");
@@ -73,8 +73,8 @@ TEST(McapReal, Hku1McapGivesTheFolderRunsPoses) {
   WRITE_MCAP_OR_SKIP(hku1, dir / "hku1.mcap", "zstd");
   test::runOk(test::hbaTool() + " -q -j 2 optimize " + (dir / "hku1.mcap").string() + " -o " +
               (dir / "from_mcap").string() + " --no-render");
-  test::runOk(test::hbaTool() + " -q -j 2 optimize " + hku1.string() + " -o " + (dir / "from_folder").string() +
-              " --no-render");
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + hku1.string() + " -o " +
+              (dir / "from_folder").string() + " --no-render");
   const double rmse = test::evalRmse("ate", dir / "from_folder" / "poses_kitti.txt",
                                      dir / "from_mcap" / "poses_kitti.txt", dir.path(), "--align none");
   EXPECT_LT(rmse, 1e-3);

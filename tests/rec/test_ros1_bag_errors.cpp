@@ -83,7 +83,8 @@ TEST(Ros1BagErrors, TruncatedUnknownCompressionAndMismatchedDefinitions) {
       << mismatch;
 
   test::writeText(dir / "text.bag", "not a bag at all\n");
-  EXPECT_NE(openError(dir / "text.bag").find("neither a ROS 1 bag nor an MCAP file"), std::string::npos);
+  EXPECT_NE(openError(dir / "text.bag").find("neither a ROS 1 bag, an MCAP file nor a ROS 2 sqlite3 bag"),
+            std::string::npos);
 }
 
 // Random damage anywhere in a bag: a clear error or a readable bag, never

@@ -3,7 +3,9 @@
 // (the container) and @foxglove/rosmsg2-serialization (CDR), not with hba:
 // /cloud_registered_body (sensor_msgs/msg/PointCloud2, PCL's PointXYZINormal
 // layout) and /Odometry (nav_msgs/msg/Odometry).
-// usage: node write_mcap.mjs FOLDER OUT.mcap [zstd|none] [N]
+// usage: node write_mcap.mjs FOLDER OUT.mcap [zstd|none|cdr] [N]
+// "cdr" writes no MCAP but the CDR messages themselves, as JSON lines
+// (topic, type, time in ns, base64 data) for write_db3.py to store.
 import fs from "node:fs";
 import path from "node:path";
 import { McapWriter } from "@mcap/core";
@@ -114,6 +116,7 @@ const times = fs.readFileSync(path.join(folder, "times.txt"), "utf8").trim().spl
 const count = Number(limit) > 0 ? Number(limit) : scans.length;
 
 const fd = fs.openSync(out, "w");
+const cdrLines = compression === "cdr";
 let position = 0n;
 const writable = {
   position: () => position,
@@ -128,11 +131,11 @@ const writer = new McapWriter({
   chunkSize: 1024 * 1024,
   compressChunk: compression === "zstd" ? (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }) : undefined,
 });
-await writer.start({ profile: "ros2", library: "hba tests (@mcap/core)" });
-const cloudSchema = await writer.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg", data: new TextEncoder().encode(cloudDefinition) });
-const odometrySchema = await writer.registerSchema({ name: "nav_msgs/msg/Odometry", encoding: "ros2msg", data: new TextEncoder().encode(odometryDefinition) });
-const cloudChannel = await writer.registerChannel({ topic: "/cloud_registered_body", schemaId: cloudSchema, messageEncoding: "cdr", metadata: new Map() });
-const odometryChannel = await writer.registerChannel({ topic: "/Odometry", schemaId: odometrySchema, messageEncoding: "cdr", metadata: new Map() });
+if (!cdrLines) await writer.start({ profile: "ros2", library: "hba tests (@mcap/core)" });
+const cloudSchema = cdrLines ? 0 : await writer.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg", data: new TextEncoder().encode(cloudDefinition) });
+const odometrySchema = cdrLines ? 0 : await writer.registerSchema({ name: "nav_msgs/msg/Odometry", encoding: "ros2msg", data: new TextEncoder().encode(odometryDefinition) });
+const cloudChannel = cdrLines ? 0 : await writer.registerChannel({ topic: "/cloud_registered_body", schemaId: cloudSchema, messageEncoding: "cdr", metadata: new Map() });
+const odometryChannel = cdrLines ? 0 : await writer.registerChannel({ topic: "/Odometry", schemaId: odometrySchema, messageEncoding: "cdr", metadata: new Map() });
 const cloudWriter = new MessageWriter(parse(cloudDefinition, { ros2: true }));
 const odometryWriter = new MessageWriter(parse(odometryDefinition, { ros2: true }));
 
@@ -160,7 +163,12 @@ for (let n = 0; n < count; n++) {
     data: new Uint8Array(table.buffer),
     is_dense: true,
   };
-  await writer.addMessage({ channelId: cloudChannel, sequence: n, logTime: time, publishTime: time, data: cloudWriter.writeMessage(cloud) });
+  const cloudBytes = cloudWriter.writeMessage(cloud);
+  if (cdrLines) {
+    fs.writeSync(fd, JSON.stringify({ topic: "/cloud_registered_body", type: "sensor_msgs/msg/PointCloud2", time: time.toString(), data: Buffer.from(cloudBytes).toString("base64") }) + "\n");
+  } else {
+    await writer.addMessage({ channelId: cloudChannel, sequence: n, logTime: time, publishTime: time, data: cloudBytes });
+  }
   const m = poses[n];
   const [x, y, z, w] = quaternion([m[0], m[1], m[2], m[4], m[5], m[6], m[8], m[9], m[10]]);
   const odometry = {
@@ -169,7 +177,12 @@ for (let n = 0; n < count; n++) {
     pose: { pose: { position: { x: m[3], y: m[7], z: m[11] }, orientation: { x, y, z, w } }, covariance: new Array(36).fill(0) },
     twist: { twist: { linear: { x: 0, y: 0, z: 0 }, angular: { x: 0, y: 0, z: 0 } }, covariance: new Array(36).fill(0) },
   };
-  await writer.addMessage({ channelId: odometryChannel, sequence: n, logTime: time, publishTime: time, data: odometryWriter.writeMessage(odometry) });
+  const odometryBytes = odometryWriter.writeMessage(odometry);
+  if (cdrLines) {
+    fs.writeSync(fd, JSON.stringify({ topic: "/Odometry", type: "nav_msgs/msg/Odometry", time: time.toString(), data: Buffer.from(odometryBytes).toString("base64") }) + "\n");
+  } else {
+    await writer.addMessage({ channelId: odometryChannel, sequence: n, logTime: time, publishTime: time, data: odometryBytes });
+  }
 }
-await writer.end();
+if (!cdrLines) await writer.end();
 fs.closeSync(fd);

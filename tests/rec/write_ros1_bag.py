@@ -98,6 +98,8 @@ def main():
     parser.add_argument("--second-cloud-topic", action="store_true")
     parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "none"])
     parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="the sequence N times, each later by its duration (large bags for benchmarks)")
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
@@ -107,10 +109,15 @@ def main():
     times = np.loadtxt(os.path.join(args.folder, "times.txt"))
     if args.scans:
         scans, poses, times = scans[: args.scans], poses[: args.scans], times[: args.scans]
+    span = float(times[-1] - times[0]) + 1.0
+    clouds = {}
     with rosbag.Bag(args.bag, "w", compression=args.compression) as bag:
-        for n, (scan, pose, t) in enumerate(zip(scans, poses, times)):
+        for n, (scan, pose, t) in enumerate(
+                (s, p, t + r * span) for r in range(args.repeat) for s, p, t in zip(scans, poses, times)):
             stamp = rospy.Time.from_sec(float(t))
-            cloud = cloud_message(read_pcd(scan), stamp, args.layout, args.big_endian)
+            if scan not in clouds:
+                clouds[scan] = read_pcd(scan)
+            cloud = cloud_message(clouds[scan], stamp, args.layout, args.big_endian)
             bag.write("/cloud_registered_body", cloud, stamp)
             if args.second_cloud_topic:
                 bag.write("/cloud_registered", cloud, stamp)

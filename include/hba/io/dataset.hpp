@@ -7,8 +7,9 @@
 //              FAST-LIO2 / SC-SLAM pipelines; other scan-folder + trajectory pairs too
 //  - kitti:    DIR/velodyne/NNNNNN.bin + a KITTI pose file; calib.txt's Tr is
 //              applied when the poses are of the camera
-//  - ros1-bag, mcap: a recording given instead of DIR: the scans of its point
-//              cloud topic, each with the pose of its trajectory topic at its stamp
+//  - ros1-bag, ros2-bag: a recording given instead of DIR: the scans of its
+//              point cloud topic, each with the pose of its trajectory topic
+//              at its stamp (docs/recordings.md)
 // Explicit overrides (scans folder, poses file, pose format) always win.
 // A times.txt beside the trajectory (or --times) supplies timestamps when the
 // trajectory has none; scans named by time are ordered by it and, with a
@@ -60,7 +61,7 @@ class Dataset {
   static Dataset open(const std::filesystem::path& dir, const DatasetOverrides& overrides = {});
 
   std::size_t size() const { return recording_ ? recording_->size() : scan_paths_.size(); }
-  // "hba", "scans", "kitti", "explicit", "ros1-bag", "mcap"
+  // "hba", "scans", "kitti", "explicit", "ros1-bag", "ros2-bag"
   const std::string& layout() const { return layout_; }
   const std::filesystem::path& root() const { return root_; }
   const std::filesystem::path& scansDir() const { return scans_dir_; }

@@ -1,5 +1,6 @@
 #pragma once
-// A recording (a ROS 1 bag or an MCAP file) as a sequence hba can optimize: the scans
+// A recording (a ROS 1 bag, an MCAP file, a ROS 2 sqlite3 bag or a rosbag2
+// folder) as a sequence hba can optimize: the scans
 // of one point cloud topic, each with the pose of one trajectory topic
 // interpolated at the scan's stamp. Topics are chosen automatically when
 // only one of each kind is there; otherwise the caller names them.
@@ -40,7 +41,7 @@ class Recording {
   Recording& operator=(Recording&&) noexcept;
 
   const std::filesystem::path& path() const { return path_; }
-  const std::string& format() const { return format_; }  // "ROS 1 bag"
+  const std::string& format() const { return format_; }  // "ROS 1 bag", "MCAP", ...
   const std::vector<RecordingTopic>& topics() const { return topics_; }
   const std::string& cloudTopic() const { return cloud_topic_; }
   const std::string& poseTopic() const { return pose_topic_; }
@@ -75,7 +76,7 @@ class Recording {
 // The topics as a table for messages: one line per topic, its type and count.
 std::string describeTopics(const std::vector<RecordingTopic>& topics);
 
-// True when `path` is a file hba reads as a recording (a ROS 1 bag, MCAP).
+// True when `path` is a file hba reads as a recording (a bag file or a rosbag2 folder).
 bool isRecording(const std::filesystem::path& path);
 
 }  // namespace hba::rec
