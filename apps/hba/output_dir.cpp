@@ -51,6 +51,10 @@ std::vector<fs::path> namedOutputs(const CLI::App& command) {
 }
 
 void refuseOutputInsideInput(const fs::path& output, const io::Dataset& dataset) {
+  if (dataset.recording() && isSameOrInside(output, dataset.root())) {
+    failAt(output, "is the input recording " + dataset.root().string() +
+                       " or inside it; choose an output elsewhere (hba never writes into its input)");
+  }
   for (const fs::path& input : {dataset.root(), dataset.scansDir(), dataset.posesFile()}) {
     if (!input.empty() && isSameOrInside(output, input)) {
       failAt(output, "is inside the input folder " + input.string() +

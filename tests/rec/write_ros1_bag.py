@@ -100,6 +100,8 @@ def main():
     parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
     parser.add_argument("--repeat", type=int, default=1,
                         help="the sequence N times, each later by its duration (large bags for benchmarks)")
+    parser.add_argument("--repeat-shift", type=float, default=0.0,
+                        help="metres each repetition is moved along x (apart, so they never meet)")
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
@@ -113,7 +115,8 @@ def main():
     clouds = {}
     with rosbag.Bag(args.bag, "w", compression=args.compression) as bag:
         for n, (scan, pose, t) in enumerate(
-                (s, p, t + r * span) for r in range(args.repeat) for s, p, t in zip(scans, poses, times)):
+                (s, p + np.array([[0, 0, 0, r * args.repeat_shift], [0, 0, 0, 0], [0, 0, 0, 0]]), t + r * span)
+                for r in range(args.repeat) for s, p, t in zip(scans, poses, times)):
             stamp = rospy.Time.from_sec(float(t))
             if scan not in clouds:
                 clouds[scan] = read_pcd(scan)
