@@ -69,9 +69,9 @@ TEST(Ros1BagReal, ABadRecordingWritesNothing) {
     EXPECT_FALSE(fs::exists(dir / "out"));
   }
   // The recording itself as the output, even with --force: refused.
-  const test::CommandResult onto_input = test::runCommand(test::hbaTool() + " extract " + (dir / "two.bag").string() +
-                                                          " --cloud-topic /cloud_registered -o " +
-                                                          (dir / "two.bag").string() + " --force");
+  const test::CommandResult onto_input =
+      test::runCommand(test::hbaTool() + " extract " + (dir / "two.bag").string() +
+                       " --cloud-topic /cloud_registered -o " + (dir / "two.bag").string() + " --force");
   EXPECT_EQ(onto_input.exit_code, 1) << onto_input.output;
   EXPECT_NE(onto_input.output.find("is the input recording"), std::string::npos) << onto_input.output;
   EXPECT_EQ(test::readText(dir / "two.bag"), before);
