@@ -102,6 +102,27 @@ TEST(Ros1Bag, ReadsPoseStampedTrajectoriesAndTakesAnOffset) {
     EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-6);
 }
 
+// PoseWithCovarianceStamped, and a nav_msgs/Path republished whole at every
+// scan (only its last message is the trajectory).
+class Ros1BagPoseTypes : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+
+TEST_P(Ros1BagPoseTypes, ReadsTheTrajectory) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 7);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", std::string("--pose-type ") + GetParam().first);
+  const Recording recording = Recording::open(dir / "run.bag");
+  EXPECT_EQ(recording.poseTopic(), GetParam().second);
+  ASSERT_EQ(recording.size(), 7u);
+  for (std::size_t k = 0; k < 7; ++k) {
+    EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-9);
+    EXPECT_LT(angleBetween(recording.trajectory().poses[k], folder.poses[k]), 1e-9);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Types, Ros1BagPoseTypes,
+                         ::testing::Values(std::make_pair("posecov", "/pose"),
+                                           std::make_pair("path", "/path")));
+
 TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);

@@ -16,7 +16,8 @@ try:
     import numpy as np
     import rosbag
     import rospy
-    from geometry_msgs.msg import PoseStamped
+    from geometry_msgs.msg import PoseStamped, PoseWithCovarianceStamped
+    from nav_msgs.msg import Path
     from nav_msgs.msg import Odometry
     from sensor_msgs.msg import PointCloud2, PointField
     from std_msgs.msg import String
@@ -96,7 +97,8 @@ def main():
     parser.add_argument("--big-endian", action="store_true")
     parser.add_argument("--scans", type=int, default=0, help="only the first N")
     parser.add_argument("--second-cloud-topic", action="store_true")
-    parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "none"])
+    parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "posecov", "path", "none"],
+                        help="path: every pose in nav_msgs/Path messages that grow (as a SLAM system republishes it)")
     parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
     parser.add_argument("--repeat", type=int, default=1,
                         help="the sequence N times, each later by its duration (large bags for benchmarks)")
@@ -113,6 +115,7 @@ def main():
         scans, poses, times = scans[: args.scans], poses[: args.scans], times[: args.scans]
     span = float(times[-1] - times[0]) + 1.0
     clouds = {}
+    path_so_far = []
     with rosbag.Bag(args.bag, "w", compression=args.compression) as bag:
         for n, (scan, pose, t) in enumerate(
                 (s, p + np.array([[0, 0, 0, r * args.repeat_shift], [0, 0, 0, 0], [0, 0, 0, 0]]), t + r * span)
@@ -125,10 +128,12 @@ def main():
             if args.second_cloud_topic:
                 bag.write("/cloud_registered", cloud, stamp)
             if args.pose_type != "none":
-                odo = Odometry() if args.pose_type == "odometry" else PoseStamped()
+                kinds = {"odometry": Odometry, "posestamped": PoseStamped, "posecov": PoseWithCovarianceStamped,
+                         "path": PoseStamped}
+                odo = kinds[args.pose_type]()
                 odo.header.stamp = rospy.Time.from_sec(float(t) + args.pose_shift)
                 odo.header.frame_id = "camera_init"
-                target = odo.pose.pose if args.pose_type == "odometry" else odo.pose
+                target = odo.pose if args.pose_type in ("posestamped", "path") else odo.pose.pose
                 if args.pose_type == "odometry":
                     odo.child_frame_id = "body"
                 w, x, y, z = quaternion(pose[:, :3])
@@ -140,6 +145,10 @@ def main():
                     wrong.serialize(buffer)
                     raw = ("nav_msgs/Odometry", buffer.getvalue(), Odometry._md5sum, Odometry)
                     bag.write("/Odometry", raw, stamp, raw=True)
+                elif args.pose_type == "path":
+                    # The whole path so far, every scan: only the last message counts.
+                    path_so_far.append(odo)
+                    bag.write("/path", Path(header=odo.header, poses=list(path_so_far)), stamp)
                 else:
                     bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
             if n % 50 == 0:
