@@ -2,6 +2,7 @@
 
 #include <bzlib.h>
 #include <lz4frame.h>
+#include <zstd.h>
 
 #include <memory>
 
@@ -51,6 +52,15 @@ std::vector<std::uint8_t> bz2(const std::uint8_t* data, std::size_t size, std::s
   return out;
 }
 
+std::vector<std::uint8_t> zstdFrame(const std::uint8_t* data, std::size_t size, std::size_t expected,
+                                    const std::string& where) {
+  std::vector<std::uint8_t> out(expected);
+  const std::size_t got = ZSTD_decompress(out.data(), out.size(), data, size);
+  if (ZSTD_isError(got)) throw Error(where + ": the zstd data is corrupt (" + ZSTD_getErrorName(got) + ")");
+  out.resize(got);
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> decompressChunk(const std::string& compression, const std::uint8_t* data,
@@ -69,8 +79,11 @@ std::vector<std::uint8_t> decompressChunk(const std::string& compression, const 
     out = lz4Frame(data, size, uncompressed_size, where);
   } else if (compression == "bz2") {
     out = bz2(data, size, uncompressed_size, where);
+  } else if (compression == "zstd") {
+    out = zstdFrame(data, size, uncompressed_size, where);
   } else {
-    throw Error(where + ": unknown chunk compression '" + compression + "' (hba reads none, lz4 and bz2)");
+    throw Error(where + ": unknown chunk compression '" + compression +
+                "' (hba reads none, lz4, zstd and bz2)");
   }
   if (out.size() != uncompressed_size) {
     throw Error(where + ": the chunk holds " + std::to_string(out.size()) + " bytes, its header says " +

@@ -1,6 +1,6 @@
 #pragma once
-// A bag chunk's records, decompressed: "none", "lz4" (the LZ4 frame format)
-// or "bz2". Another compression, or data that does not decompress to the
+// A recording chunk's records, decompressed: "none", "lz4" (the LZ4 frame
+// format), "zstd" or "bz2". Another compression, or data that does not decompress to the
 // size the chunk declares, throws hba::Error naming `where`.
 #include <cstddef>
 #include <cstdint>

@@ -3,8 +3,6 @@
 // One pass over the data section at open learns the schemas, channels and
 // where every message lies (inside chunks: none, lz4 or zstd); the summary
 // section after it is not needed for that and is not read.
-#include <zstd.h>
-
 #include <algorithm>
 #include <cstring>
 #include <fstream>
@@ -43,21 +41,6 @@ std::vector<std::uint8_t> readBytes(std::ifstream& in, std::uint64_t pos, std::u
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(n));
   if (!in) failAt(path, "read error at byte " + std::to_string(pos));
   return bytes;
-}
-
-std::vector<std::uint8_t> decompress(const std::string& compression, const std::vector<std::uint8_t>& data,
-                                     std::uint64_t size, const std::string& where) {
-  if (compression.empty()) return decompressChunk("none", data.data(), data.size(), size, where);
-  if (compression != "zstd") return decompressChunk(compression, data.data(), data.size(), size, where);
-  if (size > 1024 * data.size() + (std::size_t{1} << 20))
-    throw Error(where + ": the chunk claims an impossible size");
-  std::vector<std::uint8_t> out(size);
-  const std::size_t got = ZSTD_decompress(out.data(), out.size(), data.data(), data.size());
-  if (ZSTD_isError(got)) throw Error(where + ": the zstd data is corrupt (" + ZSTD_getErrorName(got) + ")");
-  if (got != size)
-    throw Error(where + ": the chunk holds " + std::to_string(got) + " bytes, its header says " +
-                std::to_string(size));
-  return out;
 }
 
 class McapFile : public MessageStore {
@@ -132,8 +115,9 @@ class McapFile : public MessageStore {
     const std::string compression = reader.string();
     const std::uint64_t compressed = reader.u64();
     if (compressed > reader.remaining()) reader.fail("the chunk's records run past the chunk");
-    const std::vector<std::uint8_t> data(reader.here(), reader.here() + compressed);
-    return decompress(compression, data, uncompressed, where);
+    // MCAP names an uncompressed chunk "".
+    return decompressChunk(compression.empty() ? "none" : compression, reader.here(), compressed,
+                           uncompressed, where);
   }
 
   // One record of the data section or of a chunk.
