@@ -99,6 +99,18 @@ void DatasetArgs::addTo(CLI::App* command) {
                    "Seconds added to each scan's stamp before its pose is looked up")
       ->check(realIn(-1e6, 1e6, "s"))
       ->capture_default_str();
+  topics
+      ->add_option(
+          "--keyframe-distance", recording.keyframe_distance,
+          "Keep a scan only this far (m) from the last kept one, or turned --keyframe-angle (0: all)")
+      ->check(realIn(0, 1000, "m"))
+      ->capture_default_str();
+  topics
+      ->add_option(
+          "--keyframe-angle", recording.keyframe_angle,
+          "Keep a scan turned this much (deg) from the last kept one, or --keyframe-distance away (0: all)")
+      ->check(realIn(0, 180, "deg"))
+      ->capture_default_str();
 }
 
 io::Dataset DatasetArgs::open() const {

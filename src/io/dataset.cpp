@@ -215,6 +215,11 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
 
 Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   if (rec::isRecording(dir)) return openRecording(dir, overrides);
+  if (!overrides.recording.isDefault()) {
+    failAt(dir,
+           "--cloud-topic, --pose-topic, --time-offset and --keyframe-distance/-angle are for recordings "
+           "(a bag, an MCAP file, a rosbag2 folder), not for a folder of scans");
+  }
   requireFolder(dir, "dataset folder");
   Dataset dataset;
   dataset.root_ = dir;

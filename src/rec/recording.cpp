@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "hba/core/error.hpp"
@@ -76,6 +77,23 @@ std::vector<StampedPose> readTrajectory(const MessageStore& store, const std::st
                           [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
               poses.end());
   return poses;
+}
+
+// The scans a keyframe apart: the first, then each as far or as turned
+// from the last kept one as the options say.
+std::vector<std::size_t> keyframesOf(const std::vector<Pose>& poses, const RecordingOptions& options) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!kept.empty()) {
+      const Pose step = relative(poses[kept.back()], poses[i]);
+      const double turn = Eigen::AngleAxisd(step.q).angle() * 180.0 / M_PI;
+      const bool far = options.keyframe_distance > 0.0 && step.t.norm() >= options.keyframe_distance;
+      const bool turned = options.keyframe_angle > 0.0 && turn >= options.keyframe_angle;
+      if (!far && !turned) continue;
+    }
+    kept.push_back(i);
+  }
+  return kept;
 }
 
 // The pose at `t` between the trajectory's poses, or false outside it.
@@ -191,6 +209,22 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     recording.warnings_.push_back(
         fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out", dropped.size(),
                     clouds.size(), span));
+  }
+  if (!options.keepsEveryScan()) {
+    const std::vector<std::size_t> keyframes = keyframesOf(recording.trajectory_.poses, options);
+    const std::size_t covered = recording.trajectory_.size();
+    Trajectory kept_trajectory;
+    std::vector<StoredMessage> kept_messages;
+    for (const std::size_t i : keyframes) {
+      kept_trajectory.poses.push_back(recording.trajectory_.poses[i]);
+      kept_trajectory.stamps.push_back(recording.trajectory_.stamps[i]);
+      kept_messages.push_back(recording.clouds_->kept[i]);
+    }
+    recording.trajectory_ = std::move(kept_trajectory);
+    recording.clouds_->kept = std::move(kept_messages);
+    recording.notes_.push_back(
+        fmt::format("{} of {} scans kept as keyframes (a new one every {} m or {} deg)", keyframes.size(),
+                    covered, options.keyframe_distance, options.keyframe_angle));
   }
   const std::string& pose_frame = trajectory.front().child_frame_id;
   if (!pose_frame.empty() && !recording.cloud_frame_.empty() && pose_frame != recording.cloud_frame_) {

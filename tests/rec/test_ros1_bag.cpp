@@ -3,7 +3,10 @@
 // interpolated at the scans' stamps.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "bag_fixture.hpp"
+#include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/rec/recording.hpp"
 #include "hba/rec/ros1_bag.hpp"
@@ -123,6 +126,39 @@ INSTANTIATE_TEST_SUITE_P(Types, Ros1BagPoseTypes,
                          ::testing::Values(std::make_pair("posecov", "/pose"),
                                            std::make_pair("path", "/path")));
 
+TEST(Ros1Bag, KeepsKeyframesByDistanceOrTurn) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 30);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "");
+  for (const auto& [distance, angle] :
+       {std::make_pair(0.5, 0.0), std::make_pair(0.0, 10.0), std::make_pair(0.6, 9.0)}) {
+    RecordingOptions options;
+    options.keyframe_distance = distance;
+    options.keyframe_angle = angle;
+    const Recording recording = Recording::open(dir / "run.bag", options);
+    ASSERT_GT(recording.size(), 3u);
+    ASSERT_LT(recording.size(), 30u);
+    // Each kept scan is the first of the written ones far or turned enough
+    // from the kept one before it; the scans between are not.
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < 30 && k < recording.size(); ++i) {
+      const bool is_kept = (folder.poses[i].t - recording.trajectory().poses[k].t).norm() < 1e-9;
+      if (k > 0) {
+        const Pose& last = recording.trajectory().poses[k - 1];
+        const double moved = (folder.poses[i].t - last.t).norm();
+        const double turned = angleBetween(last, folder.poses[i]) * 180.0 / M_PI;
+        const bool enough = (distance > 0 && moved >= distance) || (angle > 0 && turned >= angle);
+        EXPECT_EQ(is_kept, enough) << "scan " << i << " keyframe " << k;
+      }
+      if (is_kept) {
+        expectSameScan(recording.loadScan(k), folder.scans[i]);
+        ++k;
+      }
+    }
+    EXPECT_EQ(k, recording.size());
+  }
+}
+
 TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);
@@ -135,7 +171,19 @@ TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {
   for (std::size_t k = 0; k < from_bag.size(); ++k) {
     expectSameScan(from_bag.loadScan(k), from_folder.loadScan(k));
     EXPECT_LT((from_bag.trajectory().poses[k].t - from_folder.trajectory().poses[k].t).norm(), 1e-9);
-  }
+  }  // A recording's options on a folder of scans are a mistake, said so.
+  io::DatasetOverrides overrides;
+  overrides.recording.keyframe_distance = 1.0;
+  EXPECT_THROW(
+      {
+        try {
+          io::Dataset::open(dir / "folder", overrides);
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("are for recordings"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      Error);
 }
 
 }  // namespace

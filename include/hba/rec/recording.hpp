@@ -21,6 +21,15 @@ struct RecordingOptions {
   std::string cloud_topic;   // empty: the only PointCloud2 topic
   std::string pose_topic;    // empty: the only trajectory topic
   double time_offset = 0.0;  // s, added to every scan's stamp before its pose is looked up
+  // Keyframes: a scan is kept when it is this far (m) or turned this much
+  // (deg) from the last kept one; 0 and 0 keep every scan.
+  double keyframe_distance = 0.0;
+  double keyframe_angle = 0.0;
+
+  bool keepsEveryScan() const { return !(keyframe_distance > 0.0) && !(keyframe_angle > 0.0); }
+  bool isDefault() const {
+    return cloud_topic.empty() && pose_topic.empty() && time_offset == 0.0 && keepsEveryScan();
+  }
 };
 
 struct RecordingTopic {
