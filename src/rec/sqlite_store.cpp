@@ -18,7 +18,7 @@ namespace {
 
 class Statement {
  public:
-  Statement(sqlite3* db, const std::string& sql, const fs::path& path) {
+  Statement(sqlite3* db, const std::string& sql, const fs::path& path) : db_(db), path_(path) {
     if (sqlite3_prepare_v2(db, sql.c_str(), -1, &statement_, nullptr) != SQLITE_OK) {
       failAt(path, "not a ROS 2 sqlite3 bag (" + std::string(sqlite3_errmsg(db)) + ")");
     }
@@ -27,9 +27,17 @@ class Statement {
   Statement(const Statement&) = delete;
   Statement& operator=(const Statement&) = delete;
   sqlite3_stmt* get() const { return statement_; }
-  bool step() const { return sqlite3_step(statement_) == SQLITE_ROW; }
+  // True for a row, false at the end; a damaged file is an error, not an end.
+  bool step() const {
+    const int status = sqlite3_step(statement_);
+    if (status == SQLITE_ROW) return true;
+    if (status == SQLITE_DONE) return false;
+    failAt(path_, "cannot read the bag (" + std::string(sqlite3_errmsg(db_)) + ")");
+  }
 
  private:
+  sqlite3* db_ = nullptr;
+  fs::path path_;
   sqlite3_stmt* statement_ = nullptr;
 };
 

@@ -87,27 +87,48 @@ TEST(Ros1BagErrors, TruncatedUnknownCompressionAndMismatchedDefinitions) {
             std::string::npos);
 }
 
-// Random damage anywhere in a bag: a clear error or a readable bag, never
-// a crash or a runaway allocation (run under the sanitizers too).
-TEST(Ros1BagErrors, CorruptBytesNeverCrash) {
-  test::TempDir dir;
-  test::writeScanFolder(dir / "folder", 3);
-  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--compression none");
-  const std::string bytes = test::readText(dir / "run.bag");
+// Random damage anywhere in a recording: a clear error or a readable
+// recording, never a crash or a runaway allocation (run under the
+// sanitizers too). Returns how many of the damaged copies were refused.
+int refusedDamages(const std::filesystem::path& file, const std::filesystem::path& scratch, int trials) {
+  const std::string bytes = test::readText(file);
   std::mt19937 rng(11);
   std::uniform_int_distribution<std::size_t> where(0, bytes.size() - 1);
   std::uniform_int_distribution<int> value(0, 255);
   int refused = 0;
-  for (int trial = 0; trial < 300; ++trial) {
+  for (int trial = 0; trial < trials; ++trial) {
     std::string damaged = bytes;
     // Damage the index and headers more often: the data bytes are only numbers.
     const std::size_t at =
-        trial % 2 ? where(rng) : std::max<std::size_t>(bytes.size() - 1 - where(rng) % 4096, 0);
+        trial % 2 ? where(rng) : bytes.size() - 1 - where(rng) % std::min<std::size_t>(4096, bytes.size());
     damaged[at] = static_cast<char>(value(rng));
-    test::writeText(dir / "damaged.bag", damaged);
-    if (!openError(dir / "damaged.bag").empty()) ++refused;
+    test::writeText(scratch, damaged);
+    if (!openError(scratch).empty()) ++refused;
   }
-  EXPECT_GT(refused, 0);
+  return refused;
+}
+
+TEST(Ros1BagErrors, CorruptBytesNeverCrash) {
+  test::TempDir dir;
+  test::writeScanFolder(dir / "folder", 3);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--compression none");
+  EXPECT_GT(refusedDamages(dir / "run.bag", dir / "damaged.bag", 300), 0);
+}
+
+TEST(McapErrors, CorruptBytesNeverCrash) {
+  test::TempDir dir;
+  test::writeScanFolder(dir / "folder", 3);
+  WRITE_MCAP_OR_SKIP(dir / "folder", dir / "run.mcap", "none");
+  EXPECT_GT(refusedDamages(dir / "run.mcap", dir / "damaged.mcap", 300), 0);
+  WRITE_MCAP_OR_SKIP(dir / "folder", dir / "zstd.mcap", "zstd");
+  EXPECT_GT(refusedDamages(dir / "zstd.mcap", dir / "damaged.mcap", 300), 0);
+}
+
+TEST(Db3Errors, CorruptBytesNeverCrash) {
+  test::TempDir dir;
+  test::writeScanFolder(dir / "folder", 3);
+  WRITE_DB3_OR_SKIP(dir / "folder", dir / "bag", 1);
+  EXPECT_GT(refusedDamages(dir / "bag" / "run_0.db3", dir / "damaged.db3", 300), 0);
 }
 
 }  // namespace
