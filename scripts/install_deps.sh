@@ -14,7 +14,7 @@ packages=(
   libopenmpi-dev openmpi-bin
   clang-format
   # the tests' third-party writer of ROS 1 bags (not used by hba itself)
-  python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-msgs
+  python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-tf2-msgs
 )
 case "${1:-}" in
   "") ;;

@@ -208,7 +208,11 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
     dataset.notes_.push_back({DatasetNote::Level::Warning, warning});
   }
   dataset.checkStampsIncrease();
-  dataset.convertPoses(overrides);
+  // The recording's own extrinsic (/tf_static) unless --extrinsic is given.
+  DatasetOverrides conventions = overrides;
+  if (!conventions.extrinsic && recording.staticExtrinsic())
+    conventions.extrinsic = recording.staticExtrinsic();
+  dataset.convertPoses(conventions);
   dataset.scans_in_world_ = overrides.scans_in_world;
   return dataset;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "hba/core/error.hpp"
 #include "hba/rec/ros1_bag.hpp"
@@ -94,6 +95,39 @@ std::vector<std::size_t> keyframesOf(const std::vector<Pose>& poses, const Recor
     kept.push_back(i);
   }
   return kept;
+}
+
+// T_from_to from the recording's /tf_static (frames as tf names them):
+// `to` reached from `from` through the static transforms, either way up
+// the tree; empty when they are not joined.
+std::optional<Pose> staticTransform(const MessageStore& store, const std::string& from,
+                                    const std::string& to) {
+  std::map<std::string, std::pair<std::string, Pose>> parent_of;  // child -> (parent, T_parent_child)
+  for (const StoredChannel& channel : store.channels()) {
+    if (channel.topic != "/tf_static" || channel.type != kTfMessage) continue;
+    for (const StoredMessage& message : store.messages(channel.topic)) {
+      const std::string what =
+          fmt::format("{}: /tf_static message at {:.3f} s", store.path().string(), message.time);
+      for (const StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
+        parent_of[t.child_frame_id] = {t.frame_id, t.pose};
+      }
+    }
+  }
+  // Each frame's pose in its root's frame, along its chain of parents.
+  const auto inRoot = [&parent_of](std::string frame, std::string& root) {
+    Pose pose;
+    for (int depth = 0; depth < 64 && parent_of.count(frame); ++depth) {
+      pose = parent_of.at(frame).second * pose;
+      frame = parent_of.at(frame).first;
+    }
+    root = frame;
+    return pose;
+  };
+  std::string root_from, root_to;
+  const Pose from_in_root = inRoot(from, root_from);
+  const Pose to_in_root = inRoot(to, root_to);
+  if (root_from != root_to) return std::nullopt;
+  return relative(from_in_root, to_in_root);
 }
 
 // The pose at `t` between the trajectory's poses, or false outside it.
@@ -227,9 +261,18 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
                     covered, options.keyframe_distance, options.keyframe_angle));
   }
   const std::string& pose_frame = trajectory.front().child_frame_id;
+  recording.pose_frame_ = pose_frame;
   if (!pose_frame.empty() && !recording.cloud_frame_.empty() && pose_frame != recording.cloud_frame_) {
-    recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ + "', the poses place '" +
-                               pose_frame + "': read as the same frame");
+    recording.extrinsic_ = staticTransform(bag, pose_frame, recording.cloud_frame_);
+    if (recording.extrinsic_) {
+      recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ +
+                                 "', the poses place '" + pose_frame + "': joined by /tf_static");
+    } else {
+      recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ +
+                                 "', the poses place '" + pose_frame +
+                                 "', and /tf_static does not join them: read as the same frame "
+                                 "(give --extrinsic if they differ)");
+    }
   }
   return recording;
 }

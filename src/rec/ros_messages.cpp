@@ -152,6 +152,23 @@ std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<
   return decodeAs(type, [&] { return decodeTrajectory(type, message, serialization, what); });
 }
 
+std::vector<StampedPose> decodeTransforms(const std::vector<std::uint8_t>& message,
+                                          Serialization serialization, const std::string& what) {
+  return decodeAs(kTfMessage, [&] {
+    ByteReader reader = messageReader(message, serialization, what);
+    std::vector<StampedPose> transforms;
+    const std::uint32_t count = reader.count(16 + 4 + 56);
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const Header header = readHeader(reader);
+      StampedPose transform{header.stamp, Pose(), header.frame_id, reader.string()};
+      transform.pose = readPose(reader);  // a Transform is laid out as a Pose
+      transforms.push_back(transform);
+    }
+    expectEnd(reader, kTfMessage);
+    return transforms;
+  });
+}
+
 bool isTrajectoryType(const std::string& type) {
   return type == "nav_msgs/Odometry" || type == "geometry_msgs/PoseStamped" ||
          type == "geometry_msgs/PoseWithCovarianceStamped" || type == "nav_msgs/Path";

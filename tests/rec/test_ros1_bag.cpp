@@ -159,6 +159,29 @@ TEST(Ros1Bag, KeepsKeyframesByDistanceOrTurn) {
   }
 }
 
+TEST(Ros1Bag, TfStaticJoinsTheCloudsFrameToThePosesBody) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);
+  // LiDAR 0.1 m ahead of and 0.2 m above the body, turned 90 deg about z.
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag",
+                    "--tf-static '0.1 0 0.2 0 0 0.7071067811865476 0.7071067811865476'");
+  const Pose lidar_in_body(Quat(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ())), Vec3(0.1, 0.0, 0.2));
+  const Recording recording = Recording::open(dir / "run.bag");
+  EXPECT_EQ(recording.cloudFrame(), "lidar");
+  EXPECT_EQ(recording.poseFrame(), "body");
+  ASSERT_TRUE(recording.staticExtrinsic().has_value());
+  EXPECT_LT((recording.staticExtrinsic()->t - lidar_in_body.t).norm(), 1e-9);
+  EXPECT_LT(angleBetween(*recording.staticExtrinsic(), lidar_in_body), 1e-9);
+  // The dataset's poses are the LiDAR's; its outputs can name the body's too.
+  const io::Dataset dataset = io::Dataset::open(dir / "run.bag");
+  EXPECT_EQ(dataset.inputFrame(), "body");
+  for (std::size_t k = 0; k < 5; ++k) {
+    const Pose expected = folder.poses[k] * lidar_in_body;
+    EXPECT_LT((dataset.trajectory().poses[k].t - expected.t).norm(), 1e-9);
+    EXPECT_LT(angleBetween(dataset.trajectory().poses[k], expected), 1e-9);
+  }
+}
+
 TEST(Ros1Bag, ADatasetOfABagIsTheFolderItWasWrittenFrom) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);

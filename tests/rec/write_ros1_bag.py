@@ -21,6 +21,7 @@ try:
     from nav_msgs.msg import Odometry
     from sensor_msgs.msg import PointCloud2, PointField
     from std_msgs.msg import String
+    from geometry_msgs.msg import TransformStamped
 except ImportError as error:  # skip, not fail
     print("skip: " + str(error))
     sys.exit(77)
@@ -53,10 +54,10 @@ def quaternion(r):
     return tuple(q)
 
 
-def cloud_message(points, stamp, layout, big_endian):
+def cloud_message(points, stamp, layout, big_endian, frame="body"):
     msg = PointCloud2()
     msg.header.stamp = stamp
-    msg.header.frame_id = "body"
+    msg.header.frame_id = frame
     msg.height, msg.width = 1, len(points)
     order = ">" if big_endian else "<"
     if layout == "fastlio":  # PointXYZINormal: x y z pad, nx ny nz pad, intensity curvature pad pad
@@ -104,6 +105,8 @@ def main():
                         help="the sequence N times, each later by its duration (large bags for benchmarks)")
     parser.add_argument("--repeat-shift", type=float, default=0.0,
                         help="metres each repetition is moved along x (apart, so they never meet)")
+    parser.add_argument("--tf-static", default="",
+                        help="'x y z qx qy qz qw': the clouds in frame lidar, placed in body by /tf_static")
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
@@ -123,7 +126,23 @@ def main():
             stamp = rospy.Time.from_sec(float(t))
             if scan not in clouds:
                 clouds[scan] = read_pcd(scan)
-            cloud = cloud_message(clouds[scan], stamp, args.layout, args.big_endian)
+            if n == 0 and args.tf_static:
+                try:
+                    from tf2_msgs.msg import TFMessage
+                except ImportError as error:
+                    print("skip: " + str(error))
+                    return 77
+                # As robot_state_publisher latches it: once, before the data.
+                v = [float(x) for x in args.tf_static.split()]
+                t_static = TransformStamped()
+                t_static.header.stamp = stamp
+                t_static.header.frame_id, t_static.child_frame_id = "body", "lidar"
+                t_static.transform.translation.x, t_static.transform.translation.y, t_static.transform.translation.z = v[:3]
+                r = t_static.transform.rotation
+                r.x, r.y, r.z, r.w = v[3:]
+                bag.write("/tf_static", TFMessage(transforms=[t_static]), stamp)
+            cloud = cloud_message(clouds[scan], stamp, args.layout, args.big_endian,
+                                  "lidar" if args.tf_static else "body")
             bag.write("/cloud_registered_body", cloud, stamp)
             if args.second_cloud_topic:
                 bag.write("/cloud_registered", cloud, stamp)

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,10 @@ class Recording {
   const std::string& cloudTopic() const { return cloud_topic_; }
   const std::string& poseTopic() const { return pose_topic_; }
   const std::string& cloudFrame() const { return cloud_frame_; }
+  // T_body_cloud from /tf_static, when the poses place another frame (the
+  // body, an IMU) than the clouds' and the recording says how they sit.
+  const std::optional<Pose>& staticExtrinsic() const { return extrinsic_; }
+  const std::string& poseFrame() const { return pose_frame_; }
   // The first cloud's field names, as recorded ("x y z intensity ...").
   const std::vector<std::string>& cloudFields() const { return cloud_fields_; }
 
@@ -76,6 +81,8 @@ class Recording {
   std::string format_, cloud_topic_, pose_topic_, cloud_frame_;
   std::vector<RecordingTopic> topics_;
   std::vector<std::string> cloud_fields_;
+  std::string pose_frame_;
+  std::optional<Pose> extrinsic_;
   Trajectory trajectory_;
   std::size_t cloud_messages_ = 0;
   std::vector<std::string> notes_, warnings_;

@@ -56,6 +56,11 @@ struct StampedPose {
   std::string child_frame_id;  // the body it places (Odometry only)
 };
 
+// tf2_msgs/TFMessage: each transform places child_frame_id in frame_id.
+inline constexpr const char* kTfMessage = "tf2_msgs/TFMessage";
+std::vector<StampedPose> decodeTransforms(const std::vector<std::uint8_t>& message,
+                                          Serialization serialization, const std::string& what);
+
 // True for the trajectory types decodePoses reads.
 bool isTrajectoryType(const std::string& type);
 // The poses of one trajectory message: one, or a Path's all.
