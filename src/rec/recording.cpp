@@ -256,9 +256,13 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     }
     recording.trajectory_ = std::move(kept_trajectory);
     recording.clouds_->kept = std::move(kept_messages);
+    std::string rule;
+    if (options.keyframe_distance > 0.0) rule = fmt::format("every {} m", options.keyframe_distance);
+    if (options.keyframe_angle > 0.0) {
+      rule += fmt::format("{}every {} deg", rule.empty() ? "" : " or ", options.keyframe_angle);
+    }
     recording.notes_.push_back(
-        fmt::format("{} of {} scans kept as keyframes (a new one every {} m or {} deg)", keyframes.size(),
-                    covered, options.keyframe_distance, options.keyframe_angle));
+        fmt::format("{} of {} scans kept as keyframes (a new one {})", keyframes.size(), covered, rule));
   }
   const std::string& pose_frame = trajectory.front().child_frame_id;
   recording.pose_frame_ = pose_frame;
