@@ -97,6 +97,11 @@ std::vector<std::size_t> keyframesOf(const std::vector<Pose>& poses, const Recor
   return kept;
 }
 
+// A tf frame's name without ROS 1's optional leading slash ("/base" is "base").
+std::string frameName(const std::string& frame) {
+  return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
+}
+
 // T_from_to from the recording's /tf_static (frames as tf names them):
 // `to` reached from `from` through the static transforms, either way up
 // the tree; empty when they are not joined.
@@ -109,7 +114,7 @@ std::optional<Pose> staticTransform(const MessageStore& store, const std::string
       const std::string what =
           fmt::format("{}: /tf_static message at {:.3f} s", store.path().string(), message.time);
       for (const StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
-        parent_of[t.child_frame_id] = {t.frame_id, t.pose};
+        parent_of[frameName(t.child_frame_id)] = {frameName(t.frame_id), t.pose};
       }
     }
   }
@@ -124,8 +129,8 @@ std::optional<Pose> staticTransform(const MessageStore& store, const std::string
     return pose;
   };
   std::string root_from, root_to;
-  const Pose from_in_root = inRoot(from, root_from);
-  const Pose to_in_root = inRoot(to, root_to);
+  const Pose from_in_root = inRoot(frameName(from), root_from);
+  const Pose to_in_root = inRoot(frameName(to), root_to);
   if (root_from != root_to) return std::nullopt;
   return relative(from_in_root, to_in_root);
 }
@@ -266,7 +271,8 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   }
   const std::string& pose_frame = trajectory.front().child_frame_id;
   recording.pose_frame_ = pose_frame;
-  if (!pose_frame.empty() && !recording.cloud_frame_.empty() && pose_frame != recording.cloud_frame_) {
+  if (!pose_frame.empty() && !recording.cloud_frame_.empty() &&
+      frameName(pose_frame) != frameName(recording.cloud_frame_)) {
     recording.extrinsic_ = staticTransform(bag, pose_frame, recording.cloud_frame_);
     if (recording.extrinsic_) {
       recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ +
