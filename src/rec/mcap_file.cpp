@@ -43,6 +43,12 @@ std::vector<std::uint8_t> readBytes(std::ifstream& in, std::uint64_t pos, std::u
   return bytes;
 }
 
+// A record's opcode and content length (its 9-byte head at `pos`).
+struct RecordHead {
+  std::uint8_t op = 0;
+  std::uint64_t length = 0;
+};
+
 class McapFile : public MessageStore {
  public:
   explicit McapFile(const fs::path& path) : path_(path) { scan(); }
@@ -65,10 +71,7 @@ class McapFile : public MessageStore {
     std::ifstream in(path_, std::ios::binary);
     const std::string where = path_.string() + ": message at byte " + std::to_string(message.offset);
     if (message.chunk == StoredMessage::kNoChunk) {
-      const std::vector<std::uint8_t> head = readBytes(in, message.offset, 9, size_, path_);
-      std::uint64_t length = 0;
-      std::memcpy(&length, head.data() + 1, 8);
-      const std::vector<std::uint8_t> record = readBytes(in, message.offset + 9, length, size_, path_);
+      const std::vector<std::uint8_t> record = contentAt(in, message.offset);
       return messageData(record.data(), record.size(), where);
     }
     std::shared_ptr<const std::vector<std::uint8_t>> records;
@@ -100,12 +103,22 @@ class McapFile : public MessageStore {
     return std::vector<std::uint8_t>(reader.here(), reader.here() + reader.remaining());
   }
 
+  RecordHead headAt(std::ifstream& in, std::uint64_t pos) const {
+    const std::vector<std::uint8_t> head = readBytes(in, pos, 9, size_, path_);
+    RecordHead record;
+    record.op = head[0];
+    std::memcpy(&record.length, head.data() + 1, 8);
+    return record;
+  }
+
+  // The content of the record at file offset `pos`.
+  std::vector<std::uint8_t> contentAt(std::ifstream& in, std::uint64_t pos) const {
+    return readBytes(in, pos + 9, headAt(in, pos).length, size_, path_);
+  }
+
   // The decompressed records of the chunk record at file offset `pos`.
   std::vector<std::uint8_t> chunkRecords(std::ifstream& in, std::uint64_t pos) const {
-    const std::vector<std::uint8_t> head = readBytes(in, pos, 9, size_, path_);
-    std::uint64_t length = 0;
-    std::memcpy(&length, head.data() + 1, 8);
-    const std::vector<std::uint8_t> content = readBytes(in, pos + 9, length, size_, path_);
+    const std::vector<std::uint8_t> content = contentAt(in, pos);
     const std::string where = path_.string() + ": chunk at byte " + std::to_string(pos);
     ByteReader reader(content.data(), content.size(), where);
     reader.u64();  // message start time
@@ -168,14 +181,11 @@ class McapFile : public MessageStore {
       if (pos == size_)
         failAt(path_, "truncated: the file ends at byte " + std::to_string(pos) +
                           " before its footer; the recording was cut short");
-      const std::vector<std::uint8_t> head = readBytes(in, pos, 9, size_, path_);
-      const std::uint8_t op = head[0];
-      std::uint64_t length = 0;
-      std::memcpy(&length, head.data() + 1, 8);
+      const auto [op, length] = headAt(in, pos);
       if (op == kDataEnd || op == kFooter) break;
       const std::string where = path_.string() + ": record at byte " + std::to_string(pos);
       if (op == kSchema || op == kChannel || op == kMessage) {
-        const std::vector<std::uint8_t> content = readBytes(in, pos + 9, length, size_, path_);
+        const std::vector<std::uint8_t> content = contentAt(in, pos);
         takeRecord(op, content.data(), content.size(), StoredMessage::kNoChunk, pos, where);
       } else if (op == kChunk) {
         const std::vector<std::uint8_t> records = chunkRecords(in, pos);

@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "hba/core/error.hpp"
-#include "hba/rec/ros1_bag.hpp"
 #include "hba/rec/ros_messages.hpp"
 #include "message_store.hpp"
 
