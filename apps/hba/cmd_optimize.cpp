@@ -54,7 +54,7 @@ void run(const Args& args) {
   }
 
   refuseProtectedFolder(args.output);
-  const io::Dataset dataset = args.data.open();
+  io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, dataset, dataset.size());
@@ -79,14 +79,40 @@ void run(const Args& args) {
   spdlog::info("threads: {}{}", settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
-  const pyramid::HbaResult result =
+  pyramid::HbaResult result =
       pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings, closures, group);
+  nlohmann::json deskew_passes = nlohmann::json::array();
+  double seconds_before = 0.0;  // of the earlier passes
+  // Raw sweeps were deskewed by the input's motion, which the run has just
+  // corrected: each further pass deskews them by the poses found and
+  // optimizes again from there.
+  for (int pass = 2; dataset.pointTimes() && pass <= args.deskew_passes; ++pass) {
+    deskew_passes.push_back({{"largest_update_against_input_m", result.report.largest_translation_update},
+                             {"seconds", result.report.seconds_total - seconds_before}});
+    seconds_before = result.report.seconds_total;
+    spdlog::info("raw sweeps: pass {} of {}, deskewed by the poses of pass {}", pass, args.deskew_passes,
+                 pass - 1);
+    dataset.deskewBy(result.poses);
+    result = pyramid::runHierarchicalBa(scans, result.poses, settings, closures, group);
+    // The report speaks of the whole run: against the input, in all passes' time.
+    const PoseChange total = largestChange(dataset.trajectory().poses, result.poses);
+    result.report.largest_translation_update = total.translation_m;
+    result.report.largest_rotation_update = total.rotation_deg;
+    result.report.seconds_total += seconds_before;
+    spdlog::info("largest pose update against the input over {} passes: {:.4f} m, {:.4f} deg", pass,
+                 total.translation_m, total.rotation_deg);
+  }
   if (!group.root()) return;
   const fs::path& out = staging->path();
 
   const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
   nlohmann::json report = reportJson(result, dataset, settings, conventions);
   report["memory_estimate"] = memory;
+  if (dataset.pointTimes()) {
+    report["deskew"] = {{"point_times", dataset.pointTimes()->describe()},
+                        {"passes", deskew_passes.size() + 1},
+                        {"earlier_passes", deskew_passes}};
+  }
   writeReport(out, report);
 
   const bool drawn = !args.no_render &&
@@ -140,6 +166,12 @@ void registerOptimizeCommand(CLI::App& app) {
       ->add_option("--prior-max-gap", args->prior_max_gap_s,
                    "A prior further than this (s) from every scan's stamp is not used")
       ->check(positiveUpTo(3600.0, "s"))
+      ->capture_default_str();
+  command
+      ->add_option("--deskew-passes", args->deskew_passes,
+                   "Raw sweeps (--deskew): runs, each after deskewing the sweeps by the poses the last "
+                   "one found (the first by the input's)")
+      ->check(CLI::Range(1, 5))
       ->capture_default_str();
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-memory-check", args->no_memory_check,

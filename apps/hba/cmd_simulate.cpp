@@ -35,6 +35,7 @@ struct SimulateArgs {
   bool loop_closed = false;
   bool poses_only = false;
   double downsample = 0.0;
+  bool sweep = false;
   bool force = false;
   std::size_t progress_every = 100;
   // Several sessions in one world (sim/sessions.hpp); 1 writes one dataset as always.
@@ -73,6 +74,7 @@ sim::SimulationConfig configFrom(const SimulateArgs& args) {
   config.scene = *findEnum<sim::Scene>(args.scene);  // CLI11 checked the name
   config.world = sim::scenePreset(config.scene);
   config.downsample_voxel = args.downsample;
+  config.sweep = args.sweep;
   return config;
 }
 
@@ -213,6 +215,9 @@ void registerSimulateCommand(CLI::App& app) {
                    "Voxel size in m to thin each scan (0 = keep every return)")
       ->check(numberIn({1e-3, 100, false, false, "keep every return"}, NumberKind::Real, "m"))
       ->capture_default_str();
+  command->add_flag("--sweep", args->sweep,
+                    "Raw sweeps: each ray measured from the moving sensor, each point with its time "
+                    "(PCD field 'time', s since the scan's stamp); hba deskews them");
   command->add_flag("--force", args->force, "Replace a non-empty output folder");
   command->add_option("--progress-every", args->progress_every, "Log progress every N frames")
       ->check(numberIn({1, 1e6, false, false, "at the end only"}, NumberKind::Count))

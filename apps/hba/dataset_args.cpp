@@ -1,5 +1,4 @@
 #include "dataset_args.hpp"
-#include "enum_choice.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -7,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "enum_choice.hpp"
 #include "hba/core/error.hpp"
 #include "number_checks.hpp"
 
@@ -88,6 +88,12 @@ void DatasetArgs::addTo(CLI::App* command) {
                           "KITTI calib.txt: the poses are of camera 0, turned into LiDAR poses with Tr");
   conventions->add_flag("--scans-in-world", scans_in_world,
                         "The scans were saved in the world frame (moved by their pose)");
+  conventions
+      ->add_option("--deskew", deskew,
+                   "Raw sweeps whose points carry times (t, time, timestamp, offset_time): auto deskews "
+                   "them when the trajectory follows the motion within a sweep; on, off")
+      ->check(oneOf<io::DeskewMode>())
+      ->capture_default_str();
   auto* topics = command->add_option_group("Recordings", "When DIR is a recording (docs/recordings.md)");
   topics->add_option("--cloud-topic", recording.cloud_topic,
                      "The sensor_msgs/PointCloud2 topic (default: the only one)");
@@ -124,6 +130,7 @@ io::Dataset DatasetArgs::open() const {
   if (!calibration.empty()) overrides.calibration = calibration;
   overrides.scans_in_world = scans_in_world;
   overrides.recording = recording;
+  overrides.deskew = parseEnum<io::DeskewMode>(deskew);
   io::Dataset dataset = io::Dataset::open(dir, overrides);
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.
   spdlog::debug("dataset {}: layout {}, {} scans in {}, poses {} ({})", dataset.root().string(),

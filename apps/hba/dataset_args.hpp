@@ -3,7 +3,7 @@
 // DIR (or a recording) plus the overrides --scans, --poses, --format,
 // --times, the convention flags --invert-poses, --extrinsic, --calib,
 // --scans-in-world, and a recording's --cloud-topic, --pose-topic,
-// --time-offset.
+// --time-offset, keyframes, and --deskew for raw sweeps.
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -22,6 +22,7 @@ struct DatasetArgs {
   std::string calibration;
   bool scans_in_world = false;
   rec::RecordingOptions recording;
+  std::string deskew = "auto";
 
   // Adds the positional DIR and the override flags to `command`.
   void addTo(CLI::App* command);

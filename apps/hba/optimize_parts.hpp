@@ -32,6 +32,7 @@ struct Args {
   bool no_memory_check = false;
   bool force = false;
   bool print_config = false;
+  int deskew_passes = 2;  // raw sweeps: runs, each deskewing by the poses the last one found
 };
 
 double peakMemoryMiB();

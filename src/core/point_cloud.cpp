@@ -10,6 +10,7 @@ void PointCloud::reserve(std::size_t n, bool with_intensity) {
 void PointCloud::clear() {
   points.clear();
   intensity.clear();
+  time.clear();
   origin = Vec3::Zero();
 }
 

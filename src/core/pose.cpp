@@ -43,6 +43,21 @@ Pose interpolate(const Pose& a, const Pose& b, double s) {
   return Pose(a.q.slerp(s, b.q).normalized(), (1.0 - s) * a.t + s * b.t);
 }
 
+Pose poseAtTime(const Trajectory& trajectory, double t) {
+  const std::vector<double>& stamps = trajectory.stamps;
+  const std::size_t n = std::min(stamps.size(), trajectory.poses.size());
+  if (n == 0) return Pose::identity();
+  if (n == 1) return trajectory.poses.front();
+  // The segment [k, k + 1] holding t, or the end segment nearest it.
+  const auto after = std::upper_bound(stamps.begin(), stamps.begin() + static_cast<std::ptrdiff_t>(n), t);
+  const std::size_t k =
+      std::clamp<std::size_t>(static_cast<std::size_t>(after - stamps.begin()), 1, n - 1) - 1;
+  const double length = stamps[k + 1] - stamps[k];
+  if (!(length > 0.0)) return trajectory.poses[k];
+  const double s = std::clamp((t - stamps[k]) / length, -1.0, 2.0);
+  return interpolate(trajectory.poses[k], trajectory.poses[k + 1], s);
+}
+
 std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset) {
   std::vector<Pose> out = poses;
   for (Pose& pose : out) pose.t += offset;

@@ -28,6 +28,7 @@ CloudView::CloudView(const PointCloud& cloud)
       narrow_(cloud.points.data()),
       origin_(cloud.origin),
       intensity_(cloud.intensity),
+      time_(&cloud.time),
       wide_(!cloud.origin.isZero()) {}
 
 CloudView::CloudView(const WideCloud& cloud)
@@ -36,10 +37,14 @@ CloudView::CloudView(const WideCloud& cloud)
       intensity_(cloud.intensity),
       wide_(needsDouble(cloud)) {}
 
-void CloudView::requireOneIntensityPerPoint(const std::filesystem::path& path) const {
+void CloudView::requireOneValuePerPoint(const std::filesystem::path& path) const {
   if (hasIntensity() && intensity_.size() != size_) {
     failAt(path, "cannot write: the cloud has " + std::to_string(size_) + " points but " +
                      std::to_string(intensity_.size()) + " intensities");
+  }
+  if (hasTime() && time_->size() != size_) {
+    failAt(path, "cannot write: the cloud has " + std::to_string(size_) + " points but " +
+                     std::to_string(time_->size()) + " point times");
   }
 }
 

@@ -23,6 +23,9 @@ class CloudView {
   bool empty() const { return size_ == 0; }
   bool hasIntensity() const { return !intensity_.empty(); }
   float intensity(std::size_t i) const { return intensity_[i]; }
+  // A raw sweep's point times (PointCloud::time), written by the PCD writer only.
+  bool hasTime() const { return time_ != nullptr && !time_->empty(); }
+  double time(std::size_t i) const { return (*time_)[i]; }
   // True when some coordinate needs float64 to be kept: a PointCloud with
   // an origin, a WideCloud with a value that is not exactly a float.
   bool wide() const { return wide_; }
@@ -30,9 +33,9 @@ class CloudView {
   // Point i as a float, exact when !wide().
   Vec3f point(std::size_t i) const { return narrow_ ? narrow_[i] : wide_points_[i].cast<float>(); }
 
-  // Refuses (hba::Error naming `path`) an intensity vector that is neither
-  // empty nor one per point: it would be written misaligned.
-  void requireOneIntensityPerPoint(const std::filesystem::path& path) const;
+  // Refuses (hba::Error naming `path`) an intensity or time vector that is
+  // neither empty nor one per point: it would be written misaligned.
+  void requireOneValuePerPoint(const std::filesystem::path& path) const;
 
  private:
   std::size_t size_ = 0;
@@ -40,6 +43,7 @@ class CloudView {
   const Vec3* wide_points_ = nullptr;
   Vec3 origin_ = Vec3::Zero();
   const std::vector<float>& intensity_;
+  const std::vector<double>* time_ = nullptr;
   bool wide_ = false;
 };
 

@@ -214,6 +214,7 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
     conventions.extrinsic = recording.staticExtrinsic();
   dataset.convertPoses(conventions);
   dataset.scans_in_world_ = overrides.scans_in_world;
+  dataset.prepareDeskew(overrides.deskew);
   return dataset;
 }
 
@@ -244,6 +245,7 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
   dataset.checkStampsIncrease();
   dataset.convertPoses(overrides);
   dataset.scans_in_world_ = overrides.scans_in_world;
+  dataset.prepareDeskew(overrides.deskew);
   return dataset;
 }
 
@@ -251,6 +253,13 @@ PointCloud Dataset::loadScan(std::size_t i) const {
   const fs::path& path = scanPath(i);
   try {
     PointCloud scan = recording_ ? recording_->loadScan(i) : readScan(path);
+    if (point_times_ && scan.hasTime()) {
+      const std::string what = recording_ ? path.string() + ": scan " + std::to_string(i) : path.string();
+      deskew(
+          scan, *point_times_, trajectory_.stamps.at(i), [this](double t) { return sensorPoseAt(t); }, what);
+    }
+    scan.time.clear();
+    scan.time.shrink_to_fit();
     if (scan.empty()) {
       warnAboutFile(
           path, "scans with no points",

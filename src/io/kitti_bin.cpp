@@ -29,7 +29,7 @@ namespace {
 // else, so a coordinate a float would round (a map far out, a double) is
 // refused rather than written somewhere else.
 std::string records(const std::filesystem::path& path, const detail::CloudView& cloud) {
-  cloud.requireOneIntensityPerPoint(path);
+  cloud.requireOneValuePerPoint(path);
   std::string content(cloud.size() * kKittiPointBytes, '\0');
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Vec3 world = cloud.world(i);
@@ -57,7 +57,7 @@ Cloud readKittiBinAs(const std::filesystem::path& path) {
   const auto column = [&](std::size_t index) {
     return Column{bytes.data() + index * sizeof(float), kKittiPointBytes, ScalarType::Float32};
   };
-  const PointColumns columns{column(0), column(1), column(2), column(3), false};
+  const PointColumns columns{column(0), column(1), column(2), column(3), false, std::nullopt};
   Cloud cloud;
   appendFinitePoints(columns, bytes.size() / kKittiPointBytes, cloud);
   return cloud;

@@ -137,7 +137,7 @@ void appendRecords(const CloudView& cloud, const LasPointExtras& extras, const Q
 namespace detail {
 
 void writeLasView(const std::filesystem::path& path, const CloudView& cloud, const LasPointExtras& extras) {
-  cloud.requireOneIntensityPerPoint(path);
+  cloud.requireOneValuePerPoint(path);
   requireOnePerPoint(extras.scan_index, cloud, "scan indices", path);
   requireOnePerPoint(extras.gps_time, cloud, "GPS times", path);
   const Quantization q = chooseQuantization(cloud, path);

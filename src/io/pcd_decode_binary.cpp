@@ -21,8 +21,10 @@ PointColumns pcdColumns(const PcdHeader& header, const PcdLayout& layout, FirstO
   const auto column = [&](std::size_t field) {
     return Column{first_of(field), stride_of(field), pcdScalarType(header.fields[field])};
   };
-  PointColumns columns{column(layout.x), column(layout.y), column(layout.z), std::nullopt, false};
+  PointColumns columns{column(layout.x), column(layout.y), column(layout.z), std::nullopt, false,
+                       std::nullopt};
   if (layout.intensity) columns.intensity = column(*layout.intensity);
+  if (layout.time) columns.time = column(*layout.time);
   return columns;
 }
 

@@ -25,20 +25,23 @@ std::optional<double> parseValue(std::string_view word, ScalarType type) {
   return static_cast<double>(static_cast<float>(*value));
 }
 
-// The word positions of the values hba keeps, in the order x y z intensity.
+// The word positions of the values hba keeps, in the order x y z intensity
+// time; a field the file lacks is not wanted.
 struct WantedWords {
-  std::size_t index[4];
-  ScalarType type[4];
-  std::size_t count;
+  std::size_t index[5];
+  ScalarType type[5];
+  bool wanted[5];
 };
 
 WantedWords wantedWords(const PcdHeader& header, const PcdLayout& layout) {
   WantedWords wanted{};
-  std::size_t fields[4] = {layout.x, layout.y, layout.z, layout.intensity.value_or(0)};
-  wanted.count = layout.intensity ? 4 : 3;
-  for (std::size_t k = 0; k < wanted.count; ++k) {
-    wanted.index[k] = layout.first_words[fields[k]];
-    wanted.type[k] = pcdScalarType(header.fields[fields[k]]);
+  const std::optional<std::size_t> fields[5] = {layout.x, layout.y, layout.z, layout.intensity, layout.time};
+  for (std::size_t k = 0; k < 5; ++k) {
+    wanted.wanted[k] = fields[k].has_value();
+    if (!fields[k]) continue;
+    wanted.index[k] = layout.first_words[*fields[k]];
+    // A time keeps every digit: stamps in ns need more than a float holds.
+    wanted.type[k] = k == 4 ? ScalarType::Float64 : pcdScalarType(header.fields[*fields[k]]);
   }
   return wanted;
 }
@@ -57,7 +60,7 @@ Cloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLa
 
   const bool wide = wanted.type[0] == ScalarType::Float64 || wanted.type[1] == ScalarType::Float64 ||
                     wanted.type[2] == ScalarType::Float64;
-  PointCollector collector(cloud, wide, layout.intensity.has_value());
+  PointCollector collector(cloud, wide, layout.intensity.has_value(), layout.time.has_value());
   std::uint64_t points_read = 0;
   std::uint64_t line_number = 0;
   std::string_view rest = body;
@@ -72,13 +75,14 @@ Cloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLa
              where + ": more points than the " + std::to_string(header.points) + " the header declares");
     }
     double values[4] = {0, 0, 0, 0};
+    double time = 0.0;
     std::size_t word_index = 0;
     for (; !word.empty(); word = nextWord(words), ++word_index) {
-      for (std::size_t k = 0; k < wanted.count; ++k) {
-        if (wanted.index[k] != word_index) continue;
+      for (std::size_t k = 0; k < 5; ++k) {
+        if (!wanted.wanted[k] || wanted.index[k] != word_index) continue;
         const std::optional<double> value = parseValue(word, wanted.type[k]);
         if (!value) failAt(path, where + ": " + quoteToken(word) + " is not a number");
-        values[k] = *value;
+        (k == 4 ? time : values[k]) = *value;
       }
     }
     if (word_index != layout.words_per_point) {
@@ -86,7 +90,7 @@ Cloud decodePcdAscii(std::string_view body, const PcdHeader& header, const PcdLa
                        std::to_string(layout.words_per_point));
     }
     ++points_read;
-    collector.add(values);
+    collector.add(values, time);
   }
   collector.finish();
   if (points_read != header.points) {

@@ -36,6 +36,7 @@ struct PcdLayout {
   std::size_t words_per_point = 0;
   std::size_t x = 0, y = 0, z = 0;  // field indices
   std::optional<std::size_t> intensity;
+  std::optional<std::size_t> time;  // a raw sweep's per-point time (t, time, timestamp, offset_time)
 };
 
 // Requires x, y and z (COUNT 1, each named once); intensity is optional.

@@ -60,6 +60,12 @@ PcdLayout pcdLayout(const PcdHeader& header, const fs::path& path) {
     words = checkedAdd(words, count, path, "values per point");
   }
   if (!x || !y || !z) failAt(path, "the cloud has no x, y and z fields");
+  // The first of the usual per-point time fields, by the name drivers give it.
+  for (const char* name : kPointTimeFields) {
+    for (std::size_t i = 0; i < header.fields.size() && !layout.time; ++i) {
+      if (header.fields[i].name == name && header.fields[i].count == 1) layout.time = i;
+    }
+  }
   if (bytes > SIZE_MAX / 2) failAt(path, "point size " + std::to_string(bytes) + " is too large");
   layout.point_bytes = static_cast<std::size_t>(bytes);
   layout.words_per_point = static_cast<std::size_t>(words);

@@ -1,4 +1,4 @@
-// writePcd: fields x y z [intensity] as float32, written atomically. The file
+// writePcd: fields x y z [intensity] as float32 [time as float64], written atomically. The file
 // is assembled in memory and written with one call. A cloud with an origin
 // (a map far from the world origin) gets float64 x y z: origin + point; so
 // does a WideCloud with a coordinate that is not exactly a float.
@@ -31,19 +31,28 @@ const char* encodingName(PcdEncoding encoding) {
 using detail::CloudView;
 
 std::string pcdHeaderText(const CloudView& cloud, PcdEncoding encoding) {
-  const bool with_i = cloud.hasIntensity();
+  const bool with_i = cloud.hasIntensity(), with_t = cloud.hasTime();
   const std::string n = std::to_string(cloud.size());
-  const std::string xyz_size = cloud.wide() ? "8 8 8" : "4 4 4";
+  std::string fields = "x y z", sizes = cloud.wide() ? "8 8 8" : "4 4 4", types = "F F F", counts = "1 1 1";
+  const auto addField = [&](const char* name, const char* size) {
+    fields += std::string(" ") + name;
+    sizes += std::string(" ") + size;
+    types += " F";
+    counts += " 1";
+  };
+  if (with_i) addField("intensity", "4");
+  if (with_t) addField("time", "8");
   std::string text = "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n";
-  text += with_i ? "FIELDS x y z intensity\nSIZE " + xyz_size + " 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
-                 : "FIELDS x y z\nSIZE " + xyz_size + "\nTYPE F F F\nCOUNT 1 1 1\n";
+  text += "FIELDS " + fields + "\nSIZE " + sizes + "\nTYPE " + types + "\nCOUNT " + counts + "\n";
   text += "WIDTH " + n + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\n";
   text += std::string("DATA ") + encodingName(encoding) + "\n";
   return text;
 }
 
-// Fields written: x, y, z and, when the cloud has it, intensity.
-std::size_t fieldCount(const CloudView& cloud) { return cloud.hasIntensity() ? 4 : 3; }
+// Fields written: x, y, z and, when the cloud has them, intensity and time.
+std::size_t fieldCount(const CloudView& cloud) {
+  return 3 + (cloud.hasIntensity() ? 1 : 0) + (cloud.hasTime() ? 1 : 0);
+}
 
 template <typename T>
 void appendValue(std::string& out, T value) {
@@ -63,8 +72,10 @@ void appendText(std::string& out, T value) {
 // Appends field `field` of point `point` as the header declares it.
 template <bool kText>
 void appendField(const CloudView& cloud, std::size_t point, std::size_t field, std::string& out) {
-  if (field == 3) {
+  if (field == 3 && cloud.hasIntensity()) {
     kText ? appendText(out, cloud.intensity(point)) : appendValue(out, cloud.intensity(point));
+  } else if (field >= 3) {
+    kText ? appendText(out, cloud.time(point)) : appendValue(out, cloud.time(point));
   } else if (cloud.wide()) {
     const double v = cloud.world(point)[static_cast<Eigen::Index>(field)];
     kText ? appendText(out, v) : appendValue(out, v);
@@ -111,7 +122,7 @@ void appendCompressed(const CloudView& cloud, std::string& out, const fs::path& 
 namespace detail {
 
 void writePcdView(const fs::path& path, const CloudView& cloud, PcdEncoding encoding) {
-  cloud.requireOneIntensityPerPoint(path);
+  cloud.requireOneValuePerPoint(path);
   std::string content = pcdHeaderText(cloud, encoding);
   switch (encoding) {
     case PcdEncoding::Ascii:

@@ -53,7 +53,7 @@ Cloud PlyBinaryBody::readVertices(const PlyElement& vertex, const PlyVertexField
       const std::size_t p = fields.index[k];
       return Column{bytes_.data() + pos_ + offsetOf(vertex, p), *record, vertex.properties[p].type};
     };
-    PointColumns columns{column(0), column(1), column(2), std::nullopt, big_endian_};
+    PointColumns columns{column(0), column(1), column(2), std::nullopt, big_endian_, std::nullopt};
     if (with_intensity) columns.intensity = column(3);
     appendFinitePoints(columns, static_cast<std::size_t>(vertex.count), cloud);
     pos_ += static_cast<std::size_t>(total);

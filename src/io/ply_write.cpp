@@ -74,7 +74,7 @@ void appendBinary(const CloudView& cloud, std::string& out) {
 namespace detail {
 
 void writePlyView(const std::filesystem::path& path, const CloudView& cloud, PlyEncoding encoding) {
-  cloud.requireOneIntensityPerPoint(path);
+  cloud.requireOneValuePerPoint(path);
   std::string content = plyHeaderText(cloud, encoding);
   if (encoding == PlyEncoding::Ascii) {
     appendAscii(cloud, content);

@@ -67,6 +67,24 @@ void appendWide(const PointColumns& c, std::size_t count, PointCloud& cloud) {
   collector.finish();
 }
 
+// A raw sweep's points with their times, each value in double until stored.
+void appendTimed(const PointColumns& c, std::size_t count, PointCloud& cloud) {
+  const bool be = c.big_endian;
+  cloud.time.reserve(cloud.time.size() + count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3f p(static_cast<float>(loadAsDouble(c.x.first + i * c.x.stride, c.x.type, be)),
+                  static_cast<float>(loadAsDouble(c.y.first + i * c.y.stride, c.y.type, be)),
+                  static_cast<float>(loadAsDouble(c.z.first + i * c.z.stride, c.z.type, be)));
+    if (!p.allFinite()) continue;
+    if (c.intensity) {
+      cloud.add(p, c.intensity->at(i, be));
+    } else {
+      cloud.add(p);
+    }
+    cloud.time.push_back(loadAsDouble(c.time->first + i * c.time->stride, c.time->type, be));
+  }
+}
+
 void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) {
   if (isFloat64(c.x) || isFloat64(c.y) || isFloat64(c.z)) return appendWide(c, count, cloud);
   const bool be = c.big_endian;
@@ -83,15 +101,16 @@ void appendAnyType(const PointColumns& c, std::size_t count, PointCloud& cloud) 
 
 }  // namespace
 
-PointCollector<PointCloud>::PointCollector(PointCloud& cloud, bool wide, bool with_intensity)
-    : cloud_(cloud), wide_(wide), with_intensity_(with_intensity) {}
+PointCollector<PointCloud>::PointCollector(PointCloud& cloud, bool wide, bool with_intensity, bool with_time)
+    : cloud_(cloud), wide_(wide), with_intensity_(with_intensity), with_time_(with_time) {}
 
-void PointCollector<PointCloud>::add(const double (&values)[4]) {
+void PointCollector<PointCloud>::add(const double (&values)[4], double time) {
   const Vec3 p(values[0], values[1], values[2]);
   if (!p.allFinite()) return;
   if (wide_) {
     wide_points_.push_back(p);
     if (with_intensity_) wide_intensity_.push_back(static_cast<float>(values[3]));
+    if (with_time_) wide_time_.push_back(time);
     return;
   }
   const Vec3f narrow = p.cast<float>();
@@ -101,6 +120,7 @@ void PointCollector<PointCloud>::add(const double (&values)[4]) {
   } else {
     cloud_.add(narrow);
   }
+  if (with_time_) cloud_.time.push_back(time);
 }
 
 void PointCollector<PointCloud>::finish() {
@@ -127,14 +147,17 @@ void PointCollector<PointCloud>::finish() {
     } else {
       cloud_.add(relative);
     }
+    if (with_time_) cloud_.time.push_back(wide_time_[i]);
   }
   wide_points_.clear();
   wide_intensity_.clear();
+  wide_time_.clear();
 }
 
 void appendFinitePoints(const PointColumns& columns, std::size_t count, PointCloud& cloud) {
   cloud.reserve(cloud.size() + count, columns.intensity.has_value());
   const bool be = columns.big_endian;
+  if (columns.time) return appendTimed(columns, count, cloud);
   const bool all_float = isPlainFloat(columns.x, be) && isPlainFloat(columns.y, be) &&
                          isPlainFloat(columns.z, be) &&
                          (!columns.intensity || isPlainFloat(*columns.intensity, be));

@@ -25,6 +25,7 @@ struct PointColumns {
   Column x, y, z;
   std::optional<Column> intensity;
   bool big_endian = false;
+  std::optional<Column> time;  // each point's time, kept as stored (PointCloud::time)
 };
 
 // Appends the `count` points the columns describe, dropping any point with a
@@ -47,24 +48,26 @@ class PointCollector;
 template <>
 class PointCollector<PointCloud> {
  public:
-  PointCollector(PointCloud& cloud, bool wide, bool with_intensity);
-  void add(const double (&values)[4]);
+  PointCollector(PointCloud& cloud, bool wide, bool with_intensity, bool with_time = false);
+  // values: x y z intensity; `time` is kept when the collector was made with_time.
+  void add(const double (&values)[4], double time = 0.0);
   void finish();
 
  private:
   PointCloud& cloud_;
-  bool wide_, with_intensity_;
+  bool wide_, with_intensity_, with_time_;
   std::vector<Vec3> wide_points_;
   std::vector<float> wide_intensity_;
+  std::vector<double> wide_time_;
 };
 
 // For a WideCloud every finite point goes in as decoded, in double.
 template <>
 class PointCollector<WideCloud> {
  public:
-  PointCollector(WideCloud& cloud, bool /*wide*/, bool with_intensity)
+  PointCollector(WideCloud& cloud, bool /*wide*/, bool with_intensity, bool /*with_time*/ = false)
       : cloud_(cloud), with_intensity_(with_intensity) {}
-  void add(const double (&values)[4]) {
+  void add(const double (&values)[4], double /*time*/ = 0.0) {
     const Vec3 p(values[0], values[1], values[2]);
     if (!p.allFinite()) return;
     if (with_intensity_) {
@@ -82,5 +85,7 @@ class PointCollector<WideCloud> {
 
 template <typename Cloud>
 PointCollector(Cloud&, bool, bool) -> PointCollector<Cloud>;
+template <typename Cloud>
+PointCollector(Cloud&, bool, bool, bool) -> PointCollector<Cloud>;
 
 }  // namespace hba::io::detail

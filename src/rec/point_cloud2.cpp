@@ -105,9 +105,16 @@ PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what) {
   const PointField* intensity = findField(cloud, {"intensity", "reflectivity", "i"});
   Column ci;
   if (intensity) ci = columnOf(cloud, *intensity, what);
+  const PointField* time = nullptr;
+  for (const char* name : kPointTimeFields) {
+    if (!time) time = findField(cloud, {name});
+  }
+  Column ct;
+  if (time) ct = columnOf(cloud, *time, what);
 
   PointCloud out;
   out.reserve(std::size_t{cloud.height} * cloud.width, intensity != nullptr);
+  if (time) out.time.reserve(std::size_t{cloud.height} * cloud.width);
   for (std::uint32_t row = 0; row < cloud.height; ++row) {
     const std::uint8_t* start = cloud.data + std::size_t{row} * cloud.row_step;
     for (std::uint32_t col = 0; col < cloud.width; ++col) {
@@ -120,6 +127,7 @@ PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what) {
       } else {
         out.add(p);
       }
+      if (time) out.time.push_back(ct.read(point));
     }
   }
   return out;

@@ -206,6 +206,11 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
 
   const std::vector<StampedPose> trajectory = readTrajectory(bag, recording.pose_topic_);
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
+  recording.time_offset_ = options.time_offset;
+  for (const StampedPose& pose : trajectory) {
+    recording.recorded_.poses.push_back(pose.pose);
+    recording.recorded_.stamps.push_back(pose.stamp);
+  }
 
   // Every cloud's own stamp, and its pose there.
   const std::vector<StoredMessage> clouds = bag.messages(recording.cloud_topic_);

@@ -13,6 +13,9 @@ void validate(const SimulationConfig& config) {
   if (!(config.downsample_voxel >= 0.0)) {
     throw Error("simulate: the downsampling voxel must be >= 0 m");
   }
+  if (config.sweep && config.downsample_voxel > 0.0) {
+    throw Error("simulate: raw sweeps keep every point with its time: --downsample does not apply to them");
+  }
   if (!(config.world.max_slope >= 0.0) || config.world.max_slope > 0.2) {
     throw Error("simulate: the terrain slope must be in [0, 0.2]");
   }
@@ -30,6 +33,22 @@ Simulation prepareSimulation(const SimulationConfig& config) {
 }
 
 PointCloud simulateFrame(const Simulation& simulation, std::size_t frame) {
+  if (simulation.config.sweep) {
+    const Trajectory& truth = simulation.truth;
+    const double start = truth.stamps.at(frame);
+    const std::vector<Return> returns = sweepReturns(
+        simulation.world, [&truth, start](double t) { return poseAtTime(truth, start + t); },
+        1.0 / simulation.config.trajectory.frame_rate_hz, simulation.config.sensor, simulation.config.seed,
+        frame);
+    PointCloud cloud;
+    cloud.reserve(returns.size(), true);
+    cloud.time.reserve(returns.size());
+    for (const Return& r : returns) {
+      cloud.add(r.point.cast<float>(), r.intensity);
+      cloud.time.push_back(r.time);
+    }
+    return cloud;
+  }
   const PointCloud cloud = scan(simulation.world, simulation.truth.poses.at(frame), simulation.config.sensor,
                                 simulation.config.seed, frame);
   return voxel::downsample(cloud, simulation.config.downsample_voxel);

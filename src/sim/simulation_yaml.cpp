@@ -104,6 +104,7 @@ void emitYamlBody(YAML::Emitter& out, const SimulationConfig& config, const std:
   emitTrajectory(out, config.trajectory, truth);
   emitSensor(out, config.sensor);
   out << YAML::Key << "downsample_voxel_m" << YAML::Value << config.downsample_voxel;
+  out << YAML::Key << "raw_sweeps" << YAML::Value << config.sweep;
   emitWorld(out, config, world);
   emitDrift(out, config.drift);
 }

@@ -40,6 +40,11 @@ struct Trajectory {
   bool hasStamps() const { return !stamps.empty(); }
 };
 
+// The pose at time t of a stamped trajectory (stamps increasing): between
+// two poses interpolated; beyond an end extrapolated by the end segment's
+// motion, at most one segment's length of time, then held.
+Pose poseAtTime(const Trajectory& trajectory, double t);
+
 // The poses moved by `offset` (added to every translation).
 std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset);
 

@@ -18,8 +18,9 @@
 // frame" are converted on request (inverted poses, another body frame,
 // scans saved in the world frame). docs/io_datasets.md describes every rule.
 //
-// Opening reads no scan (only directory listings and the trajectory): scans
-// are loaded lazily by index.
+// Opening reads only directory listings, the trajectory and the first scan
+// (do the sweeps carry point times to deskew them by?): scans are loaded
+// lazily by index.
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -29,6 +30,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/io/deskew.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/rec/recording.hpp"
 
@@ -44,6 +46,7 @@ struct DatasetOverrides {
   std::optional<std::filesystem::path> calibration;  // KITTI calib.txt: the file holds camera-0 poses
   bool scans_in_world = false;                       // the scans were saved already moved into the world
   rec::RecordingOptions recording;                   // topics and time offset of a recording (a bag)
+  DeskewMode deskew = DeskewMode::Auto;              // raw sweeps with point times (io/deskew.hpp)
 };
 
 // One thing discovery decided or noticed (which file it picked, what it
@@ -80,6 +83,15 @@ class Dataset {
   // Sensor poses (like trajectory()) turned back into that frame's poses.
   std::vector<Pose> toInputFrame(const std::vector<Pose>& sensor_poses) const;
   bool scansInWorld() const { return scans_in_world_; }
+  // How the sweeps' point times are read when loadScan deskews them; empty
+  // when it does not (no point times, --deskew off, or motion too sparse).
+  const std::optional<PointTimeReading>& pointTimes() const { return point_times_; }
+  // The sensor's pose at time t (s, the stamps' clock), from the densest
+  // trajectory the dataset holds (a recording's own, else the scans' poses).
+  Pose sensorPoseAt(double t) const;
+  // From now on, deskew by these sensor poses of the scans (a better
+  // estimate of the motion than the input's: an optimized run's).
+  void deskewBy(const std::vector<Pose>& sensor_poses);
   const std::vector<DatasetNote>& notes() const { return notes_; }
   // Scan i's file; a recording's scans have none (its own path).
   const std::filesystem::path& scanPath(std::size_t i) const {
@@ -88,7 +100,8 @@ class Dataset {
   // The recording the scans come from, or null for a folder.
   const rec::Recording* recording() const { return recording_.get(); }
   // Reads scan i from disk, in the sensor frame (scans saved in the world
-  // frame are moved back by their pose). Throws hba::Error naming the file.
+  // frame are moved back by their pose; raw sweeps deskewed to their stamp
+  // when pointTimes() is set). Throws hba::Error naming the file.
   PointCloud loadScan(std::size_t i) const;
 
  private:
@@ -98,6 +111,7 @@ class Dataset {
   void checkStampsIncrease();
   void noteStampUnit(const std::filesystem::path& file, const std::string& unit);
   void convertPoses(const DatasetOverrides& overrides);
+  void prepareDeskew(DeskewMode mode);
   static Dataset openRecording(const std::filesystem::path& path, const DatasetOverrides& overrides);
 
   std::string layout_;
@@ -110,6 +124,8 @@ class Dataset {
   Trajectory trajectory_;
   std::vector<std::filesystem::path> scan_paths_;
   std::shared_ptr<const rec::Recording> recording_;
+  std::optional<PointTimeReading> point_times_;
+  std::optional<Trajectory> deskew_motion_;  // deskewBy's poses
   std::vector<DatasetNote> notes_;
 };
 

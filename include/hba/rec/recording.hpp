@@ -63,6 +63,11 @@ class Recording {
   // The first cloud's field names, as recorded ("x y z intensity ...").
   const std::vector<std::string>& cloudFields() const { return cloud_fields_; }
 
+  // The trajectory topic's own poses and stamps (the body's, on the clouds'
+  // clock after --time-offset): the motion within a sweep is read from it.
+  const Trajectory& recordedTrajectory() const { return recorded_; }
+  double timeOffset() const { return time_offset_; }
+
   // The scans kept (those the trajectory covers), their stamps and poses.
   std::size_t size() const { return trajectory_.size(); }
   const Trajectory& trajectory() const { return trajectory_; }
@@ -83,7 +88,8 @@ class Recording {
   std::vector<std::string> cloud_fields_;
   std::string pose_frame_;
   std::optional<Pose> extrinsic_;
-  Trajectory trajectory_;
+  Trajectory trajectory_, recorded_;
+  double time_offset_ = 0.0;
   std::size_t cloud_messages_ = 0;
   std::vector<std::string> notes_, warnings_;
   std::unique_ptr<Clouds> clouds_;

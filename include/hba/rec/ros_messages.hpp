@@ -45,8 +45,9 @@ PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, Seri
                                   const std::string& what);
 
 // The points of a PointCloud2 in its own frame: x, y, z (float32 or
-// float64, either byte order, any padding) and intensity (or reflectivity)
-// when present; points with a non-finite coordinate are left out.
+// float64, either byte order, any padding), intensity (or reflectivity)
+// and each point's time as stored (a field of kPointTimeFields) when
+// present; points with a non-finite coordinate are left out.
 PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what);
 
 struct StampedPose {

@@ -1,12 +1,15 @@
 #pragma once
 // Simulated LiDARs that measure a World by ray casting.
 //
-// Points are in the sensor frame (x forward, y left, z up). Every ray of a
-// scan is cast from the one pose of the frame: there is no motion distortion,
-// as if the scans had been deskewed. Range noise is Gaussian along the ray;
+// Points are in the sensor frame (x forward, y left, z up). By default every
+// ray of a scan is cast from the one pose of the frame: there is no motion
+// distortion, as if the scans had been deskewed. A raw sweep instead casts
+// each ray from where the moving sensor is when it fires and keeps the
+// point in that instant's sensor frame, with its time. Range noise is Gaussian along the ray;
 // dropout removes a ray's return at random; returns closer than min_range
 // (the vehicle itself) or farther than max_range are lost.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,9 +54,15 @@ void validate(const SensorConfig& config);
 // continues from one frame to the next, so it never repeats exactly.
 std::vector<Vec3> rayDirections(const SensorConfig& config, std::size_t frame);
 
+// When ray `ray` of a frame fires, as a share of the sweep in [0, 1): a
+// spinning sensor fires all channels of a column at once, column after
+// column; a rosette fires ray after ray.
+double firingShare(const SensorConfig& config, std::size_t ray);
+
 // One return, with what the tests need to check it.
 struct Return {
   Vec3 point = Vec3::Zero();  // sensor frame, measured (noisy) range
+  double time = 0.0;          // s since the sweep's start (raw sweeps; else 0)
   double true_range = 0.0;
   float intensity = 0.0f;
   std::uint32_t primitive = 0;  // World primitive that was hit
@@ -63,6 +72,12 @@ struct Return {
 // (seed, frame): the noise comes from a generator of that frame alone.
 std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose, const SensorConfig& config,
                                 std::uint64_t seed, std::size_t frame);
+// The sensor's pose (sensor to world) a time (s) after the sweep's start.
+using SweepMotion = std::function<Pose(double)>;
+// A raw sweep lasting `period` s: each ray cast from motion(its time).
+std::vector<Return> sweepReturns(const World& world, const SweepMotion& motion, double period,
+                                 const SensorConfig& config, std::uint64_t seed, std::size_t frame);
+
 // The same scan as a float cloud with intensity.
 PointCloud scan(const World& world, const Pose& sensor_pose, const SensorConfig& config, std::uint64_t seed,
                 std::size_t frame);

@@ -2,7 +2,7 @@
 // A whole synthetic sequence: world, ground-truth path, drifting initial
 // poses and one scan per frame, written as an HBA dataset folder:
 //
-//   DIR/pcd/000000.pcd ...  scans, binary PCD (x y z intensity), sensor frame
+//   DIR/pcd/000000.pcd ...  scans, binary PCD (x y z intensity [time]), sensor frame
 //   DIR/pose.json           initial (drifting) poses, HBA format
 //   DIR/gt.txt              ground truth, TUM format, stamps index / rate
 //   DIR/times.txt           the same stamps, one a line (hba reads them with the poses)
@@ -33,6 +33,10 @@ struct SimulationConfig {
   WorldConfig world;
   DriftConfig drift;
   double downsample_voxel = 0.0;  // m; 0 keeps every return
+  // Raw sweeps: each frame's rays fire over the frame's interval from the
+  // moving sensor, and the scans carry every point's time since the frame's
+  // stamp (PCD field "time", s). Off: as if deskewed.
+  bool sweep = false;
 };
 
 // Everything but the scans, computed once up front.
