@@ -62,8 +62,8 @@ void Dataset::prepareDeskew(DeskewMode mode) {
   }
   if (!first.hasTime()) {
     if (asked) {
-      failAt(scanPath(0), "--deskew on, but the scan has no per-point time (a field named " + timeFieldNames() +
-                              ")");
+      failAt(scanPath(0),
+             "--deskew on, but the scan has no per-point time (a field named " + timeFieldNames() + ")");
     }
     return;
   }
@@ -74,9 +74,10 @@ void Dataset::prepareDeskew(DeskewMode mode) {
   const Trajectory& motion = recording_ ? recording_->recordedTrajectory() : trajectory_;
   const double gap = medianGap(motion.stamps);
   if (!asked && gap > kSparsestMotion) {
-    return cannot(fmt::format("the trajectory's poses lie {:.2f} s apart (median), too far to follow the "
-                              "motion within a sweep",
-                              gap));
+    return cannot(
+        fmt::format("the trajectory's poses lie {:.2f} s apart (median), too far to follow the "
+                    "motion within a sweep",
+                    gap));
   }
   const double clock_offset = recording_ ? recording_->timeOffset() : 0.0;
   std::optional<PointTimeReading> reading = readPointTimes(first.time, trajectory_.stamps[0] - clock_offset);

@@ -67,9 +67,10 @@ void deskew(PointCloud& cloud, const PointTimeReading& reading, double stamp, co
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     seconds[i] = reading.secondsSinceStamp(cloud.time[i], stamp);
     if (!(std::abs(seconds[i]) <= 1.0)) {
-      throw Error(fmt::format("{}: a point's time lies {:.3g} s from the scan's stamp (read as {}): the "
-                              "times are not the sweep's (give --deskew off to leave the scans as recorded)",
-                              what, seconds[i], reading.describe()));
+      throw Error(
+          fmt::format("{}: a point's time lies {:.3g} s from the scan's stamp (read as {}): the "
+                      "times are not the sweep's (give --deskew off to leave the scans as recorded)",
+                      what, seconds[i], reading.describe()));
     }
     low = std::min(low, seconds[i]);
     high = std::max(high, seconds[i]);

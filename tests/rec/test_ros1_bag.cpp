@@ -69,6 +69,32 @@ TEST(Ros1Bag, ReadsFloat64BigEndianCloudsWithOtherFields) {
   for (std::size_t k = 0; k < 4; ++k) expectSameScan(recording.loadScan(k), folder.scans[k]);
 }
 
+// Ouster's layout: each point's time as uint32 ns since the stamp (field t).
+TEST(Ros1Bag, RawSweepsAreDeskewedByTheRecordedMotion) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 5);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--layout ouster");
+  const Recording recording = Recording::open(dir / "run.bag");
+  const PointCloud raw = recording.loadScan(2);
+  ASSERT_EQ(raw.time.size(), raw.size());
+  EXPECT_EQ(raw.time[1], std::floor(1e8 / static_cast<double>(raw.size())));
+
+  const io::Dataset dataset = io::Dataset::open(dir / "run.bag");
+  ASSERT_TRUE(dataset.pointTimes().has_value());
+  EXPECT_EQ(dataset.pointTimes()->describe(), "ns since the scan's stamp");
+  const PointCloud deskewed = dataset.loadScan(2);
+  ASSERT_EQ(deskewed.size(), raw.size());
+  // The last point, seen ~0.1 s after the stamp, moves by the folder's
+  // motion over that time (the poses interpolated between scans 2 and 3).
+  const std::size_t last = raw.size() - 1;
+  const double since = raw.time[last] * 1e-9;
+  const Pose motion = relative(folder.poses[2], interpolate(folder.poses[2], folder.poses[3], since / 0.1));
+  const Vec3 expected = motion * raw.points[last].cast<double>();
+  EXPECT_LT((deskewed.points[last].cast<double>() - expected).norm(), 1e-3);
+  EXPECT_GT((deskewed.points[last] - raw.points[last]).norm(), 0.01);  // it did move
+  EXPECT_LT((deskewed.points[0] - raw.points[0]).norm(), 1e-4);  // the first point, at the stamp, did not
+}
+
 TEST(Ros1Bag, InterpolatesPosesAtTheScansStamps) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 10);

@@ -81,6 +81,21 @@ def cloud_message(points, stamp, layout, big_endian, frame="body"):
         msg.data = bytes(buf)
         msg.is_dense = True
         return msg
+    elif layout == "ouster":  # x y z pad intensity, t (uint32 ns since the stamp), reflectivity, ring
+        msg.fields = [PointField("x", 0, PointField.FLOAT32, 1), PointField("y", 4, PointField.FLOAT32, 1),
+                      PointField("z", 8, PointField.FLOAT32, 1), PointField("intensity", 16, PointField.FLOAT32, 1),
+                      PointField("t", 20, PointField.UINT32, 1), PointField("reflectivity", 24, PointField.UINT16, 1),
+                      PointField("ring", 26, PointField.UINT8, 1)]
+        step = 32
+        buf = bytearray(step * len(points))
+        for n, p in enumerate(points):
+            # The points spread evenly over a 0.1 s sweep, in order.
+            struct.pack_into(order + "fff4xfIHB", buf, n * step, float(p[0]), float(p[1]), float(p[2]), float(p[3]),
+                             n * 100000000 // len(points), 7, n % 64)
+        msg.is_bigendian, msg.point_step, msg.row_step = big_endian, step, step * len(points)
+        msg.data = bytes(buf)
+        msg.is_dense = True
+        return msg
     else:
         raise ValueError(layout)
     msg.is_bigendian, msg.point_step, msg.row_step = big_endian, step, step * len(points)
@@ -94,7 +109,7 @@ def main():
     parser.add_argument("folder")
     parser.add_argument("bag")
     parser.add_argument("--compression", default="none", choices=["none", "lz4", "bz2"])
-    parser.add_argument("--layout", default="fastlio", choices=["fastlio", "float64"])
+    parser.add_argument("--layout", default="fastlio", choices=["fastlio", "float64", "ouster"])
     parser.add_argument("--big-endian", action="store_true")
     parser.add_argument("--scans", type=int, default=0, help="only the first N")
     parser.add_argument("--second-cloud-topic", action="store_true")
