@@ -12,7 +12,7 @@ WORK=${2:-$(mktemp -d)}
 FRAMES=${FRAMES:-550}
 mkdir -p "$WORK"
 
-ate() { "$HBA" -q eval --gt "$1/gt.txt" --est "$2/poses_tum.txt" | awk '/ATE trans/ {printf "%.2f", $3 * 1000}'; }
+ate() { "$HBA" -q eval --gt "$1/gt.txt" --est "$2/poses_tum.txt" | awk '/ATE trans/ {printf "%.2f", $4 * 1000}'; }
 mme() { "$HBA" -q mme "$1" --poses "$2/poses_tum.txt" "${@:3}" | awk '/^MME/ {print $2; exit}'; }
 
 echo "| sensor | scans | run | ATE mm | MME | seconds |"

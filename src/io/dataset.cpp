@@ -184,19 +184,33 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
            "(choose topics with --cloud-topic and --pose-topic)");
   }
   Dataset dataset;
-  dataset.recording_ =
-      std::make_shared<const rec::Recording>(rec::Recording::open(path, overrides.recording));
-  const rec::Recording& recording = *dataset.recording_;
-  dataset.root_ = dataset.scans_dir_ = dataset.poses_file_ = path;
-  dataset.layout_ = recording.format() == "ROS 1 bag" ? "ros1-bag" : "ros2-bag";
-  dataset.trajectory_ = recording.trajectory();
-  dataset.stamps_source_ = "recording";
+  rec::RecordingOptions options = overrides.recording;
+  Trajectory given;
   if (overrides.poses_file) {
-    // Poses given for the recording's scans (an earlier run's output).
     dataset.poses_file_ = *overrides.poses_file;
     dataset.pose_format_ =
         overrides.pose_format ? *overrides.pose_format : detectPoseFormat(dataset.poses_file_);
-    const Trajectory given = readPoses(dataset.poses_file_, dataset.pose_format_);
+    given = readPoses(dataset.poses_file_, dataset.pose_format_);
+    if (given.hasStamps()) {
+      // A stamped trajectory (an odometry's poses): the scans' poses are interpolated from it.
+      if (!options.pose_topic.empty()) {
+        failAt(dataset.poses_file_,
+               "--poses with stamps is the trajectory: --pose-topic cannot be given too");
+      }
+      dataset.noteStampUnit(dataset.poses_file_, stampsToSeconds(given.stamps));
+      options.poses = given;
+      options.poses_name = dataset.poses_file_.string();
+    }
+  }
+  dataset.recording_ = std::make_shared<const rec::Recording>(rec::Recording::open(path, options));
+  const rec::Recording& recording = *dataset.recording_;
+  dataset.root_ = dataset.scans_dir_ = path;
+  if (!overrides.poses_file) dataset.poses_file_ = path;
+  dataset.layout_ = recording.format() == "ROS 1 bag" ? "ros1-bag" : "ros2-bag";
+  dataset.trajectory_ = recording.trajectory();
+  dataset.stamps_source_ = "recording";
+  if (overrides.poses_file && !given.hasStamps()) {
+    // Poses without stamps, one for each of the recording's scans (an earlier run's output).
     if (given.size() != recording.size()) {
       failAt(dataset.poses_file_, countsDiffer(recording.size(), path, given.size(), dataset.poses_file_));
     }

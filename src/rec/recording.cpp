@@ -96,6 +96,18 @@ std::vector<std::size_t> keyframesOf(const std::vector<Pose>& poses, const Recor
   return kept;
 }
 
+// The scans stamped (within 1 us) where the trajectory has a pose.
+std::vector<std::size_t> scansAt(const std::vector<double>& scan_stamps,
+                                 const std::vector<StampedPose>& poses) {
+  std::vector<std::size_t> scans;
+  for (const StampedPose& pose : poses) {
+    const auto at = std::lower_bound(scan_stamps.begin(), scan_stamps.end(), pose.stamp - 1e-6);
+    if (at != scan_stamps.end() && *at <= pose.stamp + 1e-6)
+      scans.push_back(static_cast<std::size_t>(at - scan_stamps.begin()));
+  }
+  return scans;
+}
+
 // A tf frame's name without ROS 1's optional leading slash ("/base" is "base").
 std::string frameName(const std::string& frame) {
   return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
@@ -141,7 +153,7 @@ bool poseAt(const std::vector<StampedPose>& trajectory, double t, Pose& pose) {
     return false;
   const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t,
                                       [](const StampedPose& p, double value) { return p.stamp < value; });
-  if (after == trajectory.begin()) {
+  if (after == trajectory.begin() || (after != trajectory.end() && after->stamp == t)) {
     pose = after->pose;
   } else if (after == trajectory.end()) {
     pose = trajectory.back().pose;
@@ -197,14 +209,22 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
 
   recording.cloud_topic_ = chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic,
                                        "point cloud (sensor_msgs/PointCloud2)", "--cloud-topic");
-  recording.pose_topic_ = chooseTopic(
-      path, recording.topics_, &isTrajectoryType, options.pose_topic,
-      "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
-      "--pose-topic");
-  recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
-                             recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
-
-  const std::vector<StampedPose> trajectory = readTrajectory(bag, recording.pose_topic_);
+  std::vector<StampedPose> trajectory;
+  if (options.poses) {
+    recording.pose_topic_ = options.poses_name;
+    for (std::size_t i = 0; i < options.poses->size() && i < options.poses->stamps.size(); ++i) {
+      trajectory.push_back({options.poses->stamps[i], options.poses->poses[i], "", ""});
+    }
+    recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " + options.poses_name);
+  } else {
+    recording.pose_topic_ = chooseTopic(
+        path, recording.topics_, &isTrajectoryType, options.pose_topic,
+        "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
+        "--pose-topic");
+    recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
+                               recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
+    trajectory = readTrajectory(bag, recording.pose_topic_);
+  }
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
   recording.time_offset_ = options.time_offset;
   for (const StampedPose& pose : trajectory) {
@@ -254,7 +274,11 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
                     clouds.size(), span));
   }
   if (!options.keepsEveryScan()) {
-    const std::vector<std::size_t> keyframes = keyframesOf(recording.trajectory_.poses, options);
+    // An earlier run's keyframe poses given back: its keyframes, not new ones
+    // chosen by poses that moved since.
+    std::vector<std::size_t> keyframes =
+        options.poses ? scansAt(recording.trajectory_.stamps, trajectory) : std::vector<std::size_t>{};
+    if (keyframes.size() != trajectory.size()) keyframes = keyframesOf(recording.trajectory_.poses, options);
     const std::size_t covered = recording.trajectory_.size();
     Trajectory kept_trajectory;
     std::vector<StoredMessage> kept_messages;

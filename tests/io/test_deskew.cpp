@@ -64,13 +64,13 @@ TEST(PointTimes, ReadsEachUnitRelativeOrAbsolute) {
   };
   const double now = 1.7e9;  // a real clock's stamp, s
   const Case cases[] = {
-      {{0.0, 0.05, 0.0999}, 12.0, 1.0, false},               // Velodyne: float s from the stamp
-      {{-0.0999, -0.05, 0.0}, now, 1.0, false},              // stamped at the sweep's end
-      {{0.0, 50.0, 99.9}, now, 1e-3, false},                 // ms
-      {{0.0, 5e4, 99900.0}, now, 1e-6, false},               // us
-      {{0.0, 5e7, 9.99e7}, now, 1e-9, false},                // Ouster t, Livox offset_time: ns
-      {{now, now + 0.05, now + 0.0999}, now, 1.0, true},     // Hesai: absolute s
-      {{now * 1e9, now * 1e9 + 5e7}, now, 1e-9, true},       // Livox driver 2: absolute ns
+      {{0.0, 0.05, 0.0999}, 12.0, 1.0, false},                // Velodyne: float s from the stamp
+      {{-0.0999, -0.05, 0.0}, now, 1.0, false},               // stamped at the sweep's end
+      {{0.0, 50.0, 99.9}, now, 1e-3, false},                  // ms
+      {{0.0, 5e4, 99900.0}, now, 1e-6, false},                // us
+      {{0.0, 5e7, 9.99e7}, now, 1e-9, false},                 // Ouster t, Livox offset_time: ns
+      {{now, now + 0.05, now + 0.0999}, now, 1.0, true},      // Hesai: absolute s
+      {{now * 1e9, now * 1e9 + 5e7}, now, 1e-9, true},        // Livox driver 2: absolute ns
       {{now * 1e6, now * 1e6 + 5e4}, now + 0.01, 1e-6, true}  // absolute us
   };
   for (const Case& c : cases) {
@@ -121,9 +121,8 @@ TEST(Deskew, RefusesTimesFarFromTheStamp) {
   Sweep sweep = makeSweep(0.0, 0.0, 10);
   sweep.cloud.time.assign(sweep.cloud.size(), 0.0);
   sweep.cloud.time.back() = 5.0;
-  test::expectErrorMentioning(
-      [&] { deskew(sweep.cloud, PointTimeReading{}, 0.0, movingSensor, "scan 7"); },
-      {"scan 7", "5 s from the scan's stamp", "--deskew off"});
+  test::expectErrorMentioning([&] { deskew(sweep.cloud, PointTimeReading{}, 0.0, movingSensor, "scan 7"); },
+                              {"scan 7", "5 s from the scan's stamp", "--deskew off"});
 }
 
 TEST(PcdTimes, RoundTripInEveryEncodingAndStayAlignedWhenPointsAreDropped) {
@@ -131,7 +130,8 @@ TEST(PcdTimes, RoundTripInEveryEncodingAndStayAlignedWhenPointsAreDropped) {
   PointCloud cloud = test::makeCloud(200, true);
   for (std::size_t i = 0; i < cloud.size(); ++i) cloud.time.push_back(1.7e9 + 1e-6 * static_cast<double>(i));
   cloud.points[10].x() = NAN;  // dropped on reading, with its time
-  for (const PcdEncoding encoding : {PcdEncoding::Ascii, PcdEncoding::Binary, PcdEncoding::BinaryCompressed}) {
+  for (const PcdEncoding encoding :
+       {PcdEncoding::Ascii, PcdEncoding::Binary, PcdEncoding::BinaryCompressed}) {
     SCOPED_TRACE(static_cast<int>(encoding));
     writePcd(dir / "sweep.pcd", cloud, encoding);
     const PointCloud back = readPcd(dir / "sweep.pcd");
@@ -167,8 +167,9 @@ TEST(PcdTimes, ReadsAnIntegerTimeFieldAmongOthers) {
 }
 
 // A folder of raw sweeps: 10 Hz stamps, poses of the moving sensor.
-void writeSweepFolder(const std::filesystem::path& dir, std::size_t scans, std::vector<std::vector<Vec3f>>& truth,
-                      bool with_times = true, bool with_stamps = true) {
+void writeSweepFolder(const std::filesystem::path& dir, std::size_t scans,
+                      std::vector<std::vector<Vec3f>>& truth, bool with_times = true,
+                      bool with_stamps = true) {
   std::filesystem::create_directories(dir / "pcd");
   Trajectory poses;
   std::string times;

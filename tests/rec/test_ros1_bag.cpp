@@ -8,6 +8,7 @@
 #include "bag_fixture.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
+#include "hba/io/pose_file.hpp"
 #include "hba/rec/recording.hpp"
 #include "hba/rec/ros1_bag.hpp"
 
@@ -205,6 +206,68 @@ TEST(Ros1Bag, TfStaticJoinsTheCloudsFrameToThePosesBody) {
     const Pose expected = folder.poses[k] * lidar_in_body;
     EXPECT_LT((dataset.trajectory().poses[k].t - expected.t).norm(), 1e-9);
     EXPECT_LT(angleBetween(dataset.trajectory().poses[k], expected), 1e-9);
+  }
+}
+
+// The message of the hba::Error opening `path` as a dataset throws ("" if none).
+std::string datasetError(const std::filesystem::path& path, const io::DatasetOverrides& overrides = {}) {
+  try {
+    io::Dataset::open(path, overrides);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A raw recording (no trajectory topic) with an odometry's stamped pose
+// file, as KISS-ICP writes it: each scan's pose interpolated from the file.
+TEST(Ros1Bag, AStampedPoseFileIsTheTrajectoryOfARecordingWithoutOne) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 8);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "raw.bag", "--pose-type none");
+  // Poses at every other scan's stamp, 20 ms late: the scans between are interpolated.
+  Trajectory odometry;
+  for (std::size_t k = 0; k < 8; k += 2) {
+    odometry.poses.push_back(folder.poses[k]);
+    odometry.stamps.push_back(folder.stamps[k] + 0.02);
+  }
+  io::writePoses(dir / "odometry_tum.txt", odometry, io::PoseFormat::Tum);
+  EXPECT_NE(datasetError(dir / "raw.bag").find("no trajectory"), std::string::npos);
+  io::DatasetOverrides overrides;
+  overrides.poses_file = dir / "odometry_tum.txt";
+  const io::Dataset dataset = io::Dataset::open(dir / "raw.bag", overrides);
+  ASSERT_EQ(dataset.size(), 6u);  // the first scan and the last lie outside the poses
+  EXPECT_NEAR(dataset.trajectory().stamps[0], folder.stamps[1], 1e-6);
+  const Pose expected = interpolate(folder.poses[0], folder.poses[2], 0.4);  // scan 1: 80 of 200 ms
+  EXPECT_LT((dataset.trajectory().poses[0].t - expected.t).norm(), 1e-6);
+  EXPECT_LT(angleBetween(dataset.trajectory().poses[0], expected), 1e-6);
+
+  // A pose topic cannot be named beside it.
+  overrides.recording.pose_topic = "/Odometry";
+  const std::string error = datasetError(dir / "raw.bag", overrides);
+  EXPECT_NE(error.find("odometry_tum.txt"), std::string::npos) << error;
+  EXPECT_NE(error.find("--pose-topic"), std::string::npos) << error;
+}
+
+// An earlier run's keyframe poses, given back: the same keyframes, at those poses exactly.
+TEST(Ros1Bag, KeyframePosesGivenBackKeepTheirKeyframes) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "");
+  io::DatasetOverrides overrides;
+  overrides.recording.keyframe_distance = 0.3;
+  const io::Dataset first = io::Dataset::open(dir / "run.bag", overrides);
+  ASSERT_LT(first.size(), 12u);
+  // "Optimized" poses half as far apart: chosen from scratch, fewer would be keyframes.
+  Trajectory moved = first.trajectory();
+  for (Pose& pose : moved.poses) pose.t = moved.poses.front().t + 0.5 * (pose.t - moved.poses.front().t);
+  io::writePoses(dir / "optimized_tum.txt", moved, io::PoseFormat::Tum);
+  overrides.poses_file = dir / "optimized_tum.txt";
+  const io::Dataset again = io::Dataset::open(dir / "run.bag", overrides);
+  ASSERT_EQ(again.size(), first.size());
+  for (std::size_t k = 0; k < again.size(); ++k) {
+    EXPECT_EQ(again.trajectory().stamps[k], first.trajectory().stamps[k]);
+    EXPECT_LT((again.trajectory().poses[k].t - moved.poses[k].t).norm(), 1e-9);
   }
 }
 

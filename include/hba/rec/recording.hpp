@@ -26,6 +26,11 @@ struct RecordingOptions {
   // (deg) from the last kept one; 0 and 0 keep every scan.
   double keyframe_distance = 0.0;
   double keyframe_angle = 0.0;
+  // A trajectory with stamps from elsewhere (an odometry's pose file: the
+  // body's or the clouds' frame, stamps on the recording's clock) instead
+  // of a topic: each scan's pose is interpolated from it alike.
+  std::optional<Trajectory> poses;
+  std::string poses_name;  // what it is called in messages (its file)
 
   bool keepsEveryScan() const { return !(keyframe_distance > 0.0) && !(keyframe_angle > 0.0); }
   bool isDefault() const {
@@ -54,6 +59,7 @@ class Recording {
   const std::string& format() const { return format_; }  // "ROS 1 bag", "MCAP", ...
   const std::vector<RecordingTopic>& topics() const { return topics_; }
   const std::string& cloudTopic() const { return cloud_topic_; }
+  // The trajectory topic, or the name of the trajectory given instead.
   const std::string& poseTopic() const { return pose_topic_; }
   const std::string& cloudFrame() const { return cloud_frame_; }
   // T_body_cloud from /tf_static, when the poses place another frame (the
