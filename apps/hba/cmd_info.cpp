@@ -101,7 +101,7 @@ Summary summarize(const io::Dataset& dataset, std::size_t sample) {
   summary.points = pointStats(dataset, sample);
   if (const rec::Recording* recording = dataset.recording()) {
     summary.fields = recording->cloudFields();
-    summary.scan_encoding = "sensor_msgs/PointCloud2 on " + recording->cloudTopic();
+    summary.scan_encoding = recording->cloudType() + " on " + recording->cloudTopic();
   } else {
     io::ScanFileFields first = io::describeScanFields(dataset.scanPath(0));
     summary.fields = std::move(first.fields);

@@ -105,7 +105,11 @@ void run(const Args& args) {
   if (!group.root()) return;
   const fs::path& out = staging->path();
 
-  const std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
+  std::vector<std::string> written = writeOptimizedPoses(out, dataset, result.poses);
+  if (args.every_scan) {
+    for (std::string& name : writeEveryScanPoses(out, dataset, result.poses))
+      written.push_back(std::move(name));
+  }
   nlohmann::json report = reportJson(result, dataset, settings, conventions);
   report["memory_estimate"] = memory;
   if (dataset.pointTimes()) {
@@ -173,6 +177,9 @@ void registerOptimizeCommand(CLI::App& app) {
                    "one found (the first by the input's)")
       ->check(CLI::Range(1, 5))
       ->capture_default_str();
+  command->add_flag("--every-scan", args->every_scan,
+                    "Also write every_scan_poses_tum.txt: every scan of a recording, keyframe or not, its "
+                    "pose corrected as the keyframes around it were");
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
   command->add_flag("--no-memory-check", args->no_memory_check,
                     "Run even when the estimated peak memory exceeds what the machine has available "

@@ -95,11 +95,24 @@ void DatasetArgs::addTo(CLI::App* command) {
       ->check(oneOf<io::DeskewMode>())
       ->capture_default_str();
   auto* topics = command->add_option_group("Recordings", "When DIR is a recording (docs/recordings.md)");
-  topics->add_option("--cloud-topic", recording.cloud_topic,
-                     "The sensor_msgs/PointCloud2 topic (default: the only one)");
+  topics->add_option(
+      "--cloud-topic", recording.cloud_topic,
+      "The point cloud topic: sensor_msgs/PointCloud2 or livox_ros_driver/CustomMsg (default: the only one)");
   topics->add_option("--pose-topic", recording.pose_topic,
                      "The trajectory topic: nav_msgs/Odometry, geometry_msgs/PoseStamped, "
                      "PoseWithCovarianceStamped or nav_msgs/Path (default: the only one)");
+  topics
+      ->add_option("--tf-frames", tf_frames,
+                   "With --pose-topic /tf: PARENT:CHILD, the frames whose transforms are the trajectory "
+                   "(default: the only pair)")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            const std::size_t colon = text.find(':');
+            return colon == std::string::npos || colon == 0 || colon + 1 == text.size()
+                       ? std::string("must be PARENT:CHILD, e.g. odom:base_link")
+                       : std::string();
+          },
+          "PARENT:CHILD"));
   topics
       ->add_option("--time-offset", recording.time_offset,
                    "Seconds added to each scan's stamp before its pose is looked up")
@@ -130,6 +143,10 @@ io::Dataset DatasetArgs::open() const {
   if (!calibration.empty()) overrides.calibration = calibration;
   overrides.scans_in_world = scans_in_world;
   overrides.recording = recording;
+  if (!tf_frames.empty()) {
+    overrides.recording.tf_parent = tf_frames.substr(0, tf_frames.find(':'));
+    overrides.recording.tf_child = tf_frames.substr(tf_frames.find(':') + 1);
+  }
   overrides.deskew = parseEnum<io::DeskewMode>(deskew);
   io::Dataset dataset = io::Dataset::open(dir, overrides);
   // Say what discovery chose and noticed, so a wrong guess is visible before a long run.

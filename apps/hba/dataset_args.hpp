@@ -23,6 +23,7 @@ struct DatasetArgs {
   bool scans_in_world = false;
   rec::RecordingOptions recording;
   std::string deskew = "auto";
+  std::string tf_frames;  // PARENT:CHILD of a /tf trajectory
 
   // Adds the positional DIR and the override flags to `command`.
   void addTo(CLI::App* command);

@@ -98,6 +98,20 @@ std::vector<std::string> writeOptimizedPoses(const fs::path& out, const io::Data
   return written;
 }
 
+std::vector<std::string> writeEveryScanPoses(const fs::path& out, const io::Dataset& dataset,
+                                             const std::vector<Pose>& poses) {
+  Trajectory every = dataset.everyScan(poses);
+  io::writePoses(out / "every_scan_poses_tum.txt", every, io::PoseFormat::Tum);
+  std::vector<std::string> written = {fmt::format("every_scan_poses_tum.txt ({} scans)", every.size())};
+  if (!dataset.inputFrame().empty()) {
+    const std::string name = "every_scan_" + dataset.inputFrame() + "_poses_tum.txt";
+    every.poses = dataset.toInputFrame(every.poses);
+    io::writePoses(out / name, every, io::PoseFormat::Tum);
+    written.push_back(name + " (" + dataset.inputFrame() + " frame)");
+  }
+  return written;
+}
+
 // The loop pairs and position priors of --loops and --priors, read before
 // any work so that a bad file fails at once.
 pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* dataset, std::size_t frames) {

@@ -32,7 +32,8 @@ struct Args {
   bool no_memory_check = false;
   bool force = false;
   bool print_config = false;
-  int deskew_passes = 2;  // raw sweeps: runs, each deskewing by the poses the last one found
+  bool every_scan = false;  // a recording's every scan's pose, keyframes or not
+  int deskew_passes = 2;    // raw sweeps: runs, each deskewing by the poses the last one found
 };
 
 double peakMemoryMiB();
@@ -46,6 +47,10 @@ pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* da
 nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, const io::Dataset& dataset);
 // The sensor poses in three formats (and in the input's frame when it was another); the files written.
 std::vector<std::string> writeOptimizedPoses(const std::filesystem::path& out, const io::Dataset& dataset,
+                                             const std::vector<Pose>& poses);
+// every_scan_poses_tum.txt: every scan of a recording with its pose (the
+// keyframes' corrections spread to the scans between them); the files written.
+std::vector<std::string> writeEveryScanPoses(const std::filesystem::path& out, const io::Dataset& dataset,
                                              const std::vector<Pose>& poses);
 // report.json's content for `dataset` (the caller may add to it), and writing it.
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,

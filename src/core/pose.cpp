@@ -58,6 +58,26 @@ Pose poseAtTime(const Trajectory& trajectory, double t) {
   return interpolate(trajectory.poses[k], trajectory.poses[k + 1], s);
 }
 
+Trajectory spreadCorrections(const Trajectory& before, const std::vector<Pose>& after,
+                             const Trajectory& dense) {
+  Trajectory corrections;
+  corrections.stamps = before.stamps;
+  for (std::size_t k = 0; k < after.size() && k < before.size(); ++k) {
+    corrections.poses.push_back(after[k] * before.poses[k].inverse());
+  }
+  corrections.stamps.resize(corrections.poses.size());
+  Trajectory out;
+  out.stamps = dense.stamps;
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    const double t = dense.stamps.at(i);
+    // Held, not extrapolated, beyond the first and last keyframes.
+    const double inside =
+        corrections.stamps.empty() ? t : std::clamp(t, corrections.stamps.front(), corrections.stamps.back());
+    out.poses.push_back(poseAtTime(corrections, inside) * dense.poses[i]);
+  }
+  return out;
+}
+
 std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset) {
   std::vector<Pose> out = poses;
   for (Pose& pose : out) pose.t += offset;

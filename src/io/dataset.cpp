@@ -167,6 +167,17 @@ void Dataset::convertPoses(const DatasetOverrides& overrides) {
   for (Pose& pose : trajectory_.poses) pose = frame_left_ * pose * frame_right_;
 }
 
+Trajectory Dataset::everyScan(const std::vector<Pose>& optimized) const {
+  if (optimized.size() != size()) {
+    throw Error("every scan's pose: " + std::to_string(optimized.size()) + " poses for " +
+                std::to_string(size()) + " scans");
+  }
+  if (!recording_) return Trajectory{optimized, trajectory_.stamps};
+  Trajectory dense = recording_->coveredScans();
+  for (Pose& pose : dense.poses) pose = frame_left_ * pose * frame_right_;
+  return spreadCorrections(trajectory_, optimized, dense);
+}
+
 std::vector<Pose> Dataset::toInputFrame(const std::vector<Pose>& sensor_poses) const {
   const Pose left = frame_left_.inverse(), right = frame_right_.inverse();
   std::vector<Pose> out;

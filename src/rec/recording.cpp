@@ -48,13 +48,23 @@ std::string chooseTopic(const fs::path& path, const std::vector<RecordingTopic>&
   return candidates.front().topic;
 }
 
-bool isCloudType(const std::string& type) { return type == kPointCloud2; }
+bool isTfType(const std::string& type) { return type == kTfMessage; }
 
 std::string typeOf(const MessageStore& store, const std::string& topic) {
   for (const StoredChannel& c : store.channels()) {
     if (c.topic == topic) return c.type;
   }
   return "";
+}
+
+// Poses sorted by stamp; repeated stamps (a republished pose) keep their first.
+std::vector<StampedPose> inStampOrder(std::vector<StampedPose> poses) {
+  std::stable_sort(poses.begin(), poses.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+  poses.erase(std::unique(poses.begin(), poses.end(),
+                          [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
+              poses.end());
+  return poses;
 }
 
 // The trajectory's poses by stamp: a Path's last message, or every message.
@@ -70,13 +80,46 @@ std::vector<StampedPose> readTrajectory(const MessageStore& store, const std::st
       poses.push_back(std::move(pose));
     }
   }
-  std::stable_sort(poses.begin(), poses.end(),
-                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
-  // Repeated stamps (a republished pose) keep their first.
-  poses.erase(std::unique(poses.begin(), poses.end(),
-                          [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
-              poses.end());
-  return poses;
+  return inStampOrder(std::move(poses));
+}
+
+// A tf frame's name without ROS 1's optional leading slash ("/base" is "base").
+std::string frameName(const std::string& frame) {
+  return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
+}
+
+// The transforms of a /tf topic that place `child` in `parent` (both empty:
+// the only pair there is), in order of stamp.
+std::vector<StampedPose> readTfTrajectory(const MessageStore& store, const std::string& topic,
+                                          const RecordingOptions& options) {
+  std::map<std::pair<std::string, std::string>, std::vector<StampedPose>> by_pair;
+  for (const StoredMessage& message : store.messages(topic)) {
+    const std::string what =
+        fmt::format("{}: {} message at {:.3f} s", store.path().string(), topic, message.time);
+    for (StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
+      t.frame_id = frameName(t.frame_id);
+      t.child_frame_id = frameName(t.child_frame_id);
+      by_pair[{t.frame_id, t.child_frame_id}].push_back(std::move(t));
+    }
+  }
+  std::string pairs;
+  for (const auto& [pair, poses] : by_pair) {
+    pairs += fmt::format("\n  {} -> {}  {} transforms", pair.first, pair.second, poses.size());
+  }
+  const bool named = !options.tf_parent.empty() || !options.tf_child.empty();
+  if (!named && by_pair.size() == 1) return inStampOrder(by_pair.begin()->second);
+  if (!named) {
+    failAt(store.path(), fmt::format("{} holds {} pairs of frames: choose one with --tf-frames PARENT:CHILD. "
+                                     "They are:{}",
+                                     topic, by_pair.size(), pairs.empty() ? "\n  (none)" : pairs));
+  }
+  const auto found = by_pair.find({frameName(options.tf_parent), frameName(options.tf_child)});
+  if (found == by_pair.end()) {
+    failAt(store.path(),
+           fmt::format("{} places no {} in {} (--tf-frames). Its pairs:{}", topic, options.tf_child,
+                       options.tf_parent, pairs.empty() ? "\n  (none)" : pairs));
+  }
+  return inStampOrder(found->second);
 }
 
 // The scans a keyframe apart: the first, then each as far or as turned
@@ -106,11 +149,6 @@ std::vector<std::size_t> scansAt(const std::vector<double>& scan_stamps,
       scans.push_back(static_cast<std::size_t>(at - scan_stamps.begin()));
   }
   return scans;
-}
-
-// A tf frame's name without ROS 1's optional leading slash ("/base" is "base").
-std::string frameName(const std::string& frame) {
-  return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
 }
 
 // T_from_to from the recording's /tf_static (frames as tf names them):
@@ -207,8 +245,10 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   }
   for (auto& entry : by_topic) recording.topics_.push_back(entry.second);
 
-  recording.cloud_topic_ = chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic,
-                                       "point cloud (sensor_msgs/PointCloud2)", "--cloud-topic");
+  recording.cloud_topic_ =
+      chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic,
+                  "point cloud (sensor_msgs/PointCloud2, livox_ros_driver/CustomMsg)", "--cloud-topic");
+  recording.cloud_type_ = typeOf(bag, recording.cloud_topic_);
   std::vector<StampedPose> trajectory;
   if (options.poses) {
     recording.pose_topic_ = options.poses_name;
@@ -217,13 +257,27 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     }
     recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " + options.poses_name);
   } else {
+    // A /tf topic is a trajectory only when named: most recordings hold one.
+    const bool tf = typeOf(bag, options.pose_topic) == kTfMessage;
     recording.pose_topic_ = chooseTopic(
-        path, recording.topics_, &isTrajectoryType, options.pose_topic,
+        path, recording.topics_, tf ? &isTfType : &isTrajectoryType, options.pose_topic,
         "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
         "--pose-topic");
-    recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
-                               recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
-    trajectory = readTrajectory(bag, recording.pose_topic_);
+    if (tf) {
+      trajectory = readTfTrajectory(bag, recording.pose_topic_, options);
+      if (!trajectory.empty()) {
+        recording.notes_.push_back(fmt::format(
+            "scans from {}, poses from {}: {} in {}", recording.cloud_topic_, recording.pose_topic_,
+            trajectory.front().child_frame_id, trajectory.front().frame_id));
+      }
+    } else {
+      if (!options.tf_parent.empty() || !options.tf_child.empty()) {
+        failAt(path, "--tf-frames is for a tf2_msgs/TFMessage trajectory: give --pose-topic /tf");
+      }
+      recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
+                                 recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
+      trajectory = readTrajectory(bag, recording.pose_topic_);
+    }
   }
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
   recording.time_offset_ = options.time_offset;
@@ -240,12 +294,13 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   for (const StoredMessage& message : clouds) {
     const std::string what =
         fmt::format("{}: {} message at {:.3f} s", path.string(), recording.cloud_topic_, message.time);
-    const PointCloud2View view = decodePointCloud2(bag.read(message), bag.serialization(), what);
+    const CloudHeader header =
+        decodeCloudHeader(recording.cloud_type_, bag.read(message), bag.serialization(), what);
     if (stamped.empty()) {
-      recording.cloud_frame_ = view.frame_id;
-      for (const PointField& field : view.fields) recording.cloud_fields_.push_back(field.name);
+      recording.cloud_frame_ = header.frame_id;
+      recording.cloud_fields_ = header.fields;
     }
-    stamped.emplace_back(view.stamp + options.time_offset, message);
+    stamped.emplace_back(header.stamp + options.time_offset, message);
   }
   std::stable_sort(stamped.begin(), stamped.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -273,6 +328,7 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
         fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out", dropped.size(),
                     clouds.size(), span));
   }
+  recording.covered_ = recording.trajectory_;
   if (!options.keepsEveryScan()) {
     // An earlier run's keyframe poses given back: its keyframes, not new ones
     // chosen by poses that moved since.
@@ -320,7 +376,7 @@ PointCloud Recording::loadScan(std::size_t i) const {
   const std::string what =
       fmt::format("{}: scan {} ({} at {:.3f} s)", path_.string(), i, cloud_topic_, trajectory_.stamps.at(i));
   const std::vector<std::uint8_t> bytes = clouds_->store->read(message);
-  return toPointCloud(decodePointCloud2(bytes, clouds_->store->serialization(), what), what);
+  return decodeCloud(cloud_type_, bytes, clouds_->store->serialization(), what);
 }
 
 }  // namespace hba::rec

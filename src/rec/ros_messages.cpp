@@ -1,15 +1,11 @@
 #include "hba/rec/ros_messages.hpp"
 
-#include "byte_reader.hpp"
 #include "hba/core/error.hpp"
+#include "message_parts.hpp"
 
 namespace hba::rec {
-namespace {
 
-struct Header {
-  double stamp = 0.0;
-  std::string frame_id;
-};
+namespace detail {
 
 // A reader of one message: CDR after its 4-byte encapsulation header.
 ByteReader messageReader(const std::vector<std::uint8_t>& message, Serialization serialization,
@@ -57,19 +53,13 @@ void expectEnd(ByteReader& reader, const std::string& type) {
     reader.fail(std::to_string(reader.remaining()) + " bytes left after a " + type);
 }
 
-// A message that does not parse as its type says so: the recorder's
-// definition does not match its data (or the bag is corrupt).
-template <typename Decode>
-auto decodeAs(const std::string& type, Decode decode) {
-  try {
-    return decode();
-  } catch (const Error& e) {
-    throw Error(std::string(e.what()) + ": the message does not match the definition of " + type);
-  }
-}
+}  // namespace detail
 
-PointCloud2View decodeCloud(const std::vector<std::uint8_t>& message, Serialization serialization,
-                            const std::string& what) {
+namespace {
+using namespace detail;
+
+PointCloud2View decodePointCloud2Message(const std::vector<std::uint8_t>& message,
+                                         Serialization serialization, const std::string& what) {
   ByteReader reader = messageReader(message, serialization, what);
   PointCloud2View cloud;
   const Header header = readHeader(reader);
@@ -143,7 +133,7 @@ std::string rosTypeName(const std::string& type) {
 
 PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, Serialization serialization,
                                   const std::string& what) {
-  return decodeAs(kPointCloud2, [&] { return decodeCloud(message, serialization, what); });
+  return decodeAs(kPointCloud2, [&] { return decodePointCloud2Message(message, serialization, what); });
 }
 
 std::vector<StampedPose> decodePoses(const std::string& type, const std::vector<std::uint8_t>& message,
@@ -167,6 +157,32 @@ std::vector<StampedPose> decodeTransforms(const std::vector<std::uint8_t>& messa
     expectEnd(reader, kTfMessage);
     return transforms;
   });
+}
+
+namespace {
+bool isLivoxType(const std::string& type) {
+  return type == kLivoxCustom || type == "livox_ros_driver2/CustomMsg";
+}
+}  // namespace
+
+bool isCloudType(const std::string& type) { return type == kPointCloud2 || isLivoxType(type); }
+
+CloudHeader decodeCloudHeader(const std::string& type, const std::vector<std::uint8_t>& message,
+                              Serialization serialization, const std::string& what) {
+  if (isLivoxType(type)) {
+    const LivoxCloud livox = decodeLivox(message, serialization, what, false);
+    return {livox.stamp, livox.frame_id, {"offset_time", "x", "y", "z", "reflectivity", "tag", "line"}};
+  }
+  const PointCloud2View view = decodePointCloud2(message, serialization, what);
+  CloudHeader header{view.stamp, view.frame_id, {}};
+  for (const PointField& field : view.fields) header.fields.push_back(field.name);
+  return header;
+}
+
+PointCloud decodeCloud(const std::string& type, const std::vector<std::uint8_t>& message,
+                       Serialization serialization, const std::string& what) {
+  if (isLivoxType(type)) return decodeLivox(message, serialization, what, true).points;
+  return toPointCloud(decodePointCloud2(message, serialization, what), what);
 }
 
 bool isTrajectoryType(const std::string& type) {

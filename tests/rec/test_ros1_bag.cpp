@@ -96,6 +96,61 @@ TEST(Ros1Bag, RawSweepsAreDeskewedByTheRecordedMotion) {
   EXPECT_LT((deskewed.points[0] - raw.points[0]).norm(), 1e-4);  // the first point, at the stamp, did not
 }
 
+// Livox's own message (livox_ros_driver/CustomMsg), as FAST-LIO2 records
+// /livox/lidar: the same points, reflectivity as intensity, offset_time as
+// each point's time; the driver's all-zero point left out.
+TEST(Ros1Bag, ReadsLivoxCustomMessages) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 4);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "livox.bag", "--layout livox");
+  const Recording recording = Recording::open(dir / "livox.bag");
+  EXPECT_EQ(recording.cloudType(), "livox_ros_driver/CustomMsg");
+  ASSERT_EQ(recording.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const PointCloud scan = recording.loadScan(k);
+    expectSameScan(scan, folder.scans[k]);
+    ASSERT_EQ(scan.time.size(), scan.size());
+    EXPECT_EQ(scan.time.back(), std::floor(1e8 * static_cast<double>(scan.size() - 1) / scan.size()));
+  }
+  const io::Dataset dataset = io::Dataset::open(dir / "livox.bag");
+  ASSERT_TRUE(dataset.pointTimes().has_value());
+  EXPECT_EQ(dataset.pointTimes()->describe(), "ns since the scan's stamp");
+}
+
+// A trajectory only in /tf (odom -> body, beside other pairs): named with
+// --pose-topic /tf and --tf-frames, never taken unasked.
+TEST(Ros1Bag, ReadsATrajectoryFromTfBetweenTwoFrames) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 6);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "tf.bag", "--pose-type tf");
+  const auto errorOf = [&](const RecordingOptions& options) {
+    try {
+      Recording::open(dir / "tf.bag", options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(errorOf({}).find("no trajectory"), std::string::npos);
+  RecordingOptions options;
+  options.pose_topic = "/tf";
+  const std::string pairs = errorOf(options);
+  EXPECT_NE(pairs.find("2 pairs of frames"), std::string::npos) << pairs;
+  EXPECT_NE(pairs.find("odom -> body  6 transforms"), std::string::npos) << pairs;
+  EXPECT_NE(pairs.find("body -> wheel  3 transforms"), std::string::npos) << pairs;
+  options.tf_parent = "odom";
+  options.tf_child = "base_link";
+  EXPECT_NE(errorOf(options).find("places no base_link in odom"), std::string::npos);
+  options.tf_child = "body";
+  const Recording recording = Recording::open(dir / "tf.bag", options);
+  ASSERT_EQ(recording.size(), 6u);
+  EXPECT_EQ(recording.poseFrame(), "body");
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_LT((recording.trajectory().poses[k].t - folder.poses[k].t).norm(), 1e-9);
+    EXPECT_LT(angleBetween(recording.trajectory().poses[k], folder.poses[k]), 1e-9);
+  }
+}
+
 TEST(Ros1Bag, InterpolatesPosesAtTheScansStamps) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 10);
@@ -268,6 +323,29 @@ TEST(Ros1Bag, KeyframePosesGivenBackKeepTheirKeyframes) {
   for (std::size_t k = 0; k < again.size(); ++k) {
     EXPECT_EQ(again.trajectory().stamps[k], first.trajectory().stamps[k]);
     EXPECT_LT((again.trajectory().poses[k].t - moved.poses[k].t).norm(), 1e-9);
+  }
+}
+
+// Keyframes optimized, every scan's pose asked for: each covered scan moves
+// as the keyframes around it did.
+TEST(Ros1Bag, EveryScansPoseFollowsItsKeyframes) {
+  test::TempDir dir;
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "");
+  io::DatasetOverrides overrides;
+  overrides.recording.keyframe_distance = 0.3;
+  const io::Dataset dataset = io::Dataset::open(dir / "run.bag", overrides);
+  ASSERT_LT(dataset.size(), 12u);
+  const Pose shift(Quat(Eigen::AngleAxisd(0.05, Vec3::UnitZ())), Vec3(1.0, -2.0, 0.5));
+  std::vector<Pose> optimized;
+  for (const Pose& pose : dataset.trajectory().poses) optimized.push_back(shift * pose);
+  const Trajectory every = dataset.everyScan(optimized);
+  ASSERT_EQ(every.size(), 12u);
+  for (std::size_t k = 0; k < 12; ++k) {
+    EXPECT_NEAR(every.stamps[k], folder.stamps[k], 1e-6);
+    const Pose expected = shift * folder.poses[k];
+    EXPECT_LT((every.poses[k].t - expected.t).norm(), 1e-6) << k;
+    EXPECT_LT(angleBetween(every.poses[k], expected), 1e-6) << k;
   }
 }
 

@@ -56,6 +56,27 @@ TEST(Ros1BagReal, Hku1BagGivesTheFolderRunsPosesAndMme) {
   EXPECT_EQ(test::readText(bag), bag_before);  // the recording untouched
 }
 
+// FAST-LIO2's /cloud_registered holds the scans already moved into the
+// world: recorded in place of the body-frame topic, the run is refused
+// before any work, naming the flag that reads it.
+TEST(Ros1BagReal, WorldFrameCloudsAreCaughtByTheConventionCheck) {
+  const fs::path hku1 = test::sharedDataDir() / "hku1";
+  if (!fs::exists(hku1 / "odom_poses.txt")) GTEST_SKIP() << "../shared/data/hku1 is absent";
+  test::TempDir dir;
+  WRITE_BAG_OR_SKIP(hku1, dir / "world.bag", "--world-frame");
+  const test::CommandResult refused =
+      test::runCommand(test::hbaTool() + " -q -j 2 optimize " + (dir / "world.bag").string() + " -o " +
+                       (dir / "out").string() + " --no-render");
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("--scans-in-world"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  // With the flag the scans are moved back by their poses: the map of the bag's
+  // world-frame clouds is the body-frame folder's map.
+  const double mme_world = mmeOf((dir / "world.bag").string() + " --scans-in-world", hku1 / "odom_poses.txt");
+  const double mme_folder = mmeOf(hku1.string(), hku1 / "odom_poses.txt");
+  EXPECT_NEAR(mme_world, mme_folder, 1e-3);
+}
+
 TEST(Ros1BagReal, ABadRecordingWritesNothing) {
   test::TempDir dir;
   test::writeScanFolder(dir / "folder", 3);

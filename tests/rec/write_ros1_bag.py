@@ -54,7 +54,50 @@ def quaternion(r):
     return tuple(q)
 
 
+LIVOX_DEFINITION = """std_msgs/Header header
+uint64 timebase
+uint32 point_num
+uint8 lidar_id
+uint8[3] rsvd
+CustomPoint[] points
+================================================================================
+MSG: std_msgs/Header
+uint32 seq
+time stamp
+string frame_id
+================================================================================
+MSG: livox_ros_driver/CustomPoint
+uint32 offset_time
+float32 x
+float32 y
+float32 z
+uint8 reflectivity
+uint8 tag
+uint8 line
+"""
+
+
+def livox_message(points, stamp, frame):
+    """livox_ros_driver/CustomMsg, as the Livox driver publishes it: offset_time in ns after
+    the stamp, reflectivity, and one all-zero point (a missing return) at the end."""
+    import genpy.dynamic
+    classes = genpy.dynamic.generate_dynamic("livox_ros_driver/CustomMsg", LIVOX_DEFINITION)
+    message, point = classes["livox_ros_driver/CustomMsg"], classes["livox_ros_driver/CustomPoint"]
+    msg = message()
+    msg.header.stamp, msg.header.frame_id = stamp, frame
+    msg.timebase = stamp.to_nsec()
+    msg.lidar_id, msg.rsvd = 0, [0, 0, 0]
+    msg.points = [point(offset_time=n * 100000000 // len(points), x=float(p[0]), y=float(p[1]), z=float(p[2]),
+                        reflectivity=int(min(255, max(0, p[3]))), tag=16, line=n % 6)
+                  for n, p in enumerate(points)]
+    msg.points.append(point(offset_time=100000000, x=0.0, y=0.0, z=0.0, reflectivity=0, tag=0, line=0))
+    msg.point_num = len(msg.points)
+    return msg
+
+
 def cloud_message(points, stamp, layout, big_endian, frame="body"):
+    if layout == "livox":
+        return livox_message(points, stamp, frame)
     msg = PointCloud2()
     msg.header.stamp = stamp
     msg.header.frame_id = frame
@@ -109,11 +152,11 @@ def main():
     parser.add_argument("folder")
     parser.add_argument("bag")
     parser.add_argument("--compression", default="none", choices=["none", "lz4", "bz2"])
-    parser.add_argument("--layout", default="fastlio", choices=["fastlio", "float64", "ouster"])
+    parser.add_argument("--layout", default="fastlio", choices=["fastlio", "float64", "ouster", "livox"])
     parser.add_argument("--big-endian", action="store_true")
     parser.add_argument("--scans", type=int, default=0, help="only the first N")
     parser.add_argument("--second-cloud-topic", action="store_true")
-    parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "posecov", "path", "none"],
+    parser.add_argument("--pose-type", default="odometry", choices=["odometry", "posestamped", "posecov", "path", "tf", "none"],
                         help="path: every pose in nav_msgs/Path messages that grow (as a SLAM system republishes it)")
     parser.add_argument("--pose-shift", type=float, default=0.0, help="seconds added to the poses' stamps")
     parser.add_argument("--repeat", type=int, default=1,
@@ -122,6 +165,8 @@ def main():
                         help="metres each repetition is moved along x (apart, so they never meet)")
     parser.add_argument("--tf-static", default="",
                         help="'x y z qx qy qz qw': the clouds in frame lidar, placed in body by /tf_static")
+    parser.add_argument("--world-frame", action="store_true",
+                        help="clouds moved into the world by their pose (FAST-LIO2's /cloud_registered)")
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
@@ -156,12 +201,32 @@ def main():
                 r = t_static.transform.rotation
                 r.x, r.y, r.z, r.w = v[3:]
                 bag.write("/tf_static", TFMessage(transforms=[t_static]), stamp)
-            cloud = cloud_message(clouds[scan], stamp, args.layout, args.big_endian,
+            points = clouds[scan]
+            if args.world_frame:
+                points = points.copy()
+                points[:, 0:3] = points[:, 0:3] @ pose[:, :3].T + pose[:, 3]
+            cloud = cloud_message(points, stamp, args.layout, args.big_endian,
                                   "lidar" if args.tf_static else "body")
             bag.write("/cloud_registered_body", cloud, stamp)
             if args.second_cloud_topic:
                 bag.write("/cloud_registered", cloud, stamp)
-            if args.pose_type != "none":
+            if args.pose_type == "tf":
+                # odom -> body at each scan (with ROS 1's leading slash), and a wheel every other scan.
+                from tf2_msgs.msg import TFMessage
+                w, x, y, z = quaternion(pose[:, :3])
+                body = TransformStamped()
+                body.header.stamp, body.header.frame_id, body.child_frame_id = stamp, "/odom", "body"
+                body.transform.translation.x, body.transform.translation.y, body.transform.translation.z = pose[:, 3]
+                r = body.transform.rotation
+                r.x, r.y, r.z, r.w = x, y, z, w
+                transforms = [body]
+                if n % 2 == 0:
+                    wheel = TransformStamped()
+                    wheel.header.stamp, wheel.header.frame_id, wheel.child_frame_id = stamp, "body", "wheel"
+                    wheel.transform.rotation.w = 1.0
+                    transforms.append(wheel)
+                bag.write("/tf", TFMessage(transforms=transforms), stamp)
+            elif args.pose_type != "none":
                 kinds = {"odometry": Odometry, "posestamped": PoseStamped, "posecov": PoseWithCovarianceStamped,
                          "path": PoseStamped}
                 odo = kinds[args.pose_type]()

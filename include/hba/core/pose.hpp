@@ -45,6 +45,16 @@ struct Trajectory {
 // motion, at most one segment's length of time, then held.
 Pose poseAtTime(const Trajectory& trajectory, double t);
 
+// Every pose of `dense` (stamped, e.g. every scan of a recording) moved as
+// the keyframes around it were: keyframe k's correction C_k = after_k *
+// before_k^-1 (`before`: the keyframes as they were, stamped), interpolated
+// by time between the two keyframes around each stamp and held beyond the
+// ends, applied as C * dense_i. The dense poses keep their own motion
+// between keyframes. Both sets share one frame; `after` has one pose per
+// keyframe.
+Trajectory spreadCorrections(const Trajectory& before, const std::vector<Pose>& after,
+                             const Trajectory& dense);
+
 // The poses moved by `offset` (added to every translation).
 std::vector<Pose> translated(const std::vector<Pose>& poses, const Vec3& offset);
 

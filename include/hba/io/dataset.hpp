@@ -89,6 +89,10 @@ class Dataset {
   // The sensor's pose at time t (s, the stamps' clock), from the densest
   // trajectory the dataset holds (a recording's own, else the scans' poses).
   Pose sensorPoseAt(double t) const;
+  // Every scan of a recording (keyframes or not) with its sensor pose, the
+  // keyframes' `optimized` sensor poses spread to the scans between them
+  // (spreadCorrections); a folder's scans as they are. Stamped.
+  Trajectory everyScan(const std::vector<Pose>& optimized) const;
   // From now on, deskew by these sensor poses of the scans (a better
   // estimate of the motion than the input's: an optimized run's).
   void deskewBy(const std::vector<Pose>& sensor_poses);

@@ -19,8 +19,12 @@
 namespace hba::rec {
 
 struct RecordingOptions {
-  std::string cloud_topic;   // empty: the only PointCloud2 topic
-  std::string pose_topic;    // empty: the only trajectory topic
+  std::string cloud_topic;  // empty: the only PointCloud2 topic
+  std::string pose_topic;   // empty: the only trajectory topic
+  // With pose_topic a tf2_msgs/TFMessage topic (/tf): the transforms that
+  // place `tf_child` in `tf_parent` are the trajectory (empty: the only
+  // pair the topic holds).
+  std::string tf_parent, tf_child;
   double time_offset = 0.0;  // s, added to every scan's stamp before its pose is looked up
   // Keyframes: a scan is kept when it is this far (m) or turned this much
   // (deg) from the last kept one; 0 and 0 keep every scan.
@@ -34,7 +38,8 @@ struct RecordingOptions {
 
   bool keepsEveryScan() const { return !(keyframe_distance > 0.0) && !(keyframe_angle > 0.0); }
   bool isDefault() const {
-    return cloud_topic.empty() && pose_topic.empty() && time_offset == 0.0 && keepsEveryScan();
+    return cloud_topic.empty() && pose_topic.empty() && tf_parent.empty() && tf_child.empty() &&
+           time_offset == 0.0 && keepsEveryScan();
   }
 };
 
@@ -59,6 +64,8 @@ class Recording {
   const std::string& format() const { return format_; }  // "ROS 1 bag", "MCAP", ...
   const std::vector<RecordingTopic>& topics() const { return topics_; }
   const std::string& cloudTopic() const { return cloud_topic_; }
+  // "sensor_msgs/PointCloud2" or "livox_ros_driver/CustomMsg" (or driver 2's).
+  const std::string& cloudType() const { return cloud_type_; }
   // The trajectory topic, or the name of the trajectory given instead.
   const std::string& poseTopic() const { return pose_topic_; }
   const std::string& cloudFrame() const { return cloud_frame_; }
@@ -78,6 +85,9 @@ class Recording {
   std::size_t size() const { return trajectory_.size(); }
   const Trajectory& trajectory() const { return trajectory_; }
   std::size_t cloudMessages() const { return cloud_messages_; }
+  // Every scan the trajectory covers, kept as a keyframe or not: stamps and
+  // poses (the same as trajectory() when every scan is kept).
+  const Trajectory& coveredScans() const { return covered_; }
   // Sentences for the log: what was chosen, what was dropped and why.
   const std::vector<std::string>& notes() const { return notes_; }
   const std::vector<std::string>& warnings() const { return warnings_; }
@@ -89,12 +99,12 @@ class Recording {
   Recording();
   struct Clouds;
   std::filesystem::path path_;
-  std::string format_, cloud_topic_, pose_topic_, cloud_frame_;
+  std::string format_, cloud_topic_, cloud_type_, pose_topic_, cloud_frame_;
   std::vector<RecordingTopic> topics_;
   std::vector<std::string> cloud_fields_;
   std::string pose_frame_;
   std::optional<Pose> extrinsic_;
-  Trajectory trajectory_, recorded_;
+  Trajectory trajectory_, recorded_, covered_;
   double time_offset_ = 0.0;
   std::size_t cloud_messages_ = 0;
   std::vector<std::string> notes_, warnings_;

@@ -50,6 +50,26 @@ PointCloud2View decodePointCloud2(const std::vector<std::uint8_t>& message, Seri
 // present; points with a non-finite coordinate are left out.
 PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what);
 
+// Livox's own cloud: livox_ros_driver/CustomMsg (livox_ros_driver2's in ROS 2).
+inline constexpr const char* kLivoxCustom = "livox_ros_driver/CustomMsg";
+// True for the point cloud types hba reads: PointCloud2 and Livox's CustomMsg.
+bool isCloudType(const std::string& type);
+
+// A cloud message of either type without its points: stamp, frame and the
+// names of its point fields.
+struct CloudHeader {
+  double stamp = 0.0;
+  std::string frame_id;
+  std::vector<std::string> fields;
+};
+CloudHeader decodeCloudHeader(const std::string& type, const std::vector<std::uint8_t>& message,
+                              Serialization serialization, const std::string& what);
+// The points of a cloud message of either type, as toPointCloud reads them
+// (a CustomMsg: reflectivity as intensity, offset_time as the time; the
+// driver's all-zero points for missing returns left out).
+PointCloud decodeCloud(const std::string& type, const std::vector<std::uint8_t>& message,
+                       Serialization serialization, const std::string& what);
+
 struct StampedPose {
   double stamp = 0.0;
   Pose pose;
