@@ -304,13 +304,18 @@ TEST(Ros1Bag, AStampedPoseFileIsTheTrajectoryOfARecordingWithoutOne) {
   EXPECT_NE(error.find("--pose-topic"), std::string::npos) << error;
 }
 
+io::DatasetOverrides keyframesEvery30cm() {
+  io::DatasetOverrides overrides;
+  overrides.recording.keyframe_distance = 0.3;
+  return overrides;
+}
+
 // An earlier run's keyframe poses, given back: the same keyframes, at those poses exactly.
 TEST(Ros1Bag, KeyframePosesGivenBackKeepTheirKeyframes) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "");
-  io::DatasetOverrides overrides;
-  overrides.recording.keyframe_distance = 0.3;
+  io::DatasetOverrides overrides = keyframesEvery30cm();
   const io::Dataset first = io::Dataset::open(dir / "run.bag", overrides);
   ASSERT_LT(first.size(), 12u);
   // "Optimized" poses half as far apart: chosen from scratch, fewer would be keyframes.
@@ -332,9 +337,7 @@ TEST(Ros1Bag, EveryScansPoseFollowsItsKeyframes) {
   test::TempDir dir;
   const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "");
-  io::DatasetOverrides overrides;
-  overrides.recording.keyframe_distance = 0.3;
-  const io::Dataset dataset = io::Dataset::open(dir / "run.bag", overrides);
+  const io::Dataset dataset = io::Dataset::open(dir / "run.bag", keyframesEvery30cm());
   ASSERT_LT(dataset.size(), 12u);
   const Pose shift(Quat(Eigen::AngleAxisd(0.05, Vec3::UnitZ())), Vec3(1.0, -2.0, 0.5));
   std::vector<Pose> optimized;
