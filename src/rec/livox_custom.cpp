@@ -14,10 +14,10 @@ LivoxCloud decodeLivox(const std::vector<std::uint8_t>& message, Serialization s
     const Header header = readHeader(reader);
     cloud.stamp = header.stamp;
     cloud.frame_id = header.frame_id;
-    reader.u64();                                         // timebase: the first point's time, ns
-    reader.u32();                                         // point_num
-    for (int k = 0; k < 4; ++k) reader.u8();              // lidar_id, rsvd[3]
-    const std::uint32_t count = reader.count(19);         // offset_time, x y z, reflectivity, tag, line
+    reader.u64();                                  // timebase: the first point's time, ns
+    reader.u32();                                  // point_num
+    for (int k = 0; k < 4; ++k) reader.u8();       // lidar_id, rsvd[3]
+    const std::uint32_t count = reader.count(19);  // offset_time, x y z, reflectivity, tag, line
     if (!with_points) return cloud;
     cloud.points.reserve(count, true);
     cloud.points.time.reserve(count);

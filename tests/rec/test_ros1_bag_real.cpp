@@ -3,6 +3,7 @@
 // run's poses and MME, and `hba extract` gives the folder back.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "bag_fixture.hpp"
@@ -75,6 +76,48 @@ TEST(Ros1BagReal, WorldFrameCloudsAreCaughtByTheConventionCheck) {
   const double mme_world = mmeOf((dir / "world.bag").string() + " --scans-in-world", hku1 / "odom_poses.txt");
   const double mme_folder = mmeOf(hku1.string(), hku1 / "odom_poses.txt");
   EXPECT_NEAR(mme_world, mme_folder, 1e-3);
+}
+
+// Keyframes of hku1, every scan's pose asked for: one line per scan, and
+// at the keyframes' stamps the keyframes' optimized poses.
+TEST(Ros1BagReal, EveryScanGetsAPoseFromItsKeyframes) {
+  const fs::path hku1 = test::sharedDataDir() / "hku1";
+  if (!fs::exists(hku1 / "odom_poses.txt")) GTEST_SKIP() << "../shared/data/hku1 is absent";
+  test::TempDir dir;
+  WRITE_BAG_OR_SKIP(hku1, dir / "hku1.bag", "");
+  test::runOk(test::hbaTool() + " -q -j 2 optimize " + (dir / "hku1.bag").string() + " -o " +
+              (dir / "out").string() + " --keyframe-distance 1 --every-scan --no-render");
+  const auto lines = [](const fs::path& file) {
+    std::vector<std::string> kept;
+    std::istringstream text(test::readText(file));
+    for (std::string line; std::getline(text, line);) {
+      if (!line.empty() && line[0] != '#') kept.push_back(line);
+    }
+    return kept;
+  };
+  const std::vector<std::string> keyframes = lines(dir / "out" / "poses_tum.txt");
+  const std::vector<std::string> every = lines(dir / "out" / "every_scan_poses_tum.txt");
+  EXPECT_EQ(every.size(), 314u);
+  ASSERT_GT(keyframes.size(), 20u);
+  ASSERT_LT(keyframes.size(), every.size());
+  // At each keyframe's stamp, its pose (to rounding).
+  const auto numbers = [](const std::string& line) {
+    std::istringstream words(line);
+    std::vector<double> values;
+    for (double v; words >> v;) values.push_back(v);
+    return values;
+  };
+  std::size_t found = 0;
+  for (const std::string& keyframe : keyframes) {
+    const std::vector<double> expected = numbers(keyframe);
+    for (const std::string& line : every) {
+      const std::vector<double> got = numbers(line);
+      if (got.size() != expected.size() || std::abs(got[0] - expected[0]) > 1e-6) continue;
+      ++found;
+      for (std::size_t k = 1; k < got.size(); ++k) EXPECT_NEAR(got[k], expected[k], 1e-9) << line;
+    }
+  }
+  EXPECT_EQ(found, keyframes.size());
 }
 
 TEST(Ros1BagReal, ABadRecordingWritesNothing) {
