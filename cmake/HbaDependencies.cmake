@@ -12,12 +12,15 @@ find_package(Threads REQUIRED)
 
 find_package(liblzf REQUIRED)   # PCD binary_compressed
 # Recordings' chunks: lz4 and zstd (liblz4-dev, libzstd-dev, through pkg-config)
-# and bzip2 (libbz2-dev).
-find_package(PkgConfig REQUIRED)
-pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
-pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
-find_package(BZip2 REQUIRED)
-find_package(SQLite3 REQUIRED)  # ROS 2 sqlite3 bags (libsqlite3-dev)
+# and bzip2 (libbz2-dev); ROS 2 sqlite3 bags (libsqlite3-dev). Without
+# HBA_WITH_RECORDINGS none is needed and a recording is refused by name.
+if(HBA_WITH_RECORDINGS)
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(LZ4 REQUIRED IMPORTED_TARGET liblz4)
+  pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
+  find_package(BZip2 REQUIRED)
+  find_package(SQLite3 REQUIRED)
+endif()
 
 find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)
 # MPI for the tool only (the library links no transport): AUTO takes it

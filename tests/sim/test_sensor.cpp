@@ -31,6 +31,38 @@ TEST(SimSensor, NoiseFreeReturnsLieOnTheSurfacesTheyHit) {
   }
 }
 
+// A raw sweep: each return measured from where the sensor is when it fires,
+// in that instant's frame, with its time; the firing order is the sensor's.
+TEST(SimSensor, RawSweepReturnsLieOnTheSurfacesFromTheMovingSensor) {
+  const Simulation& s = test::smallSimulation();
+  const double period = 0.1;
+  // The truth's motion from frame 37 on, at the speed of its frames.
+  const double start = s.truth.stamps[37];
+  const SweepMotion motion = [&](double t) { return poseAtTime(s.truth, start + t); };
+  for (SensorModel model : {SensorModel::Vlp16, SensorModel::Livox}) {
+    SensorConfig config = sensorPreset(model);
+    config.range_noise = 0.0;
+    config.dropout = 0.0;
+    const auto returns = sweepReturns(s.world, motion, period, config, 1, 37);
+    ASSERT_GT(returns.size(), 2000u) << hba::toString(model);
+    double worst = 0.0, still_worst = 0.0, last_time = 0.0;
+    for (const Return& r : returns) {
+      ASSERT_GE(r.time, last_time);  // fired in order
+      ASSERT_LT(r.time, period);
+      last_time = r.time;
+      worst = std::max(worst, s.world.distanceToPrimitive(r.primitive, motion(r.time) * r.point));
+      still_worst = std::max(still_worst, s.world.distanceToPrimitive(r.primitive, motion(0.0) * r.point));
+    }
+    EXPECT_LT(worst, 1e-6) << hba::toString(model);
+    EXPECT_GT(still_worst, 0.05) << hba::toString(model);  // seen from the start's pose, the sweep is warped
+    EXPECT_GT(last_time, 0.09);
+  }
+  // A spinning sensor fires a column's channels together.
+  const SensorConfig vlp = sensorPreset(SensorModel::Vlp16);
+  EXPECT_EQ(firingShare(vlp, 0), firingShare(vlp, 15));
+  EXPECT_GT(firingShare(vlp, 16), firingShare(vlp, 15));
+}
+
 TEST(SimSensor, MeasuredRangeNoiseMatchesTheSetting) {
   const Simulation& s = test::smallSimulation();
   SensorConfig config = sensorPreset(SensorModel::Vlp16);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
+
 #include "hba/core/error.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
@@ -53,6 +55,24 @@ TEST(SimOutput, WritesAnHbaFolderWithGroundTruth) {
   for (const auto& entry : fs::directory_iterator(dir.path())) {
     EXPECT_EQ(entry.path().filename(), "seq");
   }
+}
+
+// --sweep: the scans carry each point's time in the frame's interval, and
+// the same frames without it have none; a voxel's centroid has no time.
+TEST(SimOutput, RawSweepsCarryTheirPointTimes) {
+  hba::test::TempDir dir;
+  SimulationConfig config = tinySimulation().config;
+  config.sweep = true;
+  writeSimulation(prepareSimulation(config), dir / "raw", WriteOptions{});
+  const PointCloud cloud = io::readPcd(dir / "raw" / "pcd" / "000005.pcd");
+  ASSERT_EQ(cloud.time.size(), cloud.size());
+  EXPECT_GE(*std::min_element(cloud.time.begin(), cloud.time.end()), 0.0);
+  EXPECT_GT(*std::max_element(cloud.time.begin(), cloud.time.end()), 0.09);
+  EXPECT_LT(*std::max_element(cloud.time.begin(), cloud.time.end()), 0.1);
+  EXPECT_NE(hba::test::readText(dir / "raw" / "sim.yaml").find("raw_sweeps: true"), std::string::npos);
+  EXPECT_FALSE(simulateFrame(tinySimulation(), 5).hasTime());
+  config.downsample_voxel = 0.2;
+  EXPECT_THROW(prepareSimulation(config), Error);
 }
 
 TEST(SimOutput, SameSeedSameBytesWithOneOrTwoThreads) {
