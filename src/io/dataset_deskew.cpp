@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 
 #include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
@@ -22,9 +23,13 @@ double medianGap(const std::vector<double>& stamps) {
   return gaps[gaps.size() / 2];
 }
 
+// "t, time, timestamp or offset_time"
 std::string timeFieldNames() {
   std::string names;
-  for (const char* name : kPointTimeFields) names += (names.empty() ? "" : ", ") + std::string(name);
+  const std::size_t count = std::size(kPointTimeFields);
+  for (std::size_t k = 0; k < count; ++k) {
+    names += (k == 0 ? "" : k + 1 == count ? " or " : ", ") + std::string(kPointTimeFields[k]);
+  }
   return names;
 }
 

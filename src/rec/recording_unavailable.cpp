@@ -31,10 +31,11 @@ Recording::Recording(Recording&&) noexcept = default;
 Recording& Recording::operator=(Recording&&) noexcept = default;
 
 Recording Recording::open(const fs::path& path, const RecordingOptions&) {
-  failAt(path,
-         "this hba was built without recordings (cmake -DHBA_WITH_RECORDINGS=OFF): rebuild with "
-         "-DHBA_WITH_RECORDINGS=ON (liblz4-dev, libzstd-dev, libbz2-dev, libsqlite3-dev), or give a folder of "
-         "scans (hba extract on a build that reads recordings writes one)");
+  failAt(
+      path,
+      "this hba was built without recordings (cmake -DHBA_WITH_RECORDINGS=OFF): rebuild with "
+      "-DHBA_WITH_RECORDINGS=ON (liblz4-dev, libzstd-dev, libbz2-dev, libsqlite3-dev), or give a folder of "
+      "scans (hba extract on a build that reads recordings writes one)");
 }
 
 PointCloud Recording::loadScan(std::size_t) const { return {}; }

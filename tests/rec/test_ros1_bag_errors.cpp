@@ -113,6 +113,11 @@ TEST(Ros1BagErrors, CorruptBytesNeverCrash) {
   test::writeScanFolder(dir / "folder", 3);
   WRITE_BAG_OR_SKIP(dir / "folder", dir / "run.bag", "--compression none");
   EXPECT_GT(refusedDamages(dir / "run.bag", dir / "damaged.bag", 300), 0);
+  // Livox's CustomMsg and a PointCloud2 with point times, damaged alike.
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "livox.bag", "--layout livox");
+  EXPECT_GT(refusedDamages(dir / "livox.bag", dir / "damaged.bag", 200), 0);
+  WRITE_BAG_OR_SKIP(dir / "folder", dir / "ouster.bag", "--layout ouster");
+  EXPECT_GT(refusedDamages(dir / "ouster.bag", dir / "damaged.bag", 200), 0);
 }
 
 TEST(McapErrors, CorruptBytesNeverCrash) {
