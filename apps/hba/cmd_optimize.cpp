@@ -56,7 +56,7 @@ void run(const Args& args) {
   refuseProtectedFolder(args.output);
   io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
-  const pyramid::ClosureInputs closures = readClosureInputs(args, &dataset, dataset.size());
+  const pyramid::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, dataset, dataset.size());
   // One source of the scans for the memory estimate, the convention check,
   // the optimization and the picture.

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 
+#include <map>
 #include <optional>
 
 #include "hba/closure/frame_priors.hpp"
@@ -114,7 +115,8 @@ std::vector<std::string> writeEveryScanPoses(const fs::path& out, const io::Data
 
 // The loop pairs and position priors of --loops and --priors, read before
 // any work so that a bad file fails at once.
-pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* dataset, std::size_t frames) {
+pyramid::ClosureInputs readClosureInputs(const Args& args, const std::vector<const io::Dataset*>& datasets,
+                                         const std::vector<std::size_t>& starts, std::size_t frames) {
   pyramid::ClosureInputs inputs;
   if (!args.loops.empty()) {
     for (const io::LoopRecord& record : io::readLoopFile(args.loops, frames)) {
@@ -122,24 +124,41 @@ pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* da
     }
     spdlog::info("{}: {} loop closure pairs", args.loops, inputs.loops.size());
   }
-  if (!args.priors.empty()) {
-    if (!dataset) throw Error("--priors: with one session only (priors are matched to its scans by time)");
-    const std::vector<io::TimedPosition> timed = io::readPositionPriorFile(args.priors);
+  if (args.priors.empty()) return inputs;
+  const std::vector<io::TimedPosition> timed = io::readPositionPriorFile(args.priors);
+  std::map<std::size_t, std::size_t> session_of_line;  // a prior's file line -> the session it went to
+  std::size_t outside = timed.size();
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
     closure::FramePriors attached;
     try {
-      attached = closure::attachPriors(timed, dataset->trajectory(), args.prior_max_gap_s);
+      attached = closure::attachPriors(timed, datasets[k]->trajectory(), args.prior_max_gap_s);
     } catch (const Error& e) {
-      throw Error(args.priors + ": " + e.what());
+      throw Error(args.priors + ": " + e.what() +
+                  (datasets.size() > 1 ? " (session " + std::to_string(k) + ")" : std::string()));
     }
-    inputs.priors = attached.factors;
-    spdlog::info("{}: {} position priors, {} attached to frames", args.priors, timed.size(),
-                 attached.factors.size());
-    if (attached.outside > 0) {
-      spdlog::warn("{}: {} priors lie more than {:g} s from every scan and are not used", args.priors,
-                   attached.outside, args.prior_max_gap_s);
+    for (std::size_t f = 0; f < attached.factors.size(); ++f) {
+      const auto [other, fresh] = session_of_line.emplace(attached.lines[f], k);
+      if (!fresh) {
+        throw Error(
+            fmt::format("{}: the prior on line {} falls among the scans of sessions {} and {}: their "
+                        "stamps overlap, so priors cannot tell them apart (give each session its own "
+                        "clock's stamps)",
+                        args.priors, attached.lines[f], other->second, k));
+      }
+      graph::PositionPriorFactor factor = attached.factors[f];
+      factor.node += starts.at(k);
+      inputs.priors.push_back(factor);
     }
-    if (inputs.priors.empty()) throw Error(args.priors + ": no prior falls within the scans' time span");
+    outside -= attached.factors.size();
   }
+  spdlog::info("{}: {} position priors, {} attached to frames{}", args.priors, timed.size(),
+               inputs.priors.size(),
+               datasets.size() > 1 ? fmt::format(" of {} sessions", datasets.size()) : std::string());
+  if (outside > 0) {
+    spdlog::warn("{}: {} priors lie more than {:g} s from every scan and are not used", args.priors, outside,
+                 args.prior_max_gap_s);
+  }
+  if (inputs.priors.empty()) throw Error(args.priors + ": no prior falls within the scans' time span");
   return inputs;
 }
 

@@ -42,7 +42,10 @@ void announceReplacement(const StagingFolder& staging);
 // Defaults, then the YAML file, then the flags given on the command line.
 pyramid::HbaSettings mergeSettings(const Args& args);
 // --loops (frame indices of `frames`) and --priors (by `dataset`'s stamps), read before any work.
-pyramid::ClosureInputs readClosureInputs(const Args& args, const io::Dataset* dataset, std::size_t frames);
+// With several sessions (`datasets`, the first frame of each at `starts`), each
+// prior goes to the session whose scans it falls among in time.
+pyramid::ClosureInputs readClosureInputs(const Args& args, const std::vector<const io::Dataset*>& datasets,
+                                         const std::vector<std::size_t>& starts, std::size_t frames);
 // Refuses input in another convention, naming the flag that fixes it; what it found, for the report.
 nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, const io::Dataset& dataset);
 // The sensor poses in three formats (and in the input's frame when it was another); the files written.

@@ -67,7 +67,9 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
     parts.push_back(sources.back().get());
   }
   const io::ConcatenatedScanSource scans(parts);
-  pyramid::ClosureInputs closures = readClosureInputs(args, nullptr, scans.size());
+  std::vector<const io::Dataset*> sessions_in;
+  for (const io::Dataset& d : datasets) sessions_in.push_back(&d);
+  pyramid::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
   for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
   const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
   const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);

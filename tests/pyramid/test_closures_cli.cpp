@@ -212,6 +212,38 @@ TEST_F(ClosuresSimulated, TwoSessionsInTheirOwnFramesMeetInOneMap) {
   EXPECT_LT((Vec3(tx, ty, tz) - true_frame.t).norm(), 0.05);
 }
 
+// Two sessions, each in its own frame, with GNSS-like priors (0.1 m noise,
+// every 5th frame of each, in a UTM-sized turned frame): both sessions come
+// out in the priors' frame, each prior on the session it was stamped in.
+TEST_F(ClosuresSimulated, PriorsPlaceEverySessionInTheirFrame) {
+  run(hba() + " -q simulate --sessions 2 --frames 300 --session-frames 200 --seed 4 -o " + data().string());
+  const Pose utm(Mat3(Eigen::AngleAxisd(-0.9, Vec3::UnitZ())), Vec3(512300.0, 4120900.0, 80.0));
+  std::mt19937 rng(8);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  std::ofstream gnss(dir / "gnss.txt");
+  gnss.precision(12);
+  for (int k = 0; k < 2; ++k) {
+    const std::string name = "session-" + std::to_string(k);
+    Trajectory truth = io::readPoses(data() / name / "gt_world.txt");
+    for (Pose& pose : truth.poses) pose = utm * pose;
+    io::writePoses(dir / (name + "_utm.txt"), truth, io::PoseFormat::Tum);
+    for (std::size_t i = 0; i < truth.size(); i += 5) {
+      const Vec3 p = truth.poses[i].t + Vec3(noise(rng), noise(rng), noise(rng));
+      gnss << truth.stamps[i] << ' ' << p.x() << ' ' << p.y() << ' ' << p.z() << " 0.1\n";
+    }
+  }
+  gnss.close();
+  run(hba() + " -q optimize " + (data() / "session-0").string() + " " + (data() / "session-1").string() +
+      " --no-render --priors " + (dir / "gnss.txt").string() + " -o " + (dir / "joint").string());
+  EXPECT_EQ(readJson(dir / "joint" / "report.json").at("closure").at("priors_given").get<int>(), 80);
+  for (int k = 0; k < 2; ++k) {
+    const std::string name = "session-" + std::to_string(k);
+    EXPECT_LT(ate(dir / (name + "_utm.txt"), dir / "joint" / name / "poses_tum.txt", dir.path(), "none"),
+              0.05)
+        << name;
+  }
+}
+
 // Bad closure input fails at once, naming the file and the problem, and
 // writes nothing.
 TEST_F(ClosuresSimulated, BadClosureInputFailsBeforeAnyWork) {
@@ -233,7 +265,10 @@ TEST_F(ClosuresSimulated, BadClosureInputFailsBeforeAnyWork) {
   fails(data().string() + " --poses " + (data() / "pose.json").string(), {"several sessions"});
   test::writeText(dir / "align.txt", "1 2 3 0 0 0 1\n1 2 3 0 0 0 1\n");
   fails(data().string() + " --align " + (dir / "align.txt").string(), {"align.txt", "2 transforms for 1"});
-  fails(data().string() + " --priors " + (dir / "late.txt").string(), {"--priors", "one session"});
+  // One session given twice: its priors fall among the scans of both.
+  test::writeText(dir / "within.txt", "1.0 1 2 3 0.5\n");
+  fails(data().string() + " --priors " + (dir / "within.txt").string(),
+        {"within.txt", "line 1", "sessions 0 and 1", "overlap"});
 }
 
 }  // namespace
