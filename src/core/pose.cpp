@@ -50,8 +50,9 @@ Pose poseAtTime(const Trajectory& trajectory, double t) {
   if (n == 1) return trajectory.poses.front();
   // The segment [k, k + 1] holding t, or the end segment nearest it.
   const auto after = std::upper_bound(stamps.begin(), stamps.begin() + static_cast<std::ptrdiff_t>(n), t);
-  const std::size_t k =
-      std::clamp<std::size_t>(static_cast<std::size_t>(after - stamps.begin()), 1, n - 1) - 1;
+  const auto at = static_cast<std::size_t>(after - stamps.begin());
+  if (at > 0 && stamps[at - 1] == t) return trajectory.poses[at - 1];  // on a stamp: its pose exactly
+  const std::size_t k = std::clamp<std::size_t>(at, 1, n - 1) - 1;
   const double length = stamps[k + 1] - stamps[k];
   if (!(length > 0.0)) return trajectory.poses[k];
   const double s = std::clamp((t - stamps[k]) / length, -1.0, 2.0);

@@ -185,21 +185,11 @@ std::optional<Pose> staticTransform(const MessageStore& store, const std::string
 }
 
 // The pose at `t` between the trajectory's poses, or false outside it.
-bool poseAt(const std::vector<StampedPose>& trajectory, double t, Pose& pose) {
+bool poseAt(const Trajectory& trajectory, double t, Pose& pose) {
   constexpr double kEdge = 1e-3;  // s: a scan stamped this close to an end takes the end's pose
-  if (trajectory.empty() || t < trajectory.front().stamp - kEdge || t > trajectory.back().stamp + kEdge)
+  if (trajectory.empty() || t < trajectory.stamps.front() - kEdge || t > trajectory.stamps.back() + kEdge)
     return false;
-  const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t,
-                                      [](const StampedPose& p, double value) { return p.stamp < value; });
-  if (after == trajectory.begin() || (after != trajectory.end() && after->stamp == t)) {
-    pose = after->pose;
-  } else if (after == trajectory.end()) {
-    pose = trajectory.back().pose;
-  } else {
-    const StampedPose& before = *(after - 1);
-    const double s = (t - before.stamp) / (after->stamp - before.stamp);
-    pose = interpolate(before.pose, after->pose, s);
-  }
+  pose = poseAtTime(trajectory, std::clamp(t, trajectory.stamps.front(), trajectory.stamps.back()));
   return true;
 }
 
@@ -306,7 +296,7 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [stamp, message] : stamped) {
     Pose pose;
-    if (!poseAt(trajectory, stamp, pose)) {
+    if (!poseAt(recording.recorded_, stamp, pose)) {
       dropped.push_back(stamp);
       continue;
     }

@@ -40,9 +40,10 @@ struct Trajectory {
   bool hasStamps() const { return !stamps.empty(); }
 };
 
-// The pose at time t of a stamped trajectory (stamps increasing): between
-// two poses interpolated; beyond an end extrapolated by the end segment's
-// motion, at most one segment's length of time, then held.
+// The pose at time t of a stamped trajectory (stamps increasing): on a
+// stamp its pose exactly; between two poses interpolated; beyond an end
+// extrapolated by the end segment's motion, at most one segment's length
+// of time, then held.
 Pose poseAtTime(const Trajectory& trajectory, double t);
 
 // Every pose of `dense` (stamped, e.g. every scan of a recording) moved as
