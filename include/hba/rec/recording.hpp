@@ -76,8 +76,9 @@ class Recording {
   // The first cloud's field names, as recorded ("x y z intensity ...").
   const std::vector<std::string>& cloudFields() const { return cloud_fields_; }
 
-  // The trajectory topic's own poses and stamps (the body's, on the clouds'
-  // clock after --time-offset): the motion within a sweep is read from it.
+  // The trajectory's own poses and stamps (the body's, on the trajectory's
+  // clock, which the scans' stamps meet after --time-offset): the scans'
+  // poses and the motion within a sweep are read from it.
   const Trajectory& recordedTrajectory() const { return recorded_; }
   double timeOffset() const { return time_offset_; }
 
