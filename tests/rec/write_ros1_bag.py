@@ -170,6 +170,12 @@ def main():
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
     args = parser.parse_args()
+    if args.layout == "livox":
+        try:
+            import genpy.dynamic  # noqa: F401  (Livox's message type is made at run time)
+        except ImportError as error:
+            print("skip: " + str(error))
+            return 77
 
     scans = sorted(glob.glob(os.path.join(args.folder, "Scans", "*.pcd")))
     poses = np.loadtxt(os.path.join(args.folder, "odom_poses.txt")).reshape(-1, 3, 4)
