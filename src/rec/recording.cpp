@@ -88,20 +88,27 @@ std::string frameName(const std::string& frame) {
   return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
 }
 
-// The transforms of a /tf topic that place `child` in `parent` (both empty:
-// the only pair there is), in order of stamp.
-std::vector<StampedPose> readTfTrajectory(const MessageStore& store, const std::string& topic,
-                                          const RecordingOptions& options) {
-  std::map<std::pair<std::string, std::string>, std::vector<StampedPose>> by_pair;
+// Every transform a tf2_msgs/TFMessage topic holds, frames named as tf names them.
+std::vector<StampedPose> readTransforms(const MessageStore& store, const std::string& topic) {
+  std::vector<StampedPose> transforms;
   for (const StoredMessage& message : store.messages(topic)) {
     const std::string what =
         fmt::format("{}: {} message at {:.3f} s", store.path().string(), topic, message.time);
     for (StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
       t.frame_id = frameName(t.frame_id);
       t.child_frame_id = frameName(t.child_frame_id);
-      by_pair[{t.frame_id, t.child_frame_id}].push_back(std::move(t));
+      transforms.push_back(std::move(t));
     }
   }
+  return transforms;
+}
+
+// The transforms of a /tf topic that place `child` in `parent` (both empty:
+// the only pair there is), in order of stamp.
+std::vector<StampedPose> readTfTrajectory(const MessageStore& store, const std::string& topic,
+                                          const RecordingOptions& options) {
+  std::map<std::pair<std::string, std::string>, std::vector<StampedPose>> by_pair;
+  for (StampedPose& t : readTransforms(store, topic)) by_pair[{t.frame_id, t.child_frame_id}].push_back(t);
   std::string pairs;
   for (const auto& [pair, poses] : by_pair) {
     pairs += fmt::format("\n  {} -> {}  {} transforms", pair.first, pair.second, poses.size());
@@ -159,13 +166,8 @@ std::optional<Pose> staticTransform(const MessageStore& store, const std::string
   std::map<std::string, std::pair<std::string, Pose>> parent_of;  // child -> (parent, T_parent_child)
   for (const StoredChannel& channel : store.channels()) {
     if (channel.topic != "/tf_static" || channel.type != kTfMessage) continue;
-    for (const StoredMessage& message : store.messages(channel.topic)) {
-      const std::string what =
-          fmt::format("{}: /tf_static message at {:.3f} s", store.path().string(), message.time);
-      for (const StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
-        parent_of[frameName(t.child_frame_id)] = {frameName(t.frame_id), t.pose};
-      }
-    }
+    for (const StampedPose& t : readTransforms(store, channel.topic))
+      parent_of[t.child_frame_id] = {t.frame_id, t.pose};
   }
   // Each frame's pose in its root's frame, along its chain of parents.
   const auto inRoot = [&parent_of](std::string frame, std::string& root) {
@@ -219,6 +221,53 @@ Recording::~Recording() = default;
 Recording::Recording(Recording&&) noexcept = default;
 Recording& Recording::operator=(Recording&&) noexcept = default;
 
+namespace {
+
+// The trajectory the options name (a topic, /tf or a given trajectory):
+// its poses in order of stamp, what it is called, and where they came from.
+struct PoseSource {
+  std::vector<StampedPose> poses;
+  std::string name;
+  std::string note;
+};
+
+PoseSource readPoseSource(const MessageStore& bag, const std::vector<RecordingTopic>& topics,
+                          const std::string& cloud_topic, const RecordingOptions& options) {
+  PoseSource source;
+  if (options.poses) {
+    source.name = options.poses_name;
+    for (std::size_t i = 0; i < options.poses->size() && i < options.poses->stamps.size(); ++i) {
+      source.poses.push_back({options.poses->stamps[i], options.poses->poses[i], "", ""});
+    }
+    source.note = "scans from " + cloud_topic + ", poses from " + source.name;
+    source.poses = inStampOrder(std::move(source.poses));
+    return source;
+  }
+  // A /tf topic is a trajectory only when named: most recordings hold one.
+  const bool tf = typeOf(bag, options.pose_topic) == kTfMessage;
+  source.name = chooseTopic(
+      bag.path(), topics, tf ? &isTfType : &isTrajectoryType, options.pose_topic,
+      "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
+      "--pose-topic");
+  if (tf) {
+    source.poses = readTfTrajectory(bag, source.name, options);
+    if (!source.poses.empty()) {
+      source.note = fmt::format("scans from {}, poses from {}: {} in {}", cloud_topic, source.name,
+                                source.poses.front().child_frame_id, source.poses.front().frame_id);
+    }
+    return source;
+  }
+  if (!options.tf_parent.empty() || !options.tf_child.empty()) {
+    failAt(bag.path(), "--tf-frames is for a tf2_msgs/TFMessage trajectory: give --pose-topic /tf");
+  }
+  source.note =
+      "scans from " + cloud_topic + ", poses from " + source.name + " (" + typeOf(bag, source.name) + ")";
+  source.poses = readTrajectory(bag, source.name);
+  return source;
+}
+
+}  // namespace
+
 Recording Recording::open(const fs::path& path, const RecordingOptions& options) {
   Recording recording;
   recording.path_ = path;
@@ -239,36 +288,10 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
       chooseTopic(path, recording.topics_, &isCloudType, options.cloud_topic,
                   "point cloud (sensor_msgs/PointCloud2, livox_ros_driver/CustomMsg)", "--cloud-topic");
   recording.cloud_type_ = typeOf(bag, recording.cloud_topic_);
-  std::vector<StampedPose> trajectory;
-  if (options.poses) {
-    recording.pose_topic_ = options.poses_name;
-    for (std::size_t i = 0; i < options.poses->size() && i < options.poses->stamps.size(); ++i) {
-      trajectory.push_back({options.poses->stamps[i], options.poses->poses[i], "", ""});
-    }
-    recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " + options.poses_name);
-  } else {
-    // A /tf topic is a trajectory only when named: most recordings hold one.
-    const bool tf = typeOf(bag, options.pose_topic) == kTfMessage;
-    recording.pose_topic_ = chooseTopic(
-        path, recording.topics_, tf ? &isTfType : &isTrajectoryType, options.pose_topic,
-        "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
-        "--pose-topic");
-    if (tf) {
-      trajectory = readTfTrajectory(bag, recording.pose_topic_, options);
-      if (!trajectory.empty()) {
-        recording.notes_.push_back(fmt::format(
-            "scans from {}, poses from {}: {} in {}", recording.cloud_topic_, recording.pose_topic_,
-            trajectory.front().child_frame_id, trajectory.front().frame_id));
-      }
-    } else {
-      if (!options.tf_parent.empty() || !options.tf_child.empty()) {
-        failAt(path, "--tf-frames is for a tf2_msgs/TFMessage trajectory: give --pose-topic /tf");
-      }
-      recording.notes_.push_back("scans from " + recording.cloud_topic_ + ", poses from " +
-                                 recording.pose_topic_ + " (" + typeOf(bag, recording.pose_topic_) + ")");
-      trajectory = readTrajectory(bag, recording.pose_topic_);
-    }
-  }
+  PoseSource source = readPoseSource(bag, recording.topics_, recording.cloud_topic_, options);
+  recording.pose_topic_ = source.name;
+  if (!source.note.empty()) recording.notes_.push_back(source.note);
+  const std::vector<StampedPose> trajectory = std::move(source.poses);
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
   recording.time_offset_ = options.time_offset;
   for (const StampedPose& pose : trajectory) {
