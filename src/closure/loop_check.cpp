@@ -82,6 +82,16 @@ std::string rejection(const LoopCheck& check, const HeldDirections& held, const 
   return "";
 }
 
+FrameRange endFrames(std::size_t end, const std::optional<std::pair<std::size_t, std::size_t>>& given,
+                     const LoopCheckSettings& settings, std::size_t count) {
+  if (!given) return neighbourhoodFrames(end, settings.neighbourhood_frames, count);
+  if (given->first > end || end > given->second || given->second >= count) {
+    throw Error("loop check: frames " + std::to_string(given->first) + ".." + std::to_string(given->second) +
+                " do not hold frame " + std::to_string(end) + " of " + std::to_string(count));
+  }
+  return {given->first, given->second};
+}
+
 LoopCheck rejected(LoopCheck check, std::string reason) {
   check.accepted = false;
   check.reason = std::move(reason);
@@ -91,14 +101,16 @@ LoopCheck rejected(LoopCheck check, std::string reason) {
 }  // namespace
 
 LoopCheck verifyLoop(const io::ScanSource& scans, const std::vector<Pose>& poses, const LoopPair& pair,
-                     const LoopCheckSettings& settings) {
+                     const LoopCheckSettings& settings, const std::optional<LoopEnds>& ends) {
   checkInput(scans, poses, pair, settings);
   const Pose guess = pair.relative ? *pair.relative : relative(poses[pair.from], poses[pair.to]);
   LoopCheck check;
   check.relative = guess;
 
-  const FrameRange from_frames = neighbourhoodFrames(pair.from, settings.neighbourhood_frames, scans.size());
-  const FrameRange to_frames = neighbourhoodFrames(pair.to, settings.neighbourhood_frames, scans.size());
+  const FrameRange from_frames =
+      endFrames(pair.from, ends ? std::optional(ends->from) : std::nullopt, settings, scans.size());
+  const FrameRange to_frames =
+      endFrames(pair.to, ends ? std::optional(ends->to) : std::nullopt, settings, scans.size());
   if (from_frames.overlaps(to_frames)) {
     return rejected(check, "the neighbourhoods share frames: one stretch of the path, not a loop");
   }

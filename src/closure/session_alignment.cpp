@@ -4,52 +4,146 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <set>
 
+#include "hba/closure/point_features.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
+#include "hba/core/stopwatch.hpp"
+#include "kd_tree.hpp"
 #include "neighbourhood.hpp"
-#include "place_signature.hpp"
 
 namespace hba::closure {
 namespace {
 
-std::vector<PlaceSignature> signatures(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                                       const std::vector<std::size_t>& places,
-                                       const LoopCheckSettings& check) {
-  std::vector<PlaceSignature> out(places.size());
-  tbb::parallel_for(std::size_t{0}, places.size(), [&](std::size_t i) {
-    const FrameRange frames = neighbourhoodFrames(places[i], check.neighbourhood_frames, poses.size());
-    out[i] = placeSignature(mergeNeighbourhood(scans, poses, places[i], frames, check.neighbourhood_voxel));
-  });
-  return out;
+// The frames within `path_m` of path either side of `centre`, at most
+// `max_frames` each side, inside `bounds` (its session).
+FrameRange submapFrames(const std::vector<Pose>& poses, std::size_t centre, double path_m,
+                        std::size_t max_frames, FrameRange bounds) {
+  FrameRange range{centre, centre};
+  double walked = 0.0;
+  while (range.first > bounds.first && centre - range.first < max_frames) {
+    walked += (poses[range.first].t - poses[range.first - 1].t).norm();
+    if (walked > path_m) break;
+    --range.first;
+  }
+  walked = 0.0;
+  while (range.last < bounds.last && range.last - centre < max_frames) {
+    walked += (poses[range.last + 1].t - poses[range.last].t).norm();
+    if (walked > path_m) break;
+    ++range.last;
+  }
+  return range;
 }
 
-struct Trial {
-  std::size_t reference = 0;  // frame
-  std::size_t session = 0;    // frame
-  double distance = 0.0;      // of the signatures
+double medianRange(const PointCloud& scan) {
+  if (scan.empty()) return 0.0;
+  std::vector<float> ranges;
+  for (const Vec3f& p : scan.points) ranges.push_back(p.norm());
+  std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2),
+                   ranges.end());
+  return ranges[ranges.size() / 2];
+}
+
+// A twentieth of the median range of the places' own scans: the spacing at
+// which a scene's surfaces still have shape (a room: 0.2 m, a street: 1 m).
+double featureVoxel(const io::ScanSource& a, const std::vector<std::size_t>& a_places,
+                    const io::ScanSource& b, const std::vector<std::size_t>& b_places) {
+  std::vector<double> ranges(a_places.size() + b_places.size());
+  tbb::parallel_for(std::size_t{0}, ranges.size(), [&](std::size_t i) {
+    ranges[i] =
+        medianRange(i < a_places.size() ? a.load(a_places[i]) : b.load(b_places[i - a_places.size()]));
+  });
+  std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2),
+                   ranges.end());
+  return std::clamp(ranges[ranges.size() / 2] / 20.0, 0.1, 1.0);
+}
+
+// Describes the places of `which` (indices into `places`) into `out`.
+void describePlaces(const io::ScanSource& scans, const std::vector<Pose>& poses,
+                    const std::vector<std::size_t>& places, const std::vector<std::size_t>& which,
+                    double voxel, const SessionAlignmentSettings& s, std::vector<FeatureCloud>& out) {
+  tbb::parallel_for(std::size_t{0}, which.size(), [&](std::size_t k) {
+    const std::size_t i = which[k];
+    const FrameRange frames =
+        submapFrames(poses, places[i], s.submap_path_m, s.max_submap_frames, {0, poses.size() - 1});
+    out[i] = describeCloud(mergeNeighbourhood(scans, poses, places[i], frames, voxel), voxel);
+  });
+}
+
+// Votes take a near-nearest descriptor (within 1 + eps of the nearest's
+// distance): exact search in 33 dimensions visits most of the tree.
+constexpr float kVoteEps = 1.0F;
+
+struct Candidate {
+  std::size_t reference = 0;  // index into the places
+  std::size_t session = 0;
+  std::size_t votes = 0;
 };
 
-// For each place of the session, its `shortlist` most alike reference
-// places; all trials, most alike first.
-std::vector<Trial> shortlist(const std::vector<std::size_t>& reference_places,
-                             const std::vector<PlaceSignature>& reference,
-                             const std::vector<std::size_t>& session_places,
-                             const std::vector<PlaceSignature>& session, std::size_t count) {
-  std::vector<Trial> trials;
-  for (std::size_t b = 0; b < session.size(); ++b) {
-    std::vector<Trial> mine;
-    for (std::size_t a = 0; a < reference.size(); ++a) {
-      mine.push_back({reference_places[a], session_places[b], signatureDistance(reference[a], session[b])});
+// Each session place's descriptors vote for the reference place holding
+// their nearest descriptor; its `shortlist` most voted places, all
+// candidates most voted first.
+std::vector<Candidate> vote(const std::vector<FeatureCloud>& reference,
+                            const std::vector<std::size_t>& reference_ids,
+                            const std::vector<FeatureCloud>& session,
+                            const std::vector<std::size_t>& session_ids, const SessionAlignmentSettings& s) {
+  std::vector<Fpfh> all;
+  std::vector<std::size_t> owner;
+  for (std::size_t a : reference_ids) {
+    const std::vector<Fpfh>& theirs = reference[a].features;
+    const std::size_t stride =
+        std::max<std::size_t>(1, theirs.size() / std::max<std::size_t>(1, s.voted_per_place));
+    for (std::size_t i = 0; i < theirs.size(); i += stride) {
+      all.push_back(theirs[i]);
+      owner.push_back(a);
     }
-    const std::size_t keep = std::min(count, mine.size());
-    std::partial_sort(mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(keep), mine.end(),
-                      [](const Trial& x, const Trial& y) { return x.distance < y.distance; });
-    trials.insert(trials.end(), mine.begin(), mine.begin() + static_cast<std::ptrdiff_t>(keep));
   }
-  std::stable_sort(trials.begin(), trials.end(),
-                   [](const Trial& x, const Trial& y) { return x.distance < y.distance; });
-  return trials;
+  const KdTree<33> tree(all);
+  std::vector<std::vector<Candidate>> per_place(session_ids.size());
+  tbb::parallel_for(std::size_t{0}, session_ids.size(), [&](std::size_t k) {
+    const std::size_t b = session_ids[k];
+    std::vector<std::size_t> counts(reference.size(), 0);
+    const std::vector<Fpfh>& mine = session[b].features;
+    const std::size_t stride =
+        std::max<std::size_t>(1, mine.size() / std::max<std::size_t>(1, s.votes_per_place));
+    for (std::size_t i = 0; i < mine.size(); i += stride) {
+      const std::size_t j = tree.nearest(mine[i], kVoteEps).first;
+      if (j < all.size()) ++counts[owner[j]];
+    }
+    std::vector<Candidate>& list = per_place[k];
+    for (std::size_t a = 0; a < reference.size(); ++a) {
+      if (counts[a] > 0) list.push_back({a, b, counts[a]});
+    }
+    const std::size_t keep = std::min(s.shortlist, list.size());
+    std::partial_sort(list.begin(), list.begin() + static_cast<std::ptrdiff_t>(keep), list.end(),
+                      [](const Candidate& x, const Candidate& y) { return x.votes > y.votes; });
+    list.resize(keep);
+  });
+  std::vector<Candidate> candidates;
+  for (const auto& list : per_place) candidates.insert(candidates.end(), list.begin(), list.end());
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.votes > y.votes; });
+  return candidates;
+}
+
+// Every `stride`-th index below `count` not yet in `done` (which it joins).
+std::vector<std::size_t> newPlaces(std::size_t count, std::size_t stride, std::vector<bool>& done) {
+  std::vector<std::size_t> fresh;
+  for (std::size_t i = 0; i < count; i += stride) {
+    if (!done[i]) fresh.push_back(i);
+    done[i] = true;
+  }
+  return fresh;
+}
+
+std::vector<std::size_t> describedPlaces(const std::vector<bool>& done) {
+  std::vector<std::size_t> ids;
+  for (std::size_t i = 0; i < done.size(); ++i) {
+    if (done[i]) ids.push_back(i);
+  }
+  return ids;
 }
 
 bool agree(const Pose& a, const Pose& b, const SessionAlignmentSettings& s) {
@@ -71,6 +165,84 @@ std::pair<std::size_t, std::size_t> largestAgreement(const std::vector<Pose>& pl
   }
   return {best, best_count};
 }
+
+std::string fixed(double value, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
+
+// Registers candidate pairs and verifies the registered ones with the plane
+// BA. Both sessions form one sequence, each in its own frame: verifyLoop
+// merges each end's neighbourhood by its own session's poses and starts
+// from the registration's relative pose.
+class PairVerifier {
+ public:
+  PairVerifier(const io::ScanSource& reference_scans, const std::vector<Pose>& reference_poses,
+               const io::ScanSource& session_scans, const std::vector<Pose>& session_poses,
+               const SessionAlignmentSettings& settings)
+      : both_({&reference_scans, &session_scans}), offset_(reference_poses.size()), settings_(settings) {
+    poses_ = reference_poses;
+    poses_.insert(poses_.end(), session_poses.begin(), session_poses.end());
+    check_ = settings.check;
+    check_.search_radius_m = 0.0;
+    check_.search_yaw_deg = 0.0;
+  }
+
+  // Each candidate's trial and, when verified, the relative pose (T_ref^-1 T_session) it found.
+  std::vector<std::pair<SessionPairTrial, Pose>> run(const std::vector<Candidate>& candidates,
+                                                     const std::vector<std::size_t>& reference_places,
+                                                     const std::vector<FeatureCloud>& reference,
+                                                     const std::vector<std::size_t>& session_places,
+                                                     const std::vector<FeatureCloud>& session) const {
+    std::vector<std::pair<SessionPairTrial, Pose>> out(candidates.size());
+    tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t c) {
+      const Candidate& candidate = candidates[c];
+      SessionPairTrial& trial = out[c].first;
+      trial.reference_frame = reference_places[candidate.reference];
+      trial.session_frame = session_places[candidate.session];
+      trial.votes = candidate.votes;
+      const Registration r =
+          registerClouds(session[candidate.session], reference[candidate.reference], settings_.registration);
+      trial.matches = r.matches;
+      trial.inliers = r.inliers;
+      trial.fitness = r.fitness;
+      trial.outcome = registrationProblem(r);
+      if (!trial.outcome.empty()) return;
+      // The plane BA sees the submaps the descriptors described.
+      const FrameRange from = submapFrames(poses_, trial.reference_frame, settings_.submap_path_m,
+                                           settings_.max_submap_frames, {0, offset_ - 1});
+      const FrameRange to = submapFrames(poses_, offset_ + trial.session_frame, settings_.submap_path_m,
+                                         settings_.max_submap_frames, {offset_, poses_.size() - 1});
+      const LoopCheck verified = verifyLoop(
+          both_, poses_, {trial.reference_frame, offset_ + trial.session_frame, r.target_from_source}, check_,
+          LoopEnds{{from.first, from.last}, {to.first, to.last}});
+      trial.verified = verified.accepted;
+      trial.outcome = verified.accepted ? "verified" : "plane BA: " + verified.reason;
+      out[c].second = verified.relative;
+    });
+    return out;
+  }
+
+ private:
+  // Why a registration does not go on to the plane BA, or "".
+  std::string registrationProblem(const Registration& r) const {
+    if (!r.found) return "registration: " + r.reason;
+    if (r.fitness < settings_.min_fitness) {
+      return "registration: " + fixed(r.fitness, 2) + " of the submap on the other's surfaces (" +
+             fixed(settings_.min_fitness, 2) + " needed)";
+    }
+    return "";
+  }
+
+  io::ConcatenatedScanSource both_;
+  std::vector<Pose> poses_;
+  std::size_t offset_;
+  LoopCheckSettings check_;
+  const SessionAlignmentSettings& settings_;
+};
+
+constexpr std::size_t kBatch = 4;  // pairs registered together; stop between batches once enough agree
 
 }  // namespace
 
@@ -96,55 +268,73 @@ SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::
   if (reference_poses.size() != reference_scans.size() || session_poses.size() != session_scans.size()) {
     throw Error("session alignment: pose and scan counts differ");
   }
+  if (reference_poses.empty() || session_poses.empty())
+    throw Error("session alignment: a session without scans");
   SessionAlignment result;
   const std::vector<std::size_t> reference_places =
       samplePlaces(reference_poses, settings.sample_spacing_m, settings.max_samples);
   const std::vector<std::size_t> session_places =
       samplePlaces(session_poses, settings.sample_spacing_m, settings.max_samples);
-  const std::vector<Trial> trials = shortlist(
-      reference_places, signatures(reference_scans, reference_poses, reference_places, settings.check),
-      session_places, signatures(session_scans, session_poses, session_places, settings.check),
-      settings.shortlist);
-
-  // One sequence of both, the session's poses moved per trial so that its
-  // place coincides with the reference's: verifyLoop then searches a full
-  // turn and `reach_m` around it.
-  const io::ConcatenatedScanSource both({&reference_scans, &session_scans});
-  const std::size_t offset = reference_poses.size();
-  LoopCheckSettings check = settings.check;
-  check.search_radius_m = settings.reach_m;
-  check.search_yaw_deg = 180.0;
-
+  result.reference_places = reference_places.size();
+  result.session_places = session_places.size();
+  const double voxel = settings.feature_voxel_m > 0.0
+                           ? settings.feature_voxel_m
+                           : featureVoxel(reference_scans, reference_places, session_scans, session_places);
+  result.feature_voxel_m = voxel;
+  const PairVerifier verifier(reference_scans, reference_poses, session_scans, session_poses, settings);
+  std::vector<FeatureCloud> reference(reference_places.size()), session(session_places.size());
+  std::vector<bool> reference_done(reference.size(), false), session_done(session.size(), false);
+  std::set<std::pair<std::size_t, std::size_t>> registered;
   std::vector<Pose> placements;
-  const std::size_t batch = 4;  // verified together; stop between batches once enough agree
-  for (std::size_t first = 0; first < trials.size(); first += batch) {
-    const std::size_t last = std::min(trials.size(), first + batch);
-    std::vector<LoopCheck> checks(last - first);
-    tbb::parallel_for(first, last, [&](std::size_t t) {
-      const Trial& trial = trials[t];
-      const Pose coincide = reference_poses[trial.reference] * session_poses[trial.session].inverse();
-      std::vector<Pose> poses = reference_poses;
-      for (const Pose& p : session_poses) poses.push_back(coincide * p);
-      checks[t - first] =
-          verifyLoop(both, poses, {trial.reference, offset + trial.session, std::nullopt}, check);
-    });
-    for (std::size_t t = first; t < last; ++t) {
-      ++result.tried;
-      const LoopCheck& c = checks[t - first];
-      if (!c.accepted) continue;
-      ++result.verified;
-      // T_ref * relative is where the session's frame puts that scan: T_world_session * T_session.
-      placements.push_back(reference_poses[trials[t].reference] * c.relative *
-                           session_poses[trials[t].session].inverse());
+  // A sparse round first (every third place): sessions that overlap much
+  // meet there; the rest of the places only when they do not.
+  for (const std::size_t stride : {std::size_t{3}, std::size_t{1}}) {
+    Clock::time_point started = Clock::now();
+    describePlaces(reference_scans, reference_poses, reference_places,
+                   newPlaces(reference.size(), stride, reference_done), voxel, settings, reference);
+    describePlaces(session_scans, session_poses, session_places,
+                   newPlaces(session.size(), stride, session_done), voxel, settings, session);
+    result.seconds_describing += secondsSince(started);
+    started = Clock::now();
+    std::vector<Candidate> candidates =
+        vote(reference, describedPlaces(reference_done), session, describedPlaces(session_done), settings);
+    result.seconds_voting += secondsSince(started);
+    started = Clock::now();
+    std::vector<Candidate> fresh;
+    for (const Candidate& c : candidates) {
+      if (registered.size() + fresh.size() >= settings.max_trials) break;
+      if (registered.count({c.reference, c.session}) == 0) fresh.push_back(c);
     }
-    if (largestAgreement(placements, settings).second >= settings.enough_agreeing) break;
+    for (const Candidate& c : fresh) registered.insert({c.reference, c.session});
+    for (std::size_t first = 0; first < fresh.size(); first += kBatch) {
+      const std::vector<Candidate> batch(
+          fresh.begin() + static_cast<std::ptrdiff_t>(first),
+          fresh.begin() + static_cast<std::ptrdiff_t>(std::min(fresh.size(), first + kBatch)));
+      for (const auto& [trial, relative] :
+           verifier.run(batch, reference_places, reference, session_places, session)) {
+        ++result.tried;
+        if (trial.verified) {
+          ++result.verified;
+          // T_ref * relative is where the session's frame puts that scan: T_world_session * T_session.
+          placements.push_back(reference_poses[trial.reference_frame] * relative *
+                               session_poses[trial.session_frame].inverse());
+        }
+        result.trials.push_back(trial);
+      }
+      if (largestAgreement(placements, settings).second >= settings.enough_agreeing) break;
+    }
+    result.seconds_registering += secondsSince(started);
+    if (largestAgreement(placements, settings).second >= settings.min_agreeing) break;
   }
   const auto [best, count] = largestAgreement(placements, settings);
   result.agreeing = count;
   if (count < settings.min_agreeing) {
-    result.reason = std::to_string(result.verified) + " of " + std::to_string(result.tried) +
-                    " place pairs verified, " + std::to_string(count) + " agreeing (" +
-                    std::to_string(settings.min_agreeing) + " needed): the sessions may not overlap";
+    result.reason = std::to_string(result.reference_places) + " and " +
+                    std::to_string(result.session_places) + " places described (descriptor voxel " +
+                    fixed(voxel, 2) + " m), " + std::to_string(result.tried) + " pairs registered, " +
+                    std::to_string(result.verified) + " verified by the plane BA, " + std::to_string(count) +
+                    " agreeing (" + std::to_string(settings.min_agreeing) +
+                    " needed): the sessions may not overlap";
     return result;
   }
   result.found = true;

@@ -8,6 +8,7 @@
 #include "hba/closure/closure_graph.hpp"
 #include "hba/closure/loop_check.hpp"
 #include "hba/closure/revisits.hpp"
+#include "hba/closure/sessions.hpp"
 #include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
@@ -18,6 +19,7 @@ struct Candidate {
   const char* source = "file";
   double search_radius_m = 0.0;
   double search_yaw_deg = 0.0;
+  std::optional<closure::LoopEnds> ends;
 };
 
 // A pair from the caller without a relative pose is placed by the poses,
@@ -48,6 +50,20 @@ LoopReport describe(const Candidate& c, const closure::LoopCheck& check) {
   r.correction_m = check.correction_m;
   r.correction_deg = check.correction_deg;
   return r;
+}
+
+// With several sessions, each end's neighbourhood stays in its own session:
+// the frames across a session start are in no odometry relation to it.
+closure::LoopEnds keptInSessions(const closure::LoopPair& pair, const std::vector<std::size_t>& session_of,
+                                 std::size_t half_width) {
+  const auto range = [&](std::size_t end) {
+    std::size_t first = end > half_width ? end - half_width : 0;
+    std::size_t last = std::min(session_of.size() - 1, end + half_width);
+    while (session_of[first] != session_of[end]) ++first;
+    while (session_of[last] != session_of[end]) --last;
+    return std::make_pair(first, last);
+  };
+  return {range(pair.from), range(pair.to)};
 }
 
 }  // namespace
@@ -95,13 +111,22 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
 
   // Each candidate's verification is independent: their order of finishing
   // changes nothing.
+  if (!closures.session_starts.empty()) {
+    const std::vector<std::size_t> session_of =
+        closure::sessionOfFrames(initial.size(), closures.session_starts);
+    for (Candidate& c : candidates) {
+      if (c.pair.from < initial.size() && c.pair.to < initial.size()) {
+        c.ends = keptInSessions(c.pair, session_of, closure::LoopCheckSettings{}.neighbourhood_frames);
+      }
+    }
+  }
   std::vector<closure::LoopCheck> checks(candidates.size());
   tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
     closure::LoopCheckSettings check;
     check.search_radius_m = candidates[i].search_radius_m;
     check.search_yaw_deg = candidates[i].search_yaw_deg;
     check.information = settings.information;
-    checks[i] = closure::verifyLoop(clouds, initial, candidates[i].pair, check);
+    checks[i] = closure::verifyLoop(clouds, initial, candidates[i].pair, check, candidates[i].ends);
   });
 
   std::vector<graph::LoopClosureFactor> verified;

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hba/core/pose.hpp"
@@ -22,6 +23,13 @@ struct LoopPair {
   std::size_t to = 0;
   // Guess of T_from^-1 * T_to; without one, the relative pose of the current poses.
   std::optional<Pose> relative;
+};
+
+// The frames merged around each end of a pair (first, last; inclusive).
+// Where the sequence holds several sessions, an end's frames must stay in its own.
+struct LoopEnds {
+  std::pair<std::size_t, std::size_t> from;
+  std::pair<std::size_t, std::size_t> to;
 };
 
 struct LoopCheckSettings {
@@ -89,8 +97,10 @@ struct LoopCheck {
 // thread count. Throws hba::Error on frames out of range, poses that do not
 // match the scans, from == to, or invalid settings; a pair the scans do not
 // support is not an error but a rejection with a reason.
+// `ends`: the frames merged around each end; without, `neighbourhood_frames`
+// either side, clipped to the sequence.
 LoopCheck verifyLoop(const io::ScanSource& scans, const std::vector<Pose>& poses, const LoopPair& pair,
-                     const LoopCheckSettings& settings);
+                     const LoopCheckSettings& settings, const std::optional<LoopEnds>& ends = std::nullopt);
 
 // Throws hba::Error naming the first invalid setting.
 void validate(const LoopCheckSettings& settings);
