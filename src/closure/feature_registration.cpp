@@ -30,7 +30,8 @@ std::vector<std::size_t> agreeing(const FeatureCloud& source, const FeatureCloud
   const double reach_sq = reach * reach;
   for (std::size_t k = 0; k < matches.size(); ++k) {
     const Vec3 moved = pose * source.points[matches[k].first].cast<double>();
-    if ((moved - target.points[matches[k].second].cast<double>()).squaredNorm() < reach_sq) inliers.push_back(k);
+    if ((moved - target.points[matches[k].second].cast<double>()).squaredNorm() < reach_sq)
+      inliers.push_back(k);
   }
   return inliers;
 }
@@ -41,8 +42,10 @@ bool sidesAgree(const FeatureCloud& source, const FeatureCloud& target, const Ma
                 const std::size_t (&triple)[3], double similarity, double min_side) {
   for (int a = 0; a < 3; ++a) {
     const int b = (a + 1) % 3;
-    const double s = (source.points[matches[triple[a]].first] - source.points[matches[triple[b]].first]).norm();
-    const double t = (target.points[matches[triple[a]].second] - target.points[matches[triple[b]].second]).norm();
+    const double s =
+        (source.points[matches[triple[a]].first] - source.points[matches[triple[b]].first]).norm();
+    const double t =
+        (target.points[matches[triple[a]].second] - target.points[matches[triple[b]].second]).norm();
     if (std::min(s, t) < similarity * std::max(s, t) || std::min(s, t) < min_side) return false;
   }
   return true;
@@ -159,7 +162,8 @@ Registration registerClouds(const FeatureCloud& source, const FeatureCloud& targ
   result.inliers = best.size();
   if (best.size() < std::max<std::size_t>(3, settings.min_inliers)) {
     result.reason = std::to_string(best.size()) + " of " + std::to_string(matches.size()) +
-                    " descriptor matches agree on a pose (" + std::to_string(settings.min_inliers) + " needed)";
+                    " descriptor matches agree on a pose (" + std::to_string(settings.min_inliers) +
+                    " needed)";
     return result;
   }
   refineByIcp(source, target, best_pose, settings, result);

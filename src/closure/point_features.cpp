@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kBins = 11;
 
-// The smallest-variance direction of the neighbours, facing the origin; zero
+// The smallest-variance direction of the neighbours (of either sign); zero
 // when too few neighbours.
 Vec3f fitNormal(const std::vector<Vec3f>& points, std::size_t i, const KdTree<3>& tree, float radius,
                 std::size_t min_neighbours) {
@@ -31,9 +31,7 @@ Vec3f fitNormal(const std::vector<Vec3f>& points, std::size_t i, const KdTree<3>
     scatter += e * e.transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Mat3> solver(scatter);
-  Vec3f normal = solver.eigenvectors().col(0).cast<float>();
-  if (normal.dot(points[i]) > 0.0F) normal = -normal;  // the sensor at the origin sees the surface's front
-  return normal;
+  return solver.eigenvectors().col(0).cast<float>();
 }
 
 constexpr float kPi = 3.14159265F;
@@ -43,30 +41,33 @@ int bin(float value, float low, float high) {
   return std::clamp(b, 0, kBins - 1);
 }
 
-// Rusu's three angles of the Darboux frame between two oriented points,
-// binned into the point's simple histogram. In float: bins of 1/11 of the
-// range need no more.
+// Rusu's three angles of the Darboux frame between two points, binned into
+// the point's simple histogram. The normals' signs are not used: a map has
+// no sensor position to turn them towards, and one surface seen from two
+// sides must describe alike. So the frame sits on the point whose normal
+// is closer to the line, that normal turned to point along the line, the
+// other turned to agree with it. In float: bins of 1/11 of the range need no more.
 void addPair(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, Fpfh& histogram) {
   Vec3f d = q - p;
   const float distance = d.norm();
   if (distance <= 0.0F) return;
   d /= distance;
   Vec3f n1 = np, n2 = nq;
-  // The frame sits on the point whose normal is closer to the line: the
-  // same pair then gives the same angles from either end.
   if (std::abs(n1.dot(d)) < std::abs(n2.dot(d))) {
     std::swap(n1, n2);
     d = -d;
   }
+  if (n1.dot(d) < 0.0F) n1 = -n1;
+  if (n1.dot(n2) < 0.0F) n2 = -n2;
   Vec3f v = d.cross(n1);
   const float v_norm = v.norm();
   if (v_norm <= 1e-6F) return;
   v /= v_norm;
   const Vec3f w = n1.cross(v);
-  const float theta = std::atan2(w.dot(n2), n1.dot(n2));
-  histogram[bin(theta, -kPi, kPi)] += 1.0F;
+  const float theta = std::atan2(w.dot(n2), n1.dot(n2));  // n1.n2 >= 0: within +-pi/2
+  histogram[bin(theta, -kPi / 2, kPi / 2)] += 1.0F;
   histogram[kBins + bin(v.dot(n2), -1.0F, 1.0F)] += 1.0F;
-  histogram[2 * kBins + bin(n1.dot(d), -1.0F, 1.0F)] += 1.0F;
+  histogram[2 * kBins + bin(n1.dot(d), 0.0F, 1.0F)] += 1.0F;
 }
 
 void normalise(Fpfh& histogram) {

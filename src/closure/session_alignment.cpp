@@ -329,12 +329,16 @@ SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::
   const auto [best, count] = largestAgreement(placements, settings);
   result.agreeing = count;
   if (count < settings.min_agreeing) {
-    result.reason = std::to_string(result.reference_places) + " and " +
-                    std::to_string(result.session_places) + " places described (descriptor voxel " +
-                    fixed(voxel, 2) + " m), " + std::to_string(result.tried) + " pairs registered, " +
-                    std::to_string(result.verified) + " verified by the plane BA, " + std::to_string(count) +
-                    " agreeing (" + std::to_string(settings.min_agreeing) +
-                    " needed): the sessions may not overlap";
+    std::size_t unregistered = 0;
+    for (const SessionPairTrial& t : result.trials)
+      unregistered += t.outcome.rfind("registration", 0) == 0 ? 1 : 0;
+    result.reason =
+        std::to_string(result.reference_places) + " and " + std::to_string(result.session_places) +
+        " places described (descriptor voxel " + fixed(voxel, 2) + " m); of " + std::to_string(result.tried) +
+        " most alike pairs, " + std::to_string(unregistered) + " did not register, " +
+        std::to_string(result.tried - unregistered - result.verified) + " failed the plane BA, " +
+        std::to_string(result.verified) + " verified, " + std::to_string(count) + " agreeing (" +
+        std::to_string(settings.min_agreeing) + " needed): the sessions may not overlap (-v logs every pair)";
     return result;
   }
   result.found = true;

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "hba/core/pose.hpp"
 #include "hba/closure/point_features.hpp"
+#include "hba/core/pose.hpp"
 
 namespace hba::closure {
 
@@ -19,8 +19,8 @@ struct RegistrationSettings {
   std::size_t max_hypotheses = 6000;  // triples that pass the side test and are scored
   std::size_t min_inliers = 10;       // fewer matches agreeing on the best pose: not found
   std::size_t icp_iterations = 20;
-  double icp_reach_voxels = 2.0;   // a point pairs with the nearest target within this many voxels
-  std::uint32_t seed = 20231;      // fixed: results repeat
+  double icp_reach_voxels = 2.0;  // a point pairs with the nearest target within this many voxels
+  std::uint32_t seed = 20231;     // fixed: results repeat
 };
 
 struct Registration {

@@ -17,7 +17,7 @@ using Fpfh = Eigen::Matrix<float, 33, 1>;  // three histograms of 11 bins, each 
 
 struct FeatureCloud {
   std::vector<Vec3f> points;
-  std::vector<Vec3f> normals;  // unit, facing the frame's origin (the sensor)
+  std::vector<Vec3f> normals;  // unit, of either sign: descriptors do not depend on it
   // Descriptors of a sparser subset (one point per cell of twice the voxel):
   // neighbouring descriptors are alike, and matching costs grow with their number.
   std::vector<std::uint32_t> keypoints;  // indices into points
@@ -26,8 +26,8 @@ struct FeatureCloud {
 };
 
 struct FeatureSettings {
-  double normal_radius = 2.5;     // voxels: neighbours that fit a point's plane
-  double feature_radius = 5.0;    // voxels: neighbours that describe a point
+  double normal_radius = 2.5;      // voxels: neighbours that fit a point's plane
+  double feature_radius = 5.0;     // voxels: neighbours that describe a point
   std::size_t min_neighbours = 5;  // fewer within the normal radius: the point is dropped
   double keypoint_voxels = 2.0;    // keypoints: one per cell of this many voxels
 };
