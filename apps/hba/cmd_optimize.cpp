@@ -47,6 +47,11 @@ void run(const Args& args) {
   // its own windows' scans); the first alone checks the conventions, runs
   // the closure stage and the refinement, and writes the outputs.
   const dist::Group& group = processGroup();
+  if (!args.map.empty() || !args.fixed.empty()) {
+    if (group.size() > 1)
+      throw Error("--map and --fixed do not run under mpirun yet: run them in one process");
+    return runWithMap(args, settings);
+  }
   if (!args.more_sessions.empty()) {
     if (group.size() > 1)
       throw Error("several sessions do not run under mpirun yet: run them in one process");
@@ -146,6 +151,16 @@ void registerOptimizeCommand(CLI::App& app) {
                    "file with one 'tx ty tz qx qy qz qw' line per later session")
       ->check(nameOrFile({"register", "identity"}, "a file of transforms"))
       ->capture_default_str();
+  command
+      ->add_option("--map", args->map,
+                   "A map that stays put (a .pcd, .ply or .las cloud, e.g. from hba map, or an earlier "
+                   "output folder): DIR is placed in it, optimized and refined against it; poses in the "
+                   "map's frame (docs/closure.md)")
+      ->check(CLI::ExistingPath);
+  command
+      ->add_option("--fixed", args->fixed,
+                   "As --map, with the map given as a dataset (scans and poses) whose poses stay put")
+      ->check(CLI::ExistingDirectory);
   command->add_option("-o,--output", args->output,
                       "Output folder (created; never inside the input; a non-empty one needs --force)");
   command->add_flag("--print-config", args->print_config,

@@ -19,6 +19,8 @@ namespace hba::cli::optimize {
 struct Args {
   DatasetArgs data;
   std::vector<std::string> more_sessions;  // DIR is the first session
+  std::string map;                         // a fixed map: a cloud file or an earlier output
+  std::string fixed;                       // a fixed map: a dataset at its poses
   std::string align = "register";
   std::string output;
   std::string config;
@@ -74,5 +76,7 @@ bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result,
 
 // Several sessions (args.more_sessions): optimize_sessions.cpp.
 void runSessions(const Args& args, pyramid::HbaSettings settings);
+// A new session against a map that stays put (--map, --fixed): optimize_map.cpp.
+void runWithMap(const Args& args, pyramid::HbaSettings settings);
 
 }  // namespace hba::cli::optimize

@@ -13,12 +13,10 @@
 #include "hba/core/stopwatch.hpp"
 #include "kd_tree.hpp"
 #include "neighbourhood.hpp"
+#include "place_alignment.hpp"
 
 namespace hba::closure {
-namespace {
 
-// The frames within `path_m` of path either side of `centre`, at most
-// `max_frames` each side, inside `bounds` (its session).
 FrameRange submapFrames(const std::vector<Pose>& poses, std::size_t centre, double path_m,
                         std::size_t max_frames, FrameRange bounds) {
   FrameRange range{centre, centre};
@@ -37,6 +35,8 @@ FrameRange submapFrames(const std::vector<Pose>& poses, std::size_t centre, doub
   return range;
 }
 
+namespace {
+
 double medianRange(const PointCloud& scan) {
   if (scan.empty()) return 0.0;
   std::vector<float> ranges;
@@ -46,29 +46,31 @@ double medianRange(const PointCloud& scan) {
   return ranges[ranges.size() / 2];
 }
 
-// A twentieth of the median range of the places' own scans: the spacing at
-// which a scene's surfaces still have shape (a room: 0.2 m, a street: 1 m).
-double featureVoxel(const io::ScanSource& a, const std::vector<std::size_t>& a_places,
-                    const io::ScanSource& b, const std::vector<std::size_t>& b_places) {
-  std::vector<double> ranges(a_places.size() + b_places.size());
+}  // namespace
+
+double featureVoxel(const std::vector<const Side*>& sides) {
+  std::vector<std::pair<const Side*, std::size_t>> places;
+  for (const Side* side : sides) {
+    for (std::size_t frame : side->places) places.emplace_back(side, frame);
+  }
+  std::vector<double> ranges(places.size());
   tbb::parallel_for(std::size_t{0}, ranges.size(), [&](std::size_t i) {
-    ranges[i] =
-        medianRange(i < a_places.size() ? a.load(a_places[i]) : b.load(b_places[i - a_places.size()]));
+    ranges[i] = medianRange(places[i].first->scans.load(places[i].second));
   });
   std::nth_element(ranges.begin(), ranges.begin() + static_cast<std::ptrdiff_t>(ranges.size() / 2),
                    ranges.end());
   return std::clamp(ranges[ranges.size() / 2] / 20.0, 0.1, 1.0);
 }
 
-// Describes the places of `which` (indices into `places`) into `out`.
-void describePlaces(const io::ScanSource& scans, const std::vector<Pose>& poses,
-                    const std::vector<std::size_t>& places, const std::vector<std::size_t>& which,
-                    double voxel, const SessionAlignmentSettings& s, std::vector<FeatureCloud>& out) {
+namespace {
+
+// Describes the places of `which` (indices into `side.places`) into `out`.
+void describePlaces(const Side& side, const std::vector<std::size_t>& which, double voxel,
+                    const SessionAlignmentSettings& s, std::vector<FeatureCloud>& out) {
   tbb::parallel_for(std::size_t{0}, which.size(), [&](std::size_t k) {
-    const std::size_t i = which[k];
-    const FrameRange frames =
-        submapFrames(poses, places[i], s.submap_path_m, s.max_submap_frames, {0, poses.size() - 1});
-    out[i] = describeCloud(mergeNeighbourhood(scans, poses, places[i], frames, voxel), voxel);
+    const std::size_t frame = side.places[which[k]];
+    out[which[k]] =
+        describeCloud(mergeNeighbourhood(side.scans, side.poses, frame, side.submap(frame, s), voxel), voxel);
   });
 }
 
@@ -173,17 +175,19 @@ std::string fixed(double value, int digits) {
 }
 
 // Registers candidate pairs and verifies the registered ones with the plane
-// BA. Both sessions form one sequence, each in its own frame: verifyLoop
-// merges each end's neighbourhood by its own session's poses and starts
-// from the registration's relative pose.
+// BA. Both sides form one sequence, each in its own frame: verifyLoop
+// merges each end's submap by its own side's poses and starts from the
+// registration's relative pose.
 class PairVerifier {
  public:
-  PairVerifier(const io::ScanSource& reference_scans, const std::vector<Pose>& reference_poses,
-               const io::ScanSource& session_scans, const std::vector<Pose>& session_poses,
-               const SessionAlignmentSettings& settings)
-      : both_({&reference_scans, &session_scans}), offset_(reference_poses.size()), settings_(settings) {
-    poses_ = reference_poses;
-    poses_.insert(poses_.end(), session_poses.begin(), session_poses.end());
+  PairVerifier(const Side& reference, const Side& session, const SessionAlignmentSettings& settings)
+      : reference_(reference),
+        session_(session),
+        both_({&reference.scans, &session.scans}),
+        offset_(reference.poses.size()),
+        settings_(settings) {
+    poses_ = reference.poses;
+    poses_.insert(poses_.end(), session.poses.begin(), session.poses.end());
     check_ = settings.check;
     check_.search_radius_m = 0.0;
     check_.search_yaw_deg = 0.0;
@@ -191,16 +195,14 @@ class PairVerifier {
 
   // Each candidate's trial and, when verified, the relative pose (T_ref^-1 T_session) it found.
   std::vector<std::pair<SessionPairTrial, Pose>> run(const std::vector<Candidate>& candidates,
-                                                     const std::vector<std::size_t>& reference_places,
                                                      const std::vector<FeatureCloud>& reference,
-                                                     const std::vector<std::size_t>& session_places,
                                                      const std::vector<FeatureCloud>& session) const {
     std::vector<std::pair<SessionPairTrial, Pose>> out(candidates.size());
     tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t c) {
       const Candidate& candidate = candidates[c];
       SessionPairTrial& trial = out[c].first;
-      trial.reference_frame = reference_places[candidate.reference];
-      trial.session_frame = session_places[candidate.session];
+      trial.reference_frame = reference_.places[candidate.reference];
+      trial.session_frame = session_.places[candidate.session];
       trial.votes = candidate.votes;
       const Registration r =
           registerClouds(session[candidate.session], reference[candidate.reference], settings_.registration);
@@ -210,13 +212,11 @@ class PairVerifier {
       trial.outcome = registrationProblem(r);
       if (!trial.outcome.empty()) return;
       // The plane BA sees the submaps the descriptors described.
-      const FrameRange from = submapFrames(poses_, trial.reference_frame, settings_.submap_path_m,
-                                           settings_.max_submap_frames, {0, offset_ - 1});
-      const FrameRange to = submapFrames(poses_, offset_ + trial.session_frame, settings_.submap_path_m,
-                                         settings_.max_submap_frames, {offset_, poses_.size() - 1});
+      const FrameRange from = reference_.submap(trial.reference_frame, settings_);
+      const FrameRange to = session_.submap(trial.session_frame, settings_);
       const LoopCheck verified = verifyLoop(
           both_, poses_, {trial.reference_frame, offset_ + trial.session_frame, r.target_from_source}, check_,
-          LoopEnds{{from.first, from.last}, {to.first, to.last}});
+          LoopEnds{{from.first, from.last}, {offset_ + to.first, offset_ + to.last}});
       trial.verified = verified.accepted;
       trial.outcome = verified.accepted ? "verified" : "plane BA: " + verified.reason;
       out[c].second = verified.relative;
@@ -235,6 +235,8 @@ class PairVerifier {
     return "";
   }
 
+  const Side& reference_;
+  const Side& session_;
   io::ConcatenatedScanSource both_;
   std::vector<Pose> poses_;
   std::size_t offset_;
@@ -262,27 +264,14 @@ std::vector<std::size_t> samplePlaces(const std::vector<Pose>& poses, double spa
   return spread;
 }
 
-SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::vector<Pose>& reference_poses,
-                              const io::ScanSource& session_scans, const std::vector<Pose>& session_poses,
-                              const SessionAlignmentSettings& settings) {
-  if (reference_poses.size() != reference_scans.size() || session_poses.size() != session_scans.size()) {
-    throw Error("session alignment: pose and scan counts differ");
-  }
-  if (reference_poses.empty() || session_poses.empty())
-    throw Error("session alignment: a session without scans");
+SessionAlignment alignSides(const Side& reference_side, const Side& session_side, double voxel,
+                            const SessionAlignmentSettings& settings) {
   SessionAlignment result;
-  const std::vector<std::size_t> reference_places =
-      samplePlaces(reference_poses, settings.sample_spacing_m, settings.max_samples);
-  const std::vector<std::size_t> session_places =
-      samplePlaces(session_poses, settings.sample_spacing_m, settings.max_samples);
-  result.reference_places = reference_places.size();
-  result.session_places = session_places.size();
-  const double voxel = settings.feature_voxel_m > 0.0
-                           ? settings.feature_voxel_m
-                           : featureVoxel(reference_scans, reference_places, session_scans, session_places);
+  result.reference_places = reference_side.places.size();
+  result.session_places = session_side.places.size();
   result.feature_voxel_m = voxel;
-  const PairVerifier verifier(reference_scans, reference_poses, session_scans, session_poses, settings);
-  std::vector<FeatureCloud> reference(reference_places.size()), session(session_places.size());
+  const PairVerifier verifier(reference_side, session_side, settings);
+  std::vector<FeatureCloud> reference(reference_side.places.size()), session(session_side.places.size());
   std::vector<bool> reference_done(reference.size(), false), session_done(session.size(), false);
   std::set<std::pair<std::size_t, std::size_t>> registered;
   std::vector<Pose> placements;
@@ -290,10 +279,9 @@ SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::
   // meet there; the rest of the places only when they do not.
   for (const std::size_t stride : {std::size_t{3}, std::size_t{1}}) {
     Clock::time_point started = Clock::now();
-    describePlaces(reference_scans, reference_poses, reference_places,
-                   newPlaces(reference.size(), stride, reference_done), voxel, settings, reference);
-    describePlaces(session_scans, session_poses, session_places,
-                   newPlaces(session.size(), stride, session_done), voxel, settings, session);
+    describePlaces(reference_side, newPlaces(reference.size(), stride, reference_done), voxel, settings,
+                   reference);
+    describePlaces(session_side, newPlaces(session.size(), stride, session_done), voxel, settings, session);
     result.seconds_describing += secondsSince(started);
     started = Clock::now();
     std::vector<Candidate> candidates =
@@ -310,14 +298,13 @@ SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::
       const std::vector<Candidate> batch(
           fresh.begin() + static_cast<std::ptrdiff_t>(first),
           fresh.begin() + static_cast<std::ptrdiff_t>(std::min(fresh.size(), first + kBatch)));
-      for (const auto& [trial, relative] :
-           verifier.run(batch, reference_places, reference, session_places, session)) {
+      for (const auto& [trial, relative] : verifier.run(batch, reference, session)) {
         ++result.tried;
         if (trial.verified) {
           ++result.verified;
           // T_ref * relative is where the session's frame puts that scan: T_world_session * T_session.
-          placements.push_back(reference_poses[trial.reference_frame] * relative *
-                               session_poses[trial.session_frame].inverse());
+          placements.push_back(reference_side.poses[trial.reference_frame] * relative *
+                               session_side.poses[trial.session_frame].inverse());
         }
         result.trials.push_back(trial);
       }
@@ -344,6 +331,24 @@ SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::
   result.found = true;
   result.world_from_session = placements[best];
   return result;
+}
+
+SessionAlignment alignSession(const io::ScanSource& reference_scans, const std::vector<Pose>& reference_poses,
+                              const io::ScanSource& session_scans, const std::vector<Pose>& session_poses,
+                              const SessionAlignmentSettings& settings) {
+  if (reference_poses.size() != reference_scans.size() || session_poses.size() != session_scans.size()) {
+    throw Error("session alignment: pose and scan counts differ");
+  }
+  if (reference_poses.empty() || session_poses.empty()) {
+    throw Error("session alignment: a session without scans");
+  }
+  const Side reference{reference_scans, reference_poses,
+                       samplePlaces(reference_poses, settings.sample_spacing_m, settings.max_samples), false};
+  const Side session{session_scans, session_poses,
+                     samplePlaces(session_poses, settings.sample_spacing_m, settings.max_samples), false};
+  const double voxel =
+      settings.feature_voxel_m > 0.0 ? settings.feature_voxel_m : featureVoxel({&reference, &session});
+  return alignSides(reference, session, voxel, settings);
 }
 
 }  // namespace hba::closure

@@ -44,6 +44,7 @@ PointCloud downsample(const PointCloud& cloud, double voxel_size, std::size_t po
   }
 
   PointCloud out;
+  out.origin = cloud.origin;  // the points stay relative to it
   out.reserve(sums.size(), with_intensity);
   for (const CellSum& sum : sums) {
     const double inv = 1.0 / static_cast<double>(sum.count);

@@ -44,7 +44,8 @@ TEST(SessionsCli, FarApartSessionsInTiltedFramesMeetWhereTheirPathsOverlap) {
   test::runOk(hba() + " -q optimize " + (dir / "data" / "session-0").string() + " " +
               (dir / "data" / "session-1").string() + " --no-render -o " + (dir / "out").string());
   for (const char* name : {"session-0", "session-1"}) {
-    EXPECT_LT(ateNone(dir / "data" / name / "gt_world.txt", dir / "out" / name / "poses_tum.txt", dir.path()), 0.01)
+    EXPECT_LT(ateNone(dir / "data" / name / "gt_world.txt", dir / "out" / name / "poses_tum.txt", dir.path()),
+              0.01)
         << name;
   }
   const nlohmann::json alignment = test::readJson(dir / "out" / "report.json").at("alignment");
@@ -53,17 +54,19 @@ TEST(SessionsCli, FarApartSessionsInTiltedFramesMeetWhereTheirPathsOverlap) {
   EXPECT_TRUE(placed.at("found").get<bool>());
   EXPECT_GE(placed.at("agreeing").get<int>(), 2);
   ASSERT_FALSE(placed.at("pairs").empty());
-  for (const nlohmann::json& pair : placed.at("pairs")) EXPECT_FALSE(pair.at("outcome").get<std::string>().empty());
+  for (const nlohmann::json& pair : placed.at("pairs"))
+    EXPECT_FALSE(pair.at("outcome").get<std::string>().empty());
 }
 
 TEST(SessionsCli, SessionsThatNeverMeetAreRefusedSayingWhatWasTried) {
   test::TempDir dir;
   // 75 m each, 200 m apart on a 400 m loop: no road in common.
-  test::runOk(hba() + " -q simulate --sessions 2 --frames 800 --session-frames 150 --session-shift 200 --seed 4 -o " +
+  test::runOk(hba() +
+              " -q simulate --sessions 2 --frames 800 --session-frames 150 --session-shift 200 --seed 4 -o " +
               (dir / "data").string());
-  const test::CommandResult r = test::runCommand(hba() + " optimize " + (dir / "data" / "session-0").string() +
-                                                 " " + (dir / "data" / "session-1").string() + " --no-render -o " +
-                                                 (dir / "out").string() + " 2>&1");
+  const test::CommandResult r = test::runCommand(
+      hba() + " optimize " + (dir / "data" / "session-0").string() + " " +
+      (dir / "data" / "session-1").string() + " --no-render -o " + (dir / "out").string() + " 2>&1");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("could not place this session"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("places described"), std::string::npos) << r.output;

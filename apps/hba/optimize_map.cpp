@@ -1,0 +1,168 @@
+// `hba optimize NEW --map MAP -o OUT` and `--fixed SESSION`: a new session
+// placed in a map that stays put, optimized, then refined against the map's
+// planes; the poses come out in the map's frame (docs/closure.md).
+#include <spdlog/spdlog.h>
+
+#include "hba/ba/map_refinement.hpp"
+#include "hba/closure/map_alignment.hpp"
+#include "hba/core/error.hpp"
+#include "hba/core/input_file.hpp"
+#include "hba/core/staging_folder.hpp"
+#include "hba/eval/merged_map.hpp"
+#include "hba/io/scan_file.hpp"
+#include "hba/voxel/downsample.hpp"
+#include "hba/voxel/downsampled_scan_source.hpp"
+#include "memory_check.hpp"
+#include "optimize_parts.hpp"
+#include "output_dir.hpp"
+
+namespace hba::cli::optimize {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr double kMapVoxel = 0.1;  // m: the map is held at this spacing
+
+struct FixedMap {
+  PointCloud cloud;  // relative to cloud.origin
+  std::string name;  // for messages and the report
+};
+
+PointCloud mergeAtPoses(const io::Dataset& dataset, const std::vector<Pose>& poses) {
+  eval::MapSettings settings;
+  settings.voxel = kMapVoxel;
+  eval::VoxelMerger merger(settings, poses.empty() ? Vec3::Zero() : poses.front().t);
+  const io::DatasetScanSource scans(dataset);
+  for (std::size_t i = 0; i < scans.size(); ++i) merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
+  return merger.result();
+}
+
+// An earlier `hba optimize` output: its input's scans at its optimized poses.
+FixedMap readEarlierOutput(const fs::path& folder) {
+  if (!fs::exists(folder / "report.json") || !fs::exists(folder / "pose.json")) {
+    failAt(folder,
+           "is a folder but not an hba optimize output (no report.json and pose.json): give a map file "
+           "(.pcd, .ply, .las) or --fixed DATASET");
+  }
+  const nlohmann::json report = nlohmann::json::parse(readTextFile(folder / "report.json"), nullptr, false);
+  if (report.is_discarded() || !report.contains("input") || !report["input"].contains("dataset")) {
+    failAt(folder / "report.json", "does not name the run's input dataset");
+  }
+  if (report["input"].value("scans_in_world", false)) {
+    failAt(folder, "was made from scans saved in the world frame: write its map with hba map and give that file");
+  }
+  DatasetArgs input;
+  input.dir = report["input"]["dataset"].get<std::string>();
+  input.poses = (folder / "pose.json").string();
+  input.format = "hba";
+  const io::Dataset dataset = input.open();
+  return {mergeAtPoses(dataset, dataset.trajectory().poses),
+          folder.string() + " (" + input.dir + " at its optimized poses)"};
+}
+
+FixedMap readFixedMap(const Args& args) {
+  if (!args.fixed.empty()) {
+    DatasetArgs fixed;
+    fixed.dir = args.fixed;
+    const io::Dataset dataset = fixed.open();
+    return {mergeAtPoses(dataset, dataset.trajectory().poses), args.fixed + " (its scans at its poses)"};
+  }
+  const fs::path path = args.map;
+  if (fs::is_directory(path)) return readEarlierOutput(path);
+  PointCloud cloud = io::readScan(path);
+  if (cloud.empty()) failAt(path, "holds no points: a map is a point cloud of the place");
+  return {voxel::downsample(cloud, kMapVoxel, 4), path.string()};
+}
+
+std::vector<PointCloud> loadAll(const io::ScanSource& scans) {
+  std::vector<PointCloud> clouds(scans.size());
+  for (std::size_t i = 0; i < scans.size(); ++i) clouds[i] = scans.load(i);
+  return clouds;
+}
+
+// The farthest a scan's point lies from its sensor: what of the map the session can see.
+double sensorReach(const std::vector<PointCloud>& clouds) {
+  double reach = 0.0;
+  for (const PointCloud& cloud : clouds) {
+    for (const Vec3f& p : cloud.points) reach = std::max(reach, static_cast<double>(p.norm()));
+  }
+  return std::max(reach, 1.0);
+}
+
+}  // namespace
+
+void runWithMap(const Args& args, pyramid::HbaSettings settings) {
+  if (!args.more_sessions.empty()) {
+    throw Error("--map and --fixed take one new session: give the others as the map, or run them as sessions "
+                "without --map");
+  }
+  if (!args.map.empty() && !args.fixed.empty()) throw Error("give --map MAP or --fixed SESSION, not both");
+  if (!args.priors.empty()) {
+    throw Error("--priors with --map: the map fixes the frame the poses come out in; give one or the other");
+  }
+  io::Dataset dataset = args.data.open();
+  refuseOutputInsideInput(args.output, dataset);
+  const FixedMap map = readFixedMap(args);
+  spdlog::info("map {}: {} points at {} m", map.name, map.cloud.size(), kMapVoxel);
+  const pyramid::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
+  const io::DatasetScanSource scans(dataset);
+  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
+
+  StagingFolder staging(args.output, args.force, "hba optimize");
+  announceReplacement(staging);
+  const fs::path& out = staging.path();
+  const voxel::DownsampledScanSource session(scans, settings.scan_voxel);
+  const nlohmann::json conventions = checkConventions(args, session, dataset);
+
+  const closure::MapAlignment a =
+      closure::alignToMap(map.cloud, session, dataset.trajectory().poses, closure::SessionAlignmentSettings{});
+  if (!a.found) {
+    throw Error(args.data.dir + ": could not place this session in the map " + map.name + " (" + a.reason +
+                "; " + std::to_string(a.tiles) + " tiles of " +
+                std::to_string(static_cast<int>(std::round(a.tile_radius_m))) + " m in a map " +
+                std::to_string(static_cast<long>(std::round(a.map_extent_m))) +
+                " m across): is the map of this place, and in metres?");
+  }
+  spdlog::info("{}: placed in the map by {} agreeing of {} verified place-tile pairs ({} registered)",
+               args.data.dir, a.agreeing, a.verified, a.tried);
+  std::vector<Pose> placed;
+  for (const Pose& p : dataset.trajectory().poses) placed.push_back(a.world_from_session * p);
+  pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, placed, settings, closures);
+
+  // Refined against the map: its planes pull the session onto them.
+  const std::vector<PointCloud> clouds = loadAll(voxel::DownsampledScanSource(scans, settings.refine_scan_voxel));
+  std::vector<const PointCloud*> pointers;
+  for (const PointCloud& c : clouds) pointers.push_back(&c);
+  const PointCloud near =
+      voxel::downsample(ba::mapNear(map.cloud, result.poses, sensorReach(clouds)), settings.refine_scan_voxel, 4);
+  const ba::RefinementResult refined =
+      ba::refineAgainstMap(near, pointers, result.poses, settings.refinementBa());
+  spdlog::info("refined against the map ({} of its points near the session): plane RMS {:.4f} -> {:.4f} m",
+               near.size(), refined.rms_before, refined.rms_after);
+  result.poses = refined.poses;
+
+  const Pose to_map(Quat::Identity(), map.cloud.origin);
+  std::vector<Pose> in_map;
+  for (const Pose& p : result.poses) in_map.push_back(to_map * p);
+  writeOptimizedPoses(out, dataset, in_map);
+  nlohmann::json report = reportJson(result, dataset, settings, conventions);
+  report["memory_estimate"] = memory;
+  report["map"] = {{"source", map.name},
+                   {"points", map.cloud.size()},
+                   {"tiles", a.tiles},
+                   {"tile_radius_m", a.tile_radius_m},
+                   {"descriptor_voxel_m", a.feature_voxel_m},
+                   {"registered", a.tried},
+                   {"verified", a.verified},
+                   {"agreeing", a.agreeing},
+                   {"refinement",
+                    {{"map_points", near.size()},
+                     {"plane_rms_before_m", refined.rms_before},
+                     {"plane_rms_after_m", refined.rms_after}}}};
+  writeReport(out, report);
+  const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);
+  staging.commit();
+  spdlog::info("done: {} (poses in the map's frame, report.json{})", staging.destination().string(),
+               drawn ? ", before_after.png" : "");
+}
+
+}  // namespace hba::cli::optimize
