@@ -3,6 +3,8 @@
 // planes; the poses come out in the map's frame (docs/closure.md).
 #include <spdlog/spdlog.h>
 
+#include <optional>
+
 #include "hba/ba/map_refinement.hpp"
 #include "hba/closure/map_alignment.hpp"
 #include "hba/core/error.hpp"
@@ -22,18 +24,33 @@ namespace fs = std::filesystem;
 
 constexpr double kMapVoxel = 0.1;  // m: the map is held at this spacing
 
-struct FixedMap {
-  PointCloud cloud;  // relative to cloud.origin
-  std::string name;  // for messages and the report
-};
-
 PointCloud mergeAtPoses(const io::Dataset& dataset, const std::vector<Pose>& poses) {
   eval::MapSettings settings;
   settings.voxel = kMapVoxel;
   eval::VoxelMerger merger(settings, poses.empty() ? Vec3::Zero() : poses.front().t);
   const io::DatasetScanSource scans(dataset);
-  for (std::size_t i = 0; i < scans.size(); ++i) merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
+  for (std::size_t i = 0; i < scans.size(); ++i)
+    merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
   return merger.result();
+}
+
+struct FixedMap {
+  PointCloud cloud;  // relative to cloud.origin
+  std::string name;  // for messages and the report
+  // When the map is a dataset at its poses: the session is placed by its
+  // places (each locally consistent) rather than by tiles of the merged
+  // cloud, which carry whatever drift the poses have.
+  std::optional<io::Dataset> dataset;
+  std::vector<Pose> poses;
+};
+
+FixedMap datasetMap(io::Dataset dataset, std::string name) {
+  FixedMap map;
+  map.poses = dataset.trajectory().poses;
+  map.cloud = mergeAtPoses(dataset, map.poses);
+  map.name = std::move(name);
+  map.dataset.emplace(std::move(dataset));
+  return map;
 }
 
 // An earlier `hba optimize` output: its input's scans at its optimized poses.
@@ -48,29 +65,30 @@ FixedMap readEarlierOutput(const fs::path& folder) {
     failAt(folder / "report.json", "does not name the run's input dataset");
   }
   if (report["input"].value("scans_in_world", false)) {
-    failAt(folder, "was made from scans saved in the world frame: write its map with hba map and give that file");
+    failAt(folder,
+           "was made from scans saved in the world frame: write its map with hba map and give that file");
   }
   DatasetArgs input;
   input.dir = report["input"]["dataset"].get<std::string>();
   input.poses = (folder / "pose.json").string();
   input.format = "hba";
-  const io::Dataset dataset = input.open();
-  return {mergeAtPoses(dataset, dataset.trajectory().poses),
-          folder.string() + " (" + input.dir + " at its optimized poses)"};
+  return datasetMap(input.open(), folder.string() + " (" + input.dir + " at its optimized poses)");
 }
 
 FixedMap readFixedMap(const Args& args) {
   if (!args.fixed.empty()) {
     DatasetArgs fixed;
     fixed.dir = args.fixed;
-    const io::Dataset dataset = fixed.open();
-    return {mergeAtPoses(dataset, dataset.trajectory().poses), args.fixed + " (its scans at its poses)"};
+    return datasetMap(fixed.open(), args.fixed + " (its scans at its poses)");
   }
   const fs::path path = args.map;
   if (fs::is_directory(path)) return readEarlierOutput(path);
   PointCloud cloud = io::readScan(path);
   if (cloud.empty()) failAt(path, "holds no points: a map is a point cloud of the place");
-  return {voxel::downsample(cloud, kMapVoxel, 4), path.string()};
+  FixedMap map;
+  map.cloud = voxel::downsample(cloud, kMapVoxel, 4);
+  map.name = path.string();
+  return map;
 }
 
 std::vector<PointCloud> loadAll(const io::ScanSource& scans) {
@@ -88,12 +106,29 @@ double sensorReach(const std::vector<PointCloud>& clouds) {
   return std::max(reach, 1.0);
 }
 
+// The session's frame in the map's point coordinates (relative to its origin).
+closure::MapAlignment placeInMap(const FixedMap& map, const io::ScanSource& session,
+                                 const std::vector<Pose>& poses, double scan_voxel) {
+  const closure::SessionAlignmentSettings settings;
+  if (!map.dataset) return closure::alignToMap(map.cloud, session, poses, settings);
+  const io::DatasetScanSource scans(*map.dataset);
+  const voxel::DownsampledScanSource reference(scans, scan_voxel);
+  closure::MapAlignment a;
+  static_cast<closure::SessionAlignment&>(a) =
+      closure::alignSession(reference, map.poses, session, poses, settings);
+  for (const Vec3f& p : map.cloud.points)
+    a.map_extent_m = std::max(a.map_extent_m, 2.0 * p.cast<double>().norm());
+  a.world_from_session = Pose(Quat::Identity(), -map.cloud.origin) * a.world_from_session;
+  return a;
+}
+
 }  // namespace
 
 void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   if (!args.more_sessions.empty()) {
-    throw Error("--map and --fixed take one new session: give the others as the map, or run them as sessions "
-                "without --map");
+    throw Error(
+        "--map and --fixed take one new session: give the others as the map, or run them as sessions "
+        "without --map");
   }
   if (!args.map.empty() && !args.fixed.empty()) throw Error("give --map MAP or --fixed SESSION, not both");
   if (!args.priors.empty()) {
@@ -113,13 +148,13 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   const voxel::DownsampledScanSource session(scans, settings.scan_voxel);
   const nlohmann::json conventions = checkConventions(args, session, dataset);
 
-  const closure::MapAlignment a =
-      closure::alignToMap(map.cloud, session, dataset.trajectory().poses, closure::SessionAlignmentSettings{});
+  const closure::MapAlignment a = placeInMap(map, session, dataset.trajectory().poses, settings.scan_voxel);
   if (!a.found) {
     throw Error(args.data.dir + ": could not place this session in the map " + map.name + " (" + a.reason +
-                "; " + std::to_string(a.tiles) + " tiles of " +
-                std::to_string(static_cast<int>(std::round(a.tile_radius_m))) + " m in a map " +
-                std::to_string(static_cast<long>(std::round(a.map_extent_m))) +
+                (map.dataset ? ""
+                             : "; " + std::to_string(a.tiles) + " tiles of " +
+                                   std::to_string(static_cast<int>(std::round(a.tile_radius_m))) + " m") +
+                " in a map " + std::to_string(static_cast<long>(std::round(a.map_extent_m))) +
                 " m across): is the map of this place, and in metres?");
   }
   spdlog::info("{}: placed in the map by {} agreeing of {} verified place-tile pairs ({} registered)",
@@ -129,11 +164,12 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, placed, settings, closures);
 
   // Refined against the map: its planes pull the session onto them.
-  const std::vector<PointCloud> clouds = loadAll(voxel::DownsampledScanSource(scans, settings.refine_scan_voxel));
+  const std::vector<PointCloud> clouds =
+      loadAll(voxel::DownsampledScanSource(scans, settings.refine_scan_voxel));
   std::vector<const PointCloud*> pointers;
   for (const PointCloud& c : clouds) pointers.push_back(&c);
-  const PointCloud near =
-      voxel::downsample(ba::mapNear(map.cloud, result.poses, sensorReach(clouds)), settings.refine_scan_voxel, 4);
+  const PointCloud near = voxel::downsample(ba::mapNear(map.cloud, result.poses, sensorReach(clouds)),
+                                            settings.refine_scan_voxel, 4);
   const ba::RefinementResult refined =
       ba::refineAgainstMap(near, pointers, result.poses, settings.refinementBa());
   spdlog::info("refined against the map ({} of its points near the session): plane RMS {:.4f} -> {:.4f} m",
@@ -159,7 +195,8 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
                      {"plane_rms_before_m", refined.rms_before},
                      {"plane_rms_after_m", refined.rms_after}}}};
   writeReport(out, report);
-  const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);
+  const bool drawn =
+      !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);
   staging.commit();
   spdlog::info("done: {} (poses in the map's frame, report.json{})", staging.destination().string(),
                drawn ? ", before_after.png" : "");

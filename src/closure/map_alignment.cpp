@@ -25,9 +25,9 @@ Tiles cutTiles(const PointCloud& sparse, double radius, std::size_t min_points) 
   std::map<std::tuple<long, long, long>, std::pair<Vec3, std::size_t>> cells;
   for (const Vec3f& p : sparse.points) {
     const Vec3 q = p.cast<double>();
-    auto& [sum, count] = cells[{static_cast<long>(std::floor(q.x() / radius)),
-                                static_cast<long>(std::floor(q.y() / radius)),
-                                static_cast<long>(std::floor(q.z() / radius))}];
+    auto& [sum, count] =
+        cells[{static_cast<long>(std::floor(q.x() / radius)), static_cast<long>(std::floor(q.y() / radius)),
+               static_cast<long>(std::floor(q.z() / radius))}];
     sum += q;
     ++count;
   }

@@ -12,8 +12,8 @@ namespace hba::closure {
 
 // The frames within `path_m` of path either side of `centre`, at most
 // `max_frames` each side, inside `bounds` (its session).
-FrameRange submapFrames(const std::vector<Pose>& poses, std::size_t centre, double path_m, std::size_t max_frames,
-                        FrameRange bounds);
+FrameRange submapFrames(const std::vector<Pose>& poses, std::size_t centre, double path_m,
+                        std::size_t max_frames, FrameRange bounds);
 
 // One side of an alignment: a session (places on its path, each the submap
 // of the frames around it) or a map cut into tiles (each tile one frame, its
