@@ -36,6 +36,20 @@ std::vector<std::size_t> agreeing(const FeatureCloud& source, const FeatureCloud
   return inliers;
 }
 
+// How many matches `pose` brings within `reach`; stops early once it can no
+// longer beat `to_beat`.
+std::size_t countAgreeing(const FeatureCloud& source, const FeatureCloud& target, const Matches& matches,
+                          const Pose& pose, double reach, std::size_t to_beat) {
+  const double reach_sq = reach * reach;
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < matches.size(); ++k) {
+    if (count + (matches.size() - k) <= to_beat) break;
+    const Vec3 moved = pose * source.points[matches[k].first].cast<double>();
+    if ((moved - target.points[matches[k].second].cast<double>()).squaredNorm() < reach_sq) ++count;
+  }
+  return count;
+}
+
 // Side lengths of a triple alike in both clouds (a rigid motion keeps them),
 // and long enough to fix a rotation.
 bool sidesAgree(const FeatureCloud& source, const FeatureCloud& target, const Matches& matches,
@@ -140,18 +154,25 @@ Registration registerClouds(const FeatureCloud& source, const FeatureCloud& targ
   std::mt19937 random(settings.seed);
   std::vector<std::size_t> best;
   Pose best_pose;
-  std::size_t hypotheses = 0;
-  for (std::size_t draw = 0; draw < settings.max_draws && hypotheses < settings.max_hypotheses; ++draw) {
+  std::size_t hypotheses = 0, needed = settings.max_hypotheses;
+  for (std::size_t draw = 0; draw < settings.max_draws && hypotheses < needed; ++draw) {
     std::size_t triple[3];
     for (std::size_t& index : triple) index = random() % matches.size();
     if (triple[0] == triple[1] || triple[1] == triple[2] || triple[0] == triple[2]) continue;
     if (!sidesAgree(source, target, matches, triple, settings.edge_similarity, 2.0 * target.voxel)) continue;
     ++hypotheses;
     const Pose pose = fitPose(source, target, matches, {triple[0], triple[1], triple[2]});
-    std::vector<std::size_t> inliers = agreeing(source, target, matches, pose, reach);
-    if (inliers.size() > best.size()) {
-      best = std::move(inliers);
-      best_pose = pose;
+    if (countAgreeing(source, target, matches, pose, reach, best.size()) <= best.size()) continue;
+    best = agreeing(source, target, matches, pose, reach);
+    best_pose = pose;
+    // Enough draws to have drawn three inliers with 99.9 % odds, had the
+    // best pose's share of inliers been the true one.
+    const double share = static_cast<double>(best.size()) / static_cast<double>(matches.size());
+    const double miss = 1.0 - share * share * share;
+    if (miss < 1.0) {
+      needed =
+          std::min(settings.max_hypotheses,
+                   static_cast<std::size_t>(std::ceil(std::log(1e-3) / std::log(std::max(miss, 1e-12)))));
     }
   }
   // The estimate from all its inliers, twice (the set may grow).

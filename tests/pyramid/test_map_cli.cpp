@@ -37,8 +37,10 @@ class MapCli : public testing::Test {
   static void SetUpTestSuite() {
     dir_ = new test::TempDir();
     // Two sessions 50 m apart along a 250 m loop, 125 m each: 75 m in common.
-    test::runOk(hba() + " -q simulate --sessions 2 --frames 500 --session-frames 250 --session-shift 50 --seed 4 -o " +
-                (*dir_ / "data").string());
+    test::runOk(
+        hba() +
+        " -q simulate --sessions 2 --frames 500 --session-frames 250 --session-shift 50 --seed 4 -o " +
+        (*dir_ / "data").string());
     // The map: session 0's scans at their true poses, in a UTM-sized frame (LAS keeps its precision).
     Trajectory truth = io::readPoses(*dir_ / "data" / "session-0" / "gt_world.txt");
     for (Pose& p : truth.poses) p = kUtm * p;
@@ -59,7 +61,8 @@ TEST_F(MapCli, ANewSessionComesOutInTheMapsFrameAndTheMapStaysUntouched) {
   test::runOk(hba() + " -q optimize " + data("session-1").string() + " --map " + map().string() +
               " --no-render -o " + (dir / "out").string());
   EXPECT_EQ(test::readText(map()), before);
-  EXPECT_LT(ateNone(truthInUtm(*dir_ / "data", dir / "truth.txt"), dir / "out" / "poses_tum.txt", dir.path()), 0.02);
+  EXPECT_LT(ateNone(truthInUtm(*dir_ / "data", dir / "truth.txt"), dir / "out" / "poses_tum.txt", dir.path()),
+            0.02);
   const nlohmann::json report = test::readJson(dir / "out" / "report.json").at("map");
   EXPECT_GE(report.at("agreeing").get<int>(), 2);
   EXPECT_GT(report.at("tiles").get<int>(), 0);
@@ -89,9 +92,9 @@ TEST_F(MapCli, AMapInMillimetresIsRefusedAndNothingIsWritten) {
   for (Vec3f& p : cloud.points) p *= 1000.0F;
   cloud.origin *= 1000.0;
   io::writeScan(dir / "map_mm.las", cloud);
-  const test::CommandResult r = test::runCommand(hba() + " optimize " + data("session-1").string() + " --map " +
-                                                 (dir / "map_mm.las").string() + " --no-render -o " +
-                                                 (dir / "out").string() + " 2>&1");
+  const test::CommandResult r =
+      test::runCommand(hba() + " optimize " + data("session-1").string() + " --map " +
+                       (dir / "map_mm.las").string() + " --no-render -o " + (dir / "out").string() + " 2>&1");
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("could not place this session in the map"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("in metres?"), std::string::npos) << r.output;
@@ -101,13 +104,14 @@ TEST_F(MapCli, AMapInMillimetresIsRefusedAndNothingIsWritten) {
 TEST_F(MapCli, MapAndSessionsOrPriorsTogetherAreRefused) {
   test::TempDir dir;
   const std::string session = data("session-1").string();
-  const test::CommandResult both = test::runCommand(hba() + " optimize " + session + " --map " + map().string() +
-                                                    " --fixed " + data("session-0").string() + " -o " +
-                                                    (dir / "out").string() + " 2>&1");
+  const test::CommandResult both =
+      test::runCommand(hba() + " optimize " + session + " --map " + map().string() + " --fixed " +
+                       data("session-0").string() + " -o " + (dir / "out").string() + " 2>&1");
   EXPECT_EQ(both.exit_code, 1) << both.output;
   EXPECT_NE(both.output.find("not both"), std::string::npos) << both.output;
-  const test::CommandResult folder = test::runCommand(hba() + " optimize " + session + " --map " + dir.path().string() +
-                                                      " -o " + (dir / "out").string() + " 2>&1");
+  const test::CommandResult folder =
+      test::runCommand(hba() + " optimize " + session + " --map " + dir.path().string() + " -o " +
+                       (dir / "out").string() + " 2>&1");
   EXPECT_EQ(folder.exit_code, 1) << folder.output;
   EXPECT_NE(folder.output.find("not an hba optimize output"), std::string::npos) << folder.output;
   EXPECT_FALSE(fs::exists(dir / "out"));

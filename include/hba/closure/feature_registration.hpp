@@ -16,7 +16,7 @@ struct RegistrationSettings {
   double inlier_voxels = 1.5;         // a match agrees with a pose within this many voxels
   double edge_similarity = 0.9;       // a triple's sides in both clouds: shorter/longer at least this
   std::size_t max_draws = 60000;      // random triples drawn
-  std::size_t max_hypotheses = 6000;  // triples that pass the side test and are scored
+  std::size_t max_hypotheses = 3000;  // triples that pass the side test and are scored, at most
   std::size_t min_inliers = 10;       // fewer matches agreeing on the best pose: not found
   std::size_t icp_iterations = 20;
   double icp_reach_voxels = 2.0;  // a point pairs with the nearest target within this many voxels

@@ -29,7 +29,7 @@ struct FeatureSettings {
   double normal_radius = 2.5;      // voxels: neighbours that fit a point's plane
   double feature_radius = 5.0;     // voxels: neighbours that describe a point
   std::size_t min_neighbours = 5;  // fewer within the normal radius: the point is dropped
-  double keypoint_voxels = 2.0;    // keypoints: one per cell of this many voxels
+  double keypoint_voxels = 3.0;    // keypoints: one per cell of this many voxels
 };
 
 // The cloud downsampled to `voxel` (m), its normals and descriptors. Points
