@@ -101,6 +101,21 @@ TEST_F(MapCli, AMapInMillimetresIsRefusedAndNothingIsWritten) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+TEST_F(MapCli, AMapOfAnotherPlaceIsRefusedAndNothingIsWritten) {
+  test::TempDir dir;
+  // Another world (another seed), mapped by its own truth.
+  test::runOk(hba() + " -q simulate --frames 200 --seed 11 -o " + (dir / "other").string());
+  test::runOk(hba() + " -q map " + (dir / "other").string() + " --poses " +
+              (dir / "other" / "gt.txt").string() + " -o " + (dir / "other.pcd").string());
+  const test::CommandResult r =
+      test::runCommand(hba() + " optimize " + data("session-1").string() + " --map " +
+                       (dir / "other.pcd").string() + " --no-render -o " + (dir / "out").string() + " 2>&1");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("could not place this session in the map"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("did not register"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 TEST_F(MapCli, MapAndSessionsOrPriorsTogetherAreRefused) {
   test::TempDir dir;
   const std::string session = data("session-1").string();
