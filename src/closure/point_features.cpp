@@ -1,6 +1,9 @@
 #include "hba/closure/point_features.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include <array>
 
 #include <algorithm>
 #include <cmath>
@@ -41,16 +44,17 @@ int bin(float value, float low, float high) {
   return std::clamp(b, 0, kBins - 1);
 }
 
-// Rusu's three angles of the Darboux frame between two points, binned into
-// the point's simple histogram. The normals' signs are not used: a map has
-// no sensor position to turn them towards, and one surface seen from two
-// sides must describe alike. So the frame sits on the point whose normal
+// Rusu's three angles of the Darboux frame between two points, as bins of
+// a simple histogram (-1: no frame). The normals' signs are not used: a map
+// has no sensor position to turn them towards, and one surface seen from
+// two sides must describe alike. So the frame sits on the point whose normal
 // is closer to the line, that normal turned to point along the line, the
-// other turned to agree with it. In float: bins of 1/11 of the range need no more.
-void addPair(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, Fpfh& histogram) {
+// other turned to agree with it; either point gives the same bins. In
+// float: bins of 1/11 of the range need no more.
+std::array<int, 3> pairBins(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq) {
   Vec3f d = q - p;
   const float distance = d.norm();
-  if (distance <= 0.0F) return;
+  if (distance <= 0.0F) return {-1, -1, -1};
   d /= distance;
   Vec3f n1 = np, n2 = nq;
   if (std::abs(n1.dot(d)) < std::abs(n2.dot(d))) {
@@ -61,13 +65,12 @@ void addPair(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, F
   if (n1.dot(n2) < 0.0F) n2 = -n2;
   Vec3f v = d.cross(n1);
   const float v_norm = v.norm();
-  if (v_norm <= 1e-6F) return;
+  if (v_norm <= 1e-6F) return {-1, -1, -1};
   v /= v_norm;
   const Vec3f w = n1.cross(v);
   const float theta = std::atan2(w.dot(n2), n1.dot(n2));  // n1.n2 >= 0: within +-pi/2
-  histogram[bin(theta, -kPi / 2, kPi / 2)] += 1.0F;
-  histogram[kBins + bin(v.dot(n2), -1.0F, 1.0F)] += 1.0F;
-  histogram[2 * kBins + bin(n1.dot(d), 0.0F, 1.0F)] += 1.0F;
+  return {bin(theta, -kPi / 2, kPi / 2), kBins + bin(v.dot(n2), -1.0F, 1.0F),
+          2 * kBins + bin(n1.dot(d), 0.0F, 1.0F)};
 }
 
 void normalise(Fpfh& histogram) {
@@ -115,15 +118,29 @@ FeatureCloud describeCloud(const PointCloud& cloud, double voxel, const FeatureS
   // Every point's simple histogram (a keypoint's neighbours need theirs),
   // then the keypoints' fast ones: their own plus their neighbours' weighted
   // by nearness.
-  std::vector<Fpfh> simple(out.points.size(), Fpfh::Zero());
+  // Each pair once (its bins are the same from either end), counted into
+  // both points' histograms: per-thread counts, summed exactly (integers).
   std::vector<std::vector<std::pair<std::uint32_t, float>>> neighbours(out.points.size());
+  tbb::enumerable_thread_specific<std::vector<Fpfh>> counts(
+      [&] { return std::vector<Fpfh>(out.points.size(), Fpfh::Zero()); });
   tbb::parallel_for(std::size_t{0}, out.points.size(), [&](std::size_t i) {
     neighbours[i] = kept.within(out.points[i], feature_radius);
+    std::vector<Fpfh>& mine = counts.local();
     for (const auto& [j, d] : neighbours[i]) {
-      if (j != i) addPair(out.points[i], out.normals[i], out.points[j], out.normals[j], simple[i]);
+      if (j <= i) continue;
+      const std::array<int, 3> bins = pairBins(out.points[i], out.normals[i], out.points[j], out.normals[j]);
+      if (bins[0] < 0) continue;
+      for (const int b : bins) {
+        mine[i][b] += 1.0F;
+        mine[j][b] += 1.0F;
+      }
     }
-    normalise(simple[i]);
   });
+  std::vector<Fpfh> simple(out.points.size(), Fpfh::Zero());
+  for (const std::vector<Fpfh>& part : counts) {
+    for (std::size_t i = 0; i < simple.size(); ++i) simple[i] += part[i];
+  }
+  for (Fpfh& histogram : simple) normalise(histogram);
   out.features.assign(out.keypoints.size(), Fpfh::Zero());
   tbb::parallel_for(std::size_t{0}, out.keypoints.size(), [&](std::size_t k) {
     const std::uint32_t i = out.keypoints[k];

@@ -20,7 +20,7 @@ namespace hba::closure {
 
 struct SessionAlignmentSettings {
   double sample_spacing_m = 5.0;       // a place every this much path of each session
-  std::size_t max_samples = 30;        // per session, spread evenly beyond
+  std::size_t max_samples = 20;        // per session, spread evenly beyond
   double submap_path_m = 6.0;          // a place's submap: the frames this much path either side
   std::size_t max_submap_frames = 40;  // either side, at most
   // Descriptor voxel (m); 0: a twentieth of the submaps' median range, within 0.1..1 m.
