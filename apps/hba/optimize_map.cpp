@@ -24,16 +24,6 @@ namespace fs = std::filesystem;
 
 constexpr double kMapVoxel = 0.1;  // m: the map is held at this spacing
 
-PointCloud mergeAtPoses(const io::Dataset& dataset, const std::vector<Pose>& poses) {
-  eval::MapSettings settings;
-  settings.voxel = kMapVoxel;
-  eval::VoxelMerger merger(settings, poses.empty() ? Vec3::Zero() : poses.front().t);
-  const io::DatasetScanSource scans(dataset);
-  for (std::size_t i = 0; i < scans.size(); ++i)
-    merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
-  return merger.result();
-}
-
 struct FixedMap {
   PointCloud cloud;  // relative to cloud.origin
   std::string name;  // for messages and the report
@@ -47,7 +37,9 @@ struct FixedMap {
 FixedMap datasetMap(io::Dataset dataset, std::string name) {
   FixedMap map;
   map.poses = dataset.trajectory().poses;
-  map.cloud = mergeAtPoses(dataset, map.poses);
+  eval::MapSettings settings;
+  settings.voxel = kMapVoxel;
+  map.cloud = eval::buildMergedMap(io::DatasetScanSource(dataset), map.poses, settings);
   map.name = std::move(name);
   map.dataset.emplace(std::move(dataset));
   return map;
@@ -86,7 +78,9 @@ FixedMap readFixedMap(const Args& args) {
   PointCloud cloud = io::readScan(path);
   if (cloud.empty()) failAt(path, "holds no points: a map is a point cloud of the place");
   FixedMap map;
-  map.cloud = voxel::downsample(cloud, kMapVoxel, 4);
+  eval::MapSettings settings;
+  settings.voxel = kMapVoxel;
+  map.cloud = eval::downsampleMap(cloud, settings);
   map.name = path.string();
   return map;
 }
@@ -161,7 +155,10 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
                args.data.dir, a.agreeing, a.verified, a.tried);
   std::vector<Pose> placed;
   for (const Pose& p : dataset.trajectory().poses) placed.push_back(a.world_from_session * p);
-  pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, placed, settings, closures);
+  // The one refinement is the one against the map, below.
+  pyramid::HbaSettings alone = settings;
+  alone.refine = false;
+  pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, placed, alone, closures);
 
   // Refined against the map: its planes pull the session onto them.
   const std::vector<PointCloud> clouds =
