@@ -36,4 +36,11 @@ inline double evalRmse(const std::string& what, const std::filesystem::path& gt,
   return readJson(json).at(what).at("translation_m").at("rmse").get<double>();
 }
 
+// ATE translation RMSE (m) of `est` against `gt` in gt's frame, unaligned:
+// for results that must come out in a given frame.
+inline double ateInFrame(const std::filesystem::path& gt, const std::filesystem::path& est,
+                         const std::filesystem::path& scratch) {
+  return evalRmse("ate", gt, est, scratch, "--align none");
+}
+
 }  // namespace hba::test
