@@ -78,9 +78,7 @@ FixedMap readFixedMap(const Args& args) {
   PointCloud cloud = io::readScan(path);
   if (cloud.empty()) failAt(path, "holds no points: a map is a point cloud of the place");
   FixedMap map;
-  eval::MapSettings settings;
-  settings.voxel = kMapVoxel;
-  map.cloud = eval::downsampleMap(cloud, settings);
+  map.cloud = voxel::downsample(cloud, kMapVoxel, 4);
   map.name = path.string();
   return map;
 }
