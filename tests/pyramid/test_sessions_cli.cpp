@@ -55,6 +55,30 @@ TEST(SessionsCli, FarApartSessionsInTiltedFramesMeetWhereTheirPathsOverlap) {
     EXPECT_FALSE(pair.at("outcome").get<std::string>().empty());
 }
 
+// A car's path (KITTI 00, ../shared): session 1 starts 300 m further along
+// it, a quarter of a kilometre away in a straight line, heading the other
+// way, and drives back over part of session 0's road.
+TEST(SessionsCli, SessionsAQuarterKilometreApartOnACarsPathMeet) {
+  const fs::path path = test::sharedDataDir() / "trajectories" / "kitti00_gt.txt";
+  if (!fs::exists(path)) GTEST_SKIP() << "no shared data: " << path;
+  test::TempDir dir;
+  test::runOk(hba() + " -q simulate --trajectory " + path.string() +
+              " --sessions 2 --session-shift 300 --session-reverse --session-frames 300 --seed 4 -o " +
+              (dir / "data").string());
+  const Trajectory truth = io::readPoses(dir / "data" / "session-1" / "gt_world.txt");
+  ASSERT_GT(truth.poses.front().t.norm(), 200.0);
+  test::runOk(hba() + " -q optimize " + (dir / "data" / "session-0").string() + " " +
+              (dir / "data" / "session-1").string() + " --no-render -o " + (dir / "out").string());
+  for (const char* name : {"session-0", "session-1"}) {
+    const fs::path gt = dir / "data" / name / "gt_world.txt";
+    const fs::path est = dir / "out" / name / "poses_tum.txt";
+    // The map is right to millimetres; its frame, anchored at session 0's
+    // first pose, to a few centimetres.
+    EXPECT_LT(test::evalRmse("ate", gt, est, dir.path(), "--align se3"), 0.005) << name;
+    EXPECT_LT(test::ateInFrame(gt, est, dir.path()), 0.15) << name;
+  }
+}
+
 TEST(SessionsCli, SessionsThatNeverMeetAreRefusedSayingWhatWasTried) {
   test::TempDir dir;
   // 75 m each, 200 m apart on a 400 m loop: no road in common.
