@@ -141,6 +141,7 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   const nlohmann::json conventions = checkConventions(args, session, dataset);
 
   const closure::MapAlignment a = placeInMap(map, session, dataset.trajectory().poses, settings.scan_voxel);
+  nlohmann::json map_report = alignmentReport(a, args.data.dir);  // logs every pair with -v
   if (!a.found) {
     throw Error(args.data.dir + ": could not place this session in the map " + map.name + " (" + a.reason +
                 (map.dataset ? ""
@@ -177,22 +178,14 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   writeOptimizedPoses(out, dataset, in_map);
   nlohmann::json report = reportJson(result, dataset, settings, conventions);
   report["memory_estimate"] = memory;
-  report["map"] = {{"source", map.name},
-                   {"points", map.cloud.size()},
-                   {"tiles", a.tiles},
-                   {"tile_radius_m", a.tile_radius_m},
-                   {"descriptor_voxel_m", a.feature_voxel_m},
-                   {"registered", a.tried},
-                   {"verified", a.verified},
-                   {"agreeing", a.agreeing},
-                   {"seconds",
-                    {{"describing", a.seconds_describing},
-                     {"voting", a.seconds_voting},
-                     {"registering", a.seconds_registering}}},
-                   {"refinement",
-                    {{"map_points", near.size()},
-                     {"plane_rms_before_m", refined.rms_before},
-                     {"plane_rms_after_m", refined.rms_after}}}};
+  map_report["source"] = map.name;
+  map_report["points"] = map.cloud.size();
+  map_report["tiles"] = a.tiles;
+  map_report["tile_radius_m"] = a.tile_radius_m;
+  map_report["refinement"] = {{"map_points", near.size()},
+                              {"plane_rms_before_m", refined.rms_before},
+                              {"plane_rms_after_m", refined.rms_after}};
+  report["map"] = map_report;
   writeReport(out, report);
   const bool drawn =
       !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);

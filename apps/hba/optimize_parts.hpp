@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dataset_args.hpp"
+#include "hba/closure/session_alignment.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
@@ -73,6 +74,10 @@ std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& d
 bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
                   const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                   const std::filesystem::path& out);
+
+// What a session's alignment tried (places, pairs and their outcomes, times)
+// for report.json; each pair also logged at debug level, after `label`.
+nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label);
 
 // Several sessions (args.more_sessions): optimize_sessions.cpp.
 void runSessions(const Args& args, pyramid::HbaSettings settings);

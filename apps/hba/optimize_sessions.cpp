@@ -93,30 +93,9 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
       const voxel::DownsampledScanSource session(*sources[k], settings.scan_voxel);
       const closure::SessionAlignment a = closure::alignSession(
           reference, datasets[0].trajectory().poses, session, datasets[k].trajectory().poses, align_settings);
-      nlohmann::json trials = nlohmann::json::array();
-      for (const closure::SessionPairTrial& t : a.trials) {
-        trials.push_back({{"reference_frame", t.reference_frame},
-                          {"session_frame", t.session_frame},
-                          {"votes", t.votes},
-                          {"descriptor_matches", t.matches},
-                          {"ransac_inliers", t.inliers},
-                          {"fitness", t.fitness},
-                          {"outcome", t.outcome}});
-        spdlog::debug("{}: place {} against {}'s place {}: {}", dirs[k], t.session_frame, dirs[0],
-                      t.reference_frame, t.outcome);
-      }
-      alignment_report.push_back({{"session", k},
-                                  {"places", {a.reference_places, a.session_places}},
-                                  {"descriptor_voxel_m", a.feature_voxel_m},
-                                  {"registered", a.tried},
-                                  {"verified", a.verified},
-                                  {"agreeing", a.agreeing},
-                                  {"found", a.found},
-                                  {"seconds",
-                                   {{"describing", a.seconds_describing},
-                                    {"voting", a.seconds_voting},
-                                    {"registering", a.seconds_registering}}},
-                                  {"pairs", trials}});
+      nlohmann::json placed_report = alignmentReport(a, dirs[k]);
+      placed_report["session"] = k;
+      alignment_report.push_back(placed_report);
       if (!a.found) {
         throw Error(dirs[k] + ": could not place this session in " + dirs[0] + "'s frame (" + a.reason +
                     "); give the transform with --align FILE, or --align identity if they share a frame");
