@@ -1,4 +1,4 @@
-#include "keyframe_store.hpp"
+#include "cloud_store.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -16,7 +16,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/temporary_folder.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 namespace fs = std::filesystem;
 
 namespace {
@@ -65,7 +65,7 @@ void readAll(int fd, void* data, std::size_t bytes, std::uint64_t offset, const 
 
 }  // namespace
 
-KeyframeStore::KeyframeStore(std::size_t count) : count_(count), entries_(count) {
+CloudStore::CloudStore(std::size_t count) : count_(count), entries_(count) {
   static std::atomic<unsigned> counter{0};
   const fs::path base = temporaryFolder();
   std::error_code ec;
@@ -80,7 +80,7 @@ KeyframeStore::KeyframeStore(std::size_t count) : count_(count), entries_(count)
   if (fd_ < 0) failAt(file_, std::string("cannot create the file for kept clouds: ") + std::strerror(errno));
 }
 
-KeyframeStore::~KeyframeStore() {
+CloudStore::~CloudStore() {
   if (fd_ >= 0) ::close(fd_);
   remove_on_interrupt_.reset();
   std::error_code ec;
@@ -90,7 +90,7 @@ KeyframeStore::~KeyframeStore() {
 // Scratch data, not written atomically nor synced: it belongs to this
 // process, and syncing would cost more than the BA that reads it. A cloud
 // stored again goes to the end of the file (its old bytes are not reused).
-void KeyframeStore::store(std::size_t i, const PointCloud& cloud) const {
+void CloudStore::store(std::size_t i, const PointCloud& cloud) const {
   if (i >= count_)
     throw Error("keyframe store: cloud " + std::to_string(i) + " of " + std::to_string(count_));
   Entry entry;
@@ -104,7 +104,7 @@ void KeyframeStore::store(std::size_t i, const PointCloud& cloud) const {
   entries_[i] = entry;
 }
 
-PointCloud KeyframeStore::load(std::size_t i) const {
+PointCloud CloudStore::load(std::size_t i) const {
   if (i >= count_)
     throw Error("keyframe store: cloud " + std::to_string(i) + " of " + std::to_string(count_));
   const Entry entry = entries_[i];
@@ -119,4 +119,4 @@ PointCloud KeyframeStore::load(std::size_t i) const {
   return cloud;
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::io

@@ -1,8 +1,8 @@
 #pragma once
-// Keyframe clouds of an upper layer, kept on disk (in a private temporary
-// folder) instead of in memory: there are N/s^(i-1) of them on layer i, so
-// held in memory they would grow with the length of the sequence. They are
-// read back window by window, like layer-1 scans. All clouds go into one
+// Clouds kept on disk (in a private temporary folder) instead of in memory:
+// an upper layer's keyframes (N/s^(i-1) of them on layer i, which held in
+// memory would grow with the length of the sequence) and scans read once
+// and needed again. They are read back like scans. All clouds go into one
 // file, one after the other: a file a cloud cost half a millisecond each to
 // create, more than reading a small scan.
 #include <atomic>
@@ -15,16 +15,16 @@
 #include "hba/core/remove_on_interrupt.hpp"
 #include "hba/io/scan_source.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 
-class KeyframeStore : public io::ScanSource {
+class CloudStore : public ScanSource {
  public:
   // Creates the folder under the system temporary directory ($TMPDIR).
   // Throws hba::Error if it cannot.
-  explicit KeyframeStore(std::size_t count);
-  ~KeyframeStore() override;  // removes the folder and its files
-  KeyframeStore(const KeyframeStore&) = delete;
-  KeyframeStore& operator=(const KeyframeStore&) = delete;
+  explicit CloudStore(std::size_t count);
+  ~CloudStore() override;  // removes the folder and its files
+  CloudStore(const CloudStore&) = delete;
+  CloudStore& operator=(const CloudStore&) = delete;
 
   std::size_t size() const override { return count_; }
   const std::filesystem::path& folder() const { return folder_; }
@@ -54,4 +54,4 @@ class KeyframeStore : public io::ScanSource {
   std::unique_ptr<RemoveOnInterrupt> remove_on_interrupt_;  // Ctrl-C removes the folder too
 };
 
-}  // namespace hba::pyramid
+}  // namespace hba::io

@@ -1,8 +1,8 @@
 #include "spilled_scan_source.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 
-SpilledScanSource::SpilledScanSource(const io::ScanSource& inner)
+SpilledScanSource::SpilledScanSource(const ScanSource& inner)
     : inner_(inner), store_(inner.size()), state_(new std::atomic<int>[inner.size()]) {
   for (std::size_t i = 0; i < inner.size(); ++i) state_[i].store(kNotKept);
 }
@@ -19,4 +19,4 @@ PointCloud SpilledScanSource::load(std::size_t i) const {
   return cloud;
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::io

@@ -1,6 +1,6 @@
 #pragma once
 // A scan source that reads and downsamples each scan once: the first load of
-// a scan goes to the source it wraps and is kept on disk (a KeyframeStore in
+// a scan goes to the source it wraps and is kept on disk (a CloudStore in
 // $TMPDIR, removed at the end); later loads read it back. A refinement of
 // several blocks reads its scans several times (overlapping blocks, rigid
 // groups, the re-measured self-check), and reading a kept scan costs a
@@ -9,15 +9,15 @@
 #include <memory>
 #include <vector>
 
+#include "cloud_store.hpp"
 #include "hba/io/scan_source.hpp"
-#include "keyframe_store.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 
-class SpilledScanSource : public io::ScanSource {
+class SpilledScanSource : public ScanSource {
  public:
   // Throws hba::Error if the temporary folder cannot be made.
-  explicit SpilledScanSource(const io::ScanSource& inner);
+  explicit SpilledScanSource(const ScanSource& inner);
   std::size_t size() const override { return inner_.size(); }
   // Thread-safe. Throws hba::Error (a full disk).
   PointCloud load(std::size_t i) const override;
@@ -25,9 +25,9 @@ class SpilledScanSource : public io::ScanSource {
 
  private:
   enum : int { kNotKept = 0, kKeeping = 1, kKept = 2 };
-  const io::ScanSource& inner_;
-  KeyframeStore store_;
+  const ScanSource& inner_;
+  CloudStore store_;
   std::unique_ptr<std::atomic<int>[]> state_;
 };
 
-}  // namespace hba::pyramid
+}  // namespace hba::io

@@ -32,7 +32,7 @@ std::vector<double> windowWork(const Layer& layer, const std::vector<Window>& wi
 
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
-                           const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
+                           const io::CloudStore* next, double keyframe_voxel, StageTimes& times,
                            const std::string& progress_label, const dist::Group& group,
                            const std::vector<Window>& next_windows) {
   checkWindowPlan(windows, layer.poses.size());

@@ -4,7 +4,7 @@
 
 #include "hba/dist/group.hpp"
 #include "hba/pyramid/settings.hpp"
-#include "keyframe_store.hpp"
+#include "io/cloud_store.hpp"
 #include "layer.hpp"
 #include "timed_clouds.hpp"
 
@@ -33,7 +33,7 @@ struct StageTimes {
 // (window_exchange.hpp); every member must call it, for the same layer.
 LayerOutcome optimizeLayer(const Layer& layer, const TimedClouds& clouds, const std::vector<Window>& windows,
                            const ba::BaSettings& ba_settings, const HbaSettings& settings,
-                           const KeyframeStore* next, double keyframe_voxel, StageTimes& times,
+                           const io::CloudStore* next, double keyframe_voxel, StageTimes& times,
                            const std::string& progress_label,
                            const dist::Group& group = dist::singleProcess(),
                            const std::vector<Window>& next_windows = {});

@@ -20,7 +20,7 @@
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/pyramid/window_size.hpp"
 #include "outer_rounds.hpp"
-#include "refine_stage.hpp"
+#include "refine_settings.hpp"
 #include "shared_outcomes.hpp"
 #include "timed_clouds.hpp"
 #include "top_down.hpp"
@@ -119,7 +119,7 @@ std::vector<Pose> iterate(const TimedClouds& scans, const std::vector<Pose>& pos
     const auto windows = planWindows(layer.poses.size(), settings.window, settings.stride);
     std::unique_ptr<TimedClouds> stored;
     const TimedClouds& clouds = cloudsOf(layer, scans, stored);
-    auto keyframes = std::make_unique<KeyframeStore>(windows.size());
+    auto keyframes = std::make_unique<io::CloudStore>(windows.size());
     // The next layer reads the keyframes: by its own windows, or all in the top one.
     const std::vector<Window> next_windows =
         level + 1 < layers ? planWindows(windows.size(), settings.window, settings.stride)
@@ -242,10 +242,20 @@ HbaResult runNearOrigin(const TimedClouds& scans, const std::vector<Pose>& initi
   }
   // The refinement's motion prior and self-check take the closed start as
   // the input: its steps are the input's, its loops closed.
-  result.poses = refineAndCheck(scans.source(), closed.start, result.poses, settings, report, closed.priors,
-                                scans.kept());
-  const RefinementReport& refined = report.refinement;
-  if (!closed.priors.empty() && (!refined.ran || (refined.groups.ran && !refined.groups.rejected))) {
+  refine::HierarchyFacts facts;
+  facts.layers = report.layers;
+  facts.layer_one_points = report.layer_reports.empty() ? 0 : report.layer_reports.front().cloud_points;
+  facts.scans_kept = scans.kept();
+  refine::RefineOutcome refined = refine::refineAndCheck(scans.source(), closed.start, result.poses, facts,
+                                                         closed.priors, refineSettingsOf(settings));
+  result.poses = std::move(refined.poses);
+  report.consistency = std::move(refined.consistency);
+  report.refinement = std::move(refined.refinement);
+  report.warnings.insert(report.warnings.end(), refined.notes.warnings.begin(), refined.notes.warnings.end());
+  report.seconds_voxelize += refined.notes.seconds_voxelize;
+  report.seconds_solve += refined.notes.seconds_solve;
+  const RefinementReport& r = report.refinement;
+  if (!closed.priors.empty() && (!r.ran || (r.groups.ran && !r.groups.rejected))) {
     // The refinement's blocks hold the priors themselves; the hierarchy
     // (held at its first frame) and the groups (which do not see them) do
     // not: back onto the priors, bending only over long stretches.

@@ -9,7 +9,7 @@
 #include "hba/graph/pose_graph.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/window_plan.hpp"
-#include "keyframe_store.hpp"
+#include "io/cloud_store.hpp"
 
 namespace hba::pyramid {
 
@@ -21,7 +21,7 @@ struct Layer {
   // Path length (m) along the layer-1 poses from the first frame to each
   // frame: how far apart two frames are, for the motion prior.
   std::vector<double> distance_m;
-  std::unique_ptr<KeyframeStore> keyframes;  // null for layer 1
+  std::unique_ptr<io::CloudStore> keyframes;  // null for layer 1
   // The points of every keyframe, also of those stored by other processes
   // only (a group spreads the windows by them); empty for layer 1.
   std::vector<std::size_t> keyframe_points;

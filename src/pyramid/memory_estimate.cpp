@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 
-#include "group_refinement.hpp"
 #include "hba/core/error.hpp"
 #include "hba/pyramid/window_plan.hpp"
 #include "hba/pyramid/window_size.hpp"
 #include "hba/voxel/downsample.hpp"
+#include "refine/group_refinement.hpp"
 #include "window_batches.hpp"
 
 namespace hba::pyramid {
@@ -150,7 +150,7 @@ MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, co
 
   // Beyond one block, rigid groups of frames, solved densely.
   if (refines && settings.refine_groups && refine_all > static_cast<double>(settings.refine_max_points)) {
-    const std::size_t size = groupSize(frames, settings.group_max_count, settings.group_min_frames);
+    const std::size_t size = refine::groupSize(frames, settings.group_max_count, settings.group_min_frames);
     const std::size_t groups = (frames + size - 1) / size;
     const double ratio = settings.refine_scan_voxel > 0.0 && settings.group_voxel > settings.refine_scan_voxel
                              ? settings.refine_scan_voxel / settings.group_voxel

@@ -24,7 +24,7 @@ TimedClouds::TimedClouds(const io::ScanSource& clouds, double voxel, bool keep)
     : read_(clouds, read_seconds_),
       downsampled_(voxel > 0.0 ? std::make_optional<voxel::DownsampledScanSource>(read_, voxel)
                                : std::nullopt),
-      kept_(keep ? std::make_unique<SpilledScanSource>(innermost(read_, downsampled_)) : nullptr),
+      kept_(keep ? std::make_unique<io::SpilledScanSource>(innermost(read_, downsampled_)) : nullptr),
       loaded_(kept_ ? static_cast<const io::ScanSource&>(*kept_) : innermost(read_, downsampled_),
               load_seconds_) {}
 

@@ -10,7 +10,7 @@
 
 #include "hba/io/scan_source.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
-#include "spilled_scan_source.hpp"
+#include "io/spilled_scan_source.hpp"
 
 namespace hba::pyramid {
 
@@ -64,7 +64,7 @@ class TimedClouds {
   ThreadSeconds read_seconds_, load_seconds_;
   TimedScanSource read_;                                     // `clouds`, timed
   std::optional<voxel::DownsampledScanSource> downsampled_;  // of read_, when voxel > 0
-  std::unique_ptr<SpilledScanSource> kept_;                  // of the above, when kept
+  std::unique_ptr<io::SpilledScanSource> kept_;              // of the above, when kept
   TimedScanSource loaded_;                                   // the whole load, timed
 };
 

@@ -5,7 +5,7 @@
 namespace hba::pyramid {
 
 Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
-                      std::unique_ptr<KeyframeStore> keyframes) {
+                      std::unique_ptr<io::CloudStore> keyframes) {
   const std::vector<Window> plan = windowsOf(outcome);
 
   Layer upper;

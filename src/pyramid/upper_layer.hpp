@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "keyframe_store.hpp"
+#include "io/cloud_store.hpp"
 #include "layer.hpp"
 
 namespace hba::pyramid {
@@ -12,6 +12,6 @@ namespace hba::pyramid {
 // relative to window j-1's, in window j-1's result), so local corrections
 // reach the upper layer. The windows must form a plan (checkWindowPlan).
 Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
-                      std::unique_ptr<KeyframeStore> keyframes);
+                      std::unique_ptr<io::CloudStore> keyframes);
 
 }  // namespace hba::pyramid

@@ -112,7 +112,7 @@ std::vector<double> workOf(const std::vector<Window>& windows,
 }
 
 Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                    const KeyframeStore* next, const std::vector<Window>& next_windows,
+                    const io::CloudStore* next, const std::vector<Window>& next_windows,
                     const StreamedClouds& streamed) {
   // First every window's summary and keyframe size, to every member.
   dist::ByteWriter out;

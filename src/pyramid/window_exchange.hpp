@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "hba/dist/group.hpp"
-#include "keyframe_store.hpp"
+#include "io/cloud_store.hpp"
 #include "streamed_clouds.hpp"
 #include "window_summary.hpp"
 
@@ -38,7 +38,7 @@ struct Shared {
 // A collective: every member calls it. Throws hba::Error if a keyframe this
 // member's next windows read did not come.
 Shared shareWindows(const dist::Group& group, const WindowRange& mine, std::vector<WindowSummary>& summaries,
-                    const KeyframeStore* next, const std::vector<Window>& next_windows,
+                    const io::CloudStore* next, const std::vector<Window>& next_windows,
                     const StreamedClouds& streamed);
 
 // The frames [first, end) the windows of `range` read.

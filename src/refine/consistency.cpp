@@ -9,7 +9,7 @@
 
 #include "hba/core/error.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
 
 FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                              const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions) {
@@ -141,4 +141,4 @@ std::vector<double> FixedPlaneMap::regionRmsOf(const std::vector<double>& costs)
   return sums;
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -15,7 +15,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
 
 class FixedPlaneMap {
  public:
@@ -69,4 +69,4 @@ class FixedPlaneMap {
   double points_ = 0.0;
 };
 
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -12,7 +12,7 @@
 #include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
 namespace {
 
 // Frames [first, end) of one group.
@@ -61,10 +61,9 @@ std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t mi
 }
 
 std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
-                               const std::vector<Pose>& current, const HbaSettings& settings,
-                               HbaReport& report) {
+                               const std::vector<Pose>& current, const RefineSettings& settings,
+                               GroupRefinementReport& g, StageNotes& notes) {
   const auto start = Clock::now();
-  GroupRefinementReport& g = report.refinement.groups;
   const std::size_t size = groupSize(current.size(), settings.group_max_count, settings.group_min_frames);
   const std::vector<GroupSpan> groups = planGroups(current.size(), size);
   if (groups.size() < 3) return current;  // nothing a block would not see
@@ -100,19 +99,17 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   spdlog::info("refinement: {} frames tied into {} groups of {} ({} points at {} m)", current.size(),
                groups.size(), size, g.points, settings.group_voxel);
 
-  ba::RefinementSettings rs = settings.refinementBa();
+  ba::RefinementSettings rs = settings.ba;
   // Few unknowns, whose weak long-range modes are the point: exact steps.
   rs.lm.dense_max_frames = groups.size();
   const ba::RefinementResult refined = ba::refineGlobally(pointers, start_poses, rs, path, reference);
-  report.seconds_voxelize += refined.seconds_associate;
-  report.seconds_solve += refined.seconds_solve;
+  notes.seconds_voxelize += refined.seconds_associate;
+  notes.seconds_solve += refined.seconds_solve;
   if (refined.still_sliding > 0) {
-    const std::string message = fmt::format(
-        "refinement: {} pairs of neighbouring groups still move apart beyond what odometry "
-        "plausibly gets wrong, though held",
-        refined.still_sliding);
-    spdlog::warn("{}", message);
-    report.warnings.push_back(message);
+    notes.warn(
+        fmt::format("refinement: {} pairs of neighbouring groups still move apart beyond what odometry "
+                    "plausibly gets wrong, though held",
+                    refined.still_sliding));
   }
 
   // The groups' own planes at their start poses judge the result.
@@ -121,14 +118,12 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   g.rms_before = fixed.rms(start_poses);
   g.rms_after = fixed.rms(refined.poses);
   g.seconds = secondsSince(start);
-  if (!(g.rms_after <= g.rms_before * 1.005)) {
+  if (!(g.rms_after <= g.rms_before * kEqualMapMargin)) {
     g.rejected = true;
-    const std::string message = fmt::format(
-        "refinement: placing the {} groups made their map blurrier (plane RMS {:.4f} -> {:.4f} "
-        "m): keeping the blocks' result",
-        groups.size(), g.rms_before, g.rms_after);
-    spdlog::warn("{}", message);
-    report.warnings.push_back(message);
+    notes.warn(
+        fmt::format("refinement: placing the {} groups made their map blurrier (plane RMS {:.4f} -> {:.4f} "
+                    "m): keeping the blocks' result",
+                    groups.size(), g.rms_before, g.rms_after));
     return current;
   }
   std::vector<Pose> out(current.size());
@@ -146,4 +141,4 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   return out;
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::refine

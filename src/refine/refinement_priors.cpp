@@ -2,7 +2,7 @@
 
 #include <utility>
 
-namespace hba::pyramid {
+namespace hba::refine {
 
 ba::PositionPriors blockPriors(const std::vector<graph::PositionPriorFactor>& priors, std::size_t first,
                                std::size_t end, double point_sigma) {
@@ -18,4 +18,4 @@ ba::PositionPriors blockPriors(const std::vector<graph::PositionPriorFactor>& pr
   return ba::PositionPriors(std::move(terms));
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -8,7 +8,7 @@
 #include "hba/core/pose.hpp"
 #include "hba/graph/factors.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
 
 // Priors whose frames are at least this spread (m, one sigma, along two
 // directions) fix the frame: no pose is held as the gauge then.
@@ -19,4 +19,4 @@ inline constexpr double kPriorSpreadForGauge = 10.0;
 ba::PositionPriors blockPriors(const std::vector<graph::PositionPriorFactor>& priors, std::size_t first,
                                std::size_t end, double point_sigma);
 
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -7,20 +7,20 @@
 #include <tbb/parallel_for.h>
 
 #include "hba/core/error.hpp"
-#include "keyframe_store.hpp"
+#include "io/cloud_store.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 namespace {
 namespace fs = std::filesystem;
 
-TEST(KeyframeStore, RoundTripsPointsExactly) {
+TEST(CloudStore, RoundTripsPointsExactly) {
   PointCloud with, without;
   for (int i = 0; i < 100; ++i) {
     const Vec3f p(0.1f * static_cast<float>(i), -3.3f + 1e-7f * static_cast<float>(i), 1e5f);
     with.add(p, static_cast<float>(i));
     without.add(p);
   }
-  const KeyframeStore store(2);
+  const CloudStore store(2);
   EXPECT_EQ(store.size(), 2u);
   store.store(0, with);
   store.store(1, without);
@@ -45,9 +45,9 @@ TEST(KeyframeStore, RoundTripsPointsExactly) {
 
 // One file for all clouds (a file each cost more to create than a small
 // scan takes to read), written from threads at once without loss.
-TEST(KeyframeStore, KeepsEveryCloudInOneFileFromManyThreads) {
+TEST(CloudStore, KeepsEveryCloudInOneFileFromManyThreads) {
   constexpr std::size_t kClouds = 200;
-  const KeyframeStore store(kClouds);
+  const CloudStore store(kClouds);
   const auto cloudOf = [](std::size_t i) {
     PointCloud cloud;
     for (std::size_t k = 0; k < 10 + i; ++k) cloud.add(Vec3f(float(i), float(k), 0.5f), float(i + k));
@@ -70,10 +70,10 @@ TEST(KeyframeStore, KeepsEveryCloudInOneFileFromManyThreads) {
   EXPECT_EQ(files, 1u);
 }
 
-TEST(KeyframeStore, RemovesItsFolder) {
+TEST(CloudStore, RemovesItsFolder) {
   fs::path folder;
   {
-    const KeyframeStore store(1);
+    const CloudStore store(1);
     store.store(0, PointCloud());
     folder = store.folder();
     EXPECT_TRUE(fs::is_directory(folder));
@@ -83,4 +83,4 @@ TEST(KeyframeStore, RemovesItsFolder) {
 }
 
 }  // namespace
-}  // namespace hba::pyramid
+}  // namespace hba::io

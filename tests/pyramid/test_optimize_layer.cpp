@@ -40,8 +40,8 @@ LayerRun optimizeUneven(int threads, bool keyframe_batches) {
   const io::MemoryScanSource memory(drive().scans);
   const TimedClouds scans(memory, settings.scan_voxel);
   Layer layer = scanLayer(drive().initial);
-  if (keyframe_batches) layer.keyframes = std::make_unique<KeyframeStore>(0);
-  const KeyframeStore next(kUneven.size());
+  if (keyframe_batches) layer.keyframes = std::make_unique<io::CloudStore>(0);
+  const io::CloudStore next(kUneven.size());
   StageTimes times;
   LayerRun run;
   run.outcome =

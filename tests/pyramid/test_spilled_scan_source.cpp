@@ -6,9 +6,9 @@
 
 #include <atomic>
 
-#include "spilled_scan_source.hpp"
+#include "io/spilled_scan_source.hpp"
 
-namespace hba::pyramid {
+namespace hba::io {
 namespace {
 
 // Counts its loads; scan i has i + 1 points, with intensity for even i.
@@ -57,4 +57,4 @@ TEST(SpilledScanSource, LaterLoadsGiveTheSameCloudsWithoutTheSource) {
 }
 
 }  // namespace
-}  // namespace hba::pyramid
+}  // namespace hba::io

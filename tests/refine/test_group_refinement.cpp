@@ -5,16 +5,18 @@
 
 #include <cstdio>
 
-#include "group_refinement.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/sim/simulation.hpp"
-#include "refine_stage.hpp"
+#include "refine/group_refinement.hpp"
+#include "refine_runs.hpp"
 #include "simulated_sequence.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
+using pyramid::HbaReport;
+using pyramid::HbaSettings;
 namespace {
 
-using test::Sequence;
+using pyramid::test::Sequence;
 
 // 1.25 laps of a 100 m block: the last 25 m drive over the first.
 const Sequence& lap() {
@@ -25,7 +27,7 @@ const Sequence& lap() {
     config.downsample_voxel = 0.2;
     config.drift.translation = 0.02;
     config.drift.rotation_deg_per_m = 0.02;
-    return test::simulateSequence(config);
+    return pyramid::test::simulateSequence(config);
   }();
   return sequence;
 }
@@ -44,8 +46,7 @@ std::size_t totalPoints() {
 
 std::vector<Pose> run(const HbaSettings& settings, HbaReport& report) {
   const io::MemoryScanSource source(lap().scans);
-  report.layers = 3;  // as if a pyramid had run
-  return refineAndCheck(source, lap().initial, lap().initial, settings, report);
+  return refineAs3Layers(source, lap().initial, lap().initial, settings, report);
 }
 
 TEST(GroupRefinement, GroupSizeKeepsTheGroupCountBounded) {
@@ -97,4 +98,4 @@ TEST(GroupRefinement, GroupsRecoverWhatBlocksLoseOnARevisit) {
 }
 
 }  // namespace
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -6,20 +6,22 @@
 #include <random>
 #include <string>
 
-#include "consistency.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/eval/trajectory_error.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/sim/simulation.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
-#include "refine_stage.hpp"
+#include "refine/consistency.hpp"
+#include "refine_runs.hpp"
 #include "simulated_sequence.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
+using pyramid::HbaReport;
+using pyramid::HbaSettings;
 namespace {
 
-using test::Sequence;
+using pyramid::test::Sequence;
 
 const Sequence& simulated() {
   static const Sequence sequence = [] {
@@ -28,7 +30,7 @@ const Sequence& simulated() {
     config.trajectory.frames = 60;
     config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
     config.drift.translation = 0.02;
-    return test::simulateSequence(config);
+    return pyramid::test::simulateSequence(config);
   }();
   return sequence;
 }
@@ -43,8 +45,7 @@ std::vector<Pose> run(const std::vector<Pose>& hierarchy, const HbaSettings& set
   // The refinement is given layer-1 scans at the scan voxel, as the pyramid passes them.
   const io::MemoryScanSource scans(simulated().scans);
   const voxel::DownsampledScanSource source(scans, settings.scan_voxel);
-  report.layers = 3;  // as if a pyramid had run
-  return refineAndCheck(source, simulated().initial, hierarchy, settings, report);
+  return refineAs3Layers(source, simulated().initial, hierarchy, settings, report);
 }
 
 // A long refinement keeps its blocks' self-check maps on disk: read back,
@@ -152,4 +153,4 @@ TEST(RefineStage, BlocksBoundTheMemoryAndStillRefine) {
 }
 
 }  // namespace
-}  // namespace hba::pyramid
+}  // namespace hba::refine

@@ -1,9 +1,9 @@
 // The closure stage's priors as refinement terms on a block of frames.
 #include <gtest/gtest.h>
 
-#include "refinement_priors.hpp"
+#include "refine/refinement_priors.hpp"
 
-namespace hba::pyramid {
+namespace hba::refine {
 namespace {
 
 graph::PositionPriorFactor prior(std::size_t node, const Vec3& position, double sigma) {
@@ -28,4 +28,4 @@ TEST(RefinementPriors, BlockTermsAreTheBlocksPriorsInPlaneCostUnits) {
 }
 
 }  // namespace
-}  // namespace hba::pyramid
+}  // namespace hba::refine

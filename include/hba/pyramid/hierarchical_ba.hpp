@@ -13,6 +13,7 @@
 #include "hba/pyramid/closure_inputs.hpp"
 #include "hba/pyramid/settings.hpp"
 #include "hba/pyramid/window_size.hpp"
+#include "hba/refine/report.hpp"
 
 namespace hba::pyramid {
 
@@ -53,57 +54,10 @@ struct IterationReport {
   double seconds_graph = 0.0;
 };
 
-// The final refinement over every layer-1 frame.
-// The coarse, whole-sequence half of the refinement (group_refinement.hpp).
-struct GroupRefinementReport {
-  bool ran = false;
-  std::size_t groups = 0;
-  std::size_t frames_per_group = 0;
-  std::size_t points = 0;  // in the groups' merged clouds
-  std::size_t planes = 0;
-  double rms_before = 0.0;  // m, on the groups' planes found at the start
-  double rms_after = 0.0;
-  // Blurrier on the groups' planes, or less consistent than the input on
-  // the self-check's: the blocks' result is kept.
-  bool rejected = false;
-  double largest_move_m = 0.0;  // of a group
-  double seconds = 0.0;
-};
-
-struct RefinementReport {
-  bool ran = false;
-  GroupRefinementReport groups;
-  std::size_t blocks = 0;       // consecutive, overlapping stretches of frames (memory bound)
-  std::size_t scan_points = 0;  // points held, summed over blocks (at refine_scan_voxel)
-  std::size_t planes = 0;
-  std::size_t observations = 0;
-  std::size_t plane_points = 0;
-  double rms_before = 0.0;  // m, on the refinement's planes
-  double rms_after = 0.0;
-  int iterations = 0;
-  int cg_products = 0;              // conjugate-gradient products H x, summed over blocks
-  int rounds = 0;                   // associations, summed over blocks
-  std::size_t held_pairs = 0;       // neighbouring pairs that slid and were held (summed over blocks)
-  std::size_t still_sliding = 0;    // of those, pairs beyond the limit even when held
-  std::size_t position_priors = 0;  // held by the blocks' LM, summed over blocks (overlaps count twice)
-  double seconds = 0.0;
-};
-
-// The self-check: RMS point-to-plane distance (m) on one fixed set of
-// planes found at the input poses (finest voxel), for the input, the
-// hierarchy's and the final poses; per region (stretches of the sequence)
-// too. Lower is crisper.
-struct ConsistencyReport {
-  std::size_t planes = 0;
-  double input_rms = 0.0;
-  double hierarchy_rms = 0.0;
-  double final_rms = 0.0;
-  bool hierarchy_rejected = false;  // less consistent than the input: refined from the input
-  bool final_rejected = false;      // less consistent than the input: input poses returned
-  std::vector<std::size_t> region_first_frame;
-  std::vector<double> region_input_rms;
-  std::vector<double> region_final_rms;
-};
+// The last stage's reports (hba/refine/report.hpp).
+using refine::ConsistencyReport;
+using refine::GroupRefinementReport;
+using refine::RefinementReport;
 
 // One loop closure candidate and what became of it.
 struct LoopReport {

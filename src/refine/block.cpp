@@ -1,0 +1,142 @@
+#include "block.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "hba/core/release_memory.hpp"
+#include "hba/voxel/downsample.hpp"
+#include "refinement_priors.hpp"
+
+namespace hba::refine {
+namespace {
+
+// Regions of the per-region self-check: about 100 frames each, 4 to 20.
+std::size_t regionCount(std::size_t frames) { return std::clamp<std::size_t>(frames / 100, 4, 20); }
+
+// The block's plane BA from `poses`, held by the priors among its frames.
+void refineFrom(const Block& block, std::size_t index, const std::vector<Pose>& input,
+                const std::vector<double>& steps, const std::vector<graph::PositionPriorFactor>& priors,
+                const RefineSettings& settings, BlockOutcome& out) {
+  std::vector<const PointCloud*> pointers;
+  for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
+  const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
+                                        steps.begin() + static_cast<long>(block.end - 1));
+  const ba::PositionPriors positions =
+      blockPriors(priors, block.first, block.end, settings.ba.motion_prior.point_sigma);
+  ba::RefinementSettings rs = settings.ba;
+  // Later blocks stay held at their first frame, which the block before
+  // placed: no seam where they overlap.
+  rs.lm.hold_first = index > 0 || !positions.defineTheFrame(kPriorSpreadForGauge);
+  out.position_priors = positions.terms().size();
+  if (!positions.empty()) {
+    spdlog::info("refinement: frames {}-{} held by {} position priors, first frame {}", block.first,
+                 block.end - 1, positions.terms().size(), rs.lm.hold_first ? "held" : "free");
+  }
+  out.refinement = ba::refineGlobally(pointers, out.poses, rs, block_steps, input, positions);
+  out.refined = true;
+  out.poses = std::move(out.refinement.poses);
+  out.refinement.poses.clear();
+  if (out.refinement.still_sliding > 0) {
+    out.notes.warn(fmt::format("frames {}-{}: {} pairs of neighbouring frames still move apart "
+                               "beyond what odometry plausibly gets wrong, though held",
+                               block.first, block.end - 1, out.refinement.still_sliding));
+  }
+  out.notes.seconds_voxelize += out.refinement.seconds_associate;
+  out.notes.seconds_solve += out.refinement.seconds_solve;
+}
+
+}  // namespace
+
+std::vector<Pose> slice(const std::vector<Pose>& poses, std::size_t first, std::size_t end) {
+  return {poses.begin() + static_cast<long>(first), poses.begin() + static_cast<long>(end)};
+}
+
+std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<Pose>& result,
+                            std::size_t first, std::size_t end) {
+  const Pose onto = result[first] * initial[first].inverse();
+  std::vector<Pose> input = slice(initial, first, end);
+  for (Pose& pose : input) pose = onto * pose;
+  return input;
+}
+
+Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_points, double voxel,
+                std::size_t last_end) {
+  Block block;
+  block.first = first;
+  block.end = first;
+  const std::size_t batch = 64;
+  const std::size_t stop = std::min(scans.size(), last_end);
+  while (block.end < stop && (block.points < max_points || block.end - first < 2)) {
+    const std::size_t end = std::min(stop, block.end + batch);
+    std::vector<PointCloud> loaded(end - block.end);
+    tbb::parallel_for(block.end, end, [&](std::size_t i) {
+      PointCloud& cloud = loaded[i - block.end];
+      // Scans at the scan voxel taken to twice it: about 2 points a cell.
+      cloud = voxel > 0.0 ? voxel::downsample(scans.load(i), voxel, 2) : scans.load(i);
+      cloud.intensity = {};  // planes need positions only
+    });
+    for (PointCloud& cloud : loaded) {
+      if (block.points >= max_points && block.end - first >= 2) break;
+      block.points += cloud.size();
+      block.clouds.push_back(std::move(cloud));
+      ++block.end;
+    }
+  }
+  return block;
+}
+
+BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
+                         const std::vector<Pose>& result, const std::vector<double>& steps,
+                         const std::vector<graph::PositionPriorFactor>& priors, const RefineSettings& settings,
+                         bool refines) {
+  std::vector<const PointCloud*> pointers;
+  for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
+  // The input of this block, moved rigidly onto the result at its first
+  // frame (the whole input when the block is the sequence).
+  const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
+  const std::vector<Pose> current = slice(result, block.first, block.end);
+  const ba::RefinementSettings& rs = settings.ba;
+  BlockOutcome out(FixedPlaneMap(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size())));
+  // The plane problem the map was made from (hundreds of MB in small
+  // pieces): returned, so that the refinement's association does not stack
+  // its peak on it.
+  releaseFreedMemory();
+  const FixedPlaneMap::Figures at_input = out.map.figures(input);
+  out.input_rms = at_input.rms;
+  out.hierarchy_rms = out.map.rms(current);
+  out.poses = current;
+  if (!(out.hierarchy_rms <= out.input_rms * kEqualMapMargin)) {  // NaN counts as worse
+    out.hierarchy_rejected = true;
+    out.poses = input;
+    // Said as it is: without the refinement the hierarchy's work is simply
+    // lost here (--no-refine returns the input, loops closed).
+    out.notes.warn(fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
+                               "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
+                               block.first, block.end - 1, out.input_rms, out.hierarchy_rms,
+                               refines ? "refining from the input"
+                                       : "keeping the input poses (with the closure stage's loops), "
+                                         "unrefined"));
+  }
+  if (refines) refineFrom(block, index, input, steps, priors, settings, out);
+  FixedPlaneMap::Figures at_final = out.map.figures(out.poses);
+  out.final_rms = at_final.rms;
+  if (!(out.final_rms <= out.input_rms * kEqualMapMargin)) {
+    out.final_rejected = true;
+    out.notes.warn(fmt::format("frames {}-{}: the result is less consistent than the input (plane "
+                               "RMS {:.4f} -> {:.4f} m on the input's planes): keeping the input "
+                               "poses there",
+                               block.first, block.end - 1, out.input_rms, out.final_rms));
+    out.poses = input;
+    out.final_rms = out.input_rms;
+    at_final = at_input;
+  }
+  out.region_input_rms = at_input.region_rms;
+  out.region_final_rms = at_final.region_rms;
+  return out;
+}
+
+}  // namespace hba::refine
