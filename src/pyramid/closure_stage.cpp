@@ -66,18 +66,12 @@ closure::LoopEnds keptInSessions(const closure::LoopPair& pair, const std::vecto
   return {range(pair.from), range(pair.to)};
 }
 
-}  // namespace
-
-ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
-                               const ClosureInputs& closures, const HbaSettings& settings) {
-  const auto start = Clock::now();
-  ClosureOutcome out;
-  out.start = initial;
-  ClosureReport& report = out.report;
-  report.loops_given = closures.loops.size();
-  report.priors_given = closures.priors.size();
-  report.revisits_searched = settings.revisits;
-
+// The candidates: the caller's pairs, then the revisits the poses come
+// back to (`searched` of them: all when asked, those between sessions
+// always).
+std::vector<Candidate> gatherCandidates(const std::vector<Pose>& initial, const ClosureInputs& closures,
+                                        const HbaSettings& settings, ClosureReport& report,
+                                        std::size_t& searched) {
   const std::vector<double> path = closure::cumulativePath(initial);
   std::vector<Candidate> candidates;
   for (const closure::LoopPair& pair : closures.loops) {
@@ -86,7 +80,7 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   const std::vector<closure::RevisitCandidate> revisits =
       closure::findRevisits(initial, settings.revisit, closures.session_starts);
   report.revisit_candidates = revisits.size();
-  std::size_t searched = 0;
+  searched = 0;
   for (const closure::RevisitCandidate& r : revisits) {
     // Sessions are joined by their revisits: searched whether or not asked.
     if (settings.revisits || r.cross_session) {
@@ -106,14 +100,18 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
         "(--no-revisits)",
         revisits.size() - searched, 100.0 * settings.revisit.drift);
   }
-  if (candidates.empty() && closures.priors.empty() && closures.session_starts.empty()) return out;
-  report.ran = true;
+  return candidates;
+}
 
-  // Each candidate's verification is independent: their order of finishing
-  // changes nothing.
-  if (!closures.session_starts.empty()) {
-    const std::vector<std::size_t> session_of =
-        closure::sessionOfFrames(initial.size(), closures.session_starts);
+// Each candidate verified by the plane BA. The verifications are
+// independent: their order of finishing changes nothing.
+std::vector<closure::LoopCheck> verifyCandidates(const io::ScanSource& clouds,
+                                                 const std::vector<Pose>& initial,
+                                                 std::vector<Candidate>& candidates,
+                                                 const std::vector<std::size_t>& session_starts,
+                                                 const HbaSettings& settings) {
+  if (!session_starts.empty()) {
+    const std::vector<std::size_t> session_of = closure::sessionOfFrames(initial.size(), session_starts);
     for (Candidate& c : candidates) {
       if (c.pair.from < initial.size() && c.pair.to < initial.size()) {
         c.ends = keptInSessions(c.pair, session_of, closure::LoopCheckSettings{}.neighbourhood_frames);
@@ -128,7 +126,15 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
     check.information = settings.information;
     checks[i] = closure::verifyLoop(clouds, initial, candidates[i].pair, check, candidates[i].ends);
   });
+  return checks;
+}
 
+// The verified loops and the priors, with the input's own steps, in one
+// pose graph: those it keeps (consistent with the rest) close the start.
+void closeVerified(const std::vector<Pose>& initial, const ClosureInputs& closures,
+                   const std::vector<Candidate>& candidates, const std::vector<closure::LoopCheck>& checks,
+                   const HbaSettings& settings, ClosureOutcome& out) {
+  ClosureReport& report = out.report;
   std::vector<graph::LoopClosureFactor> verified;
   std::vector<std::size_t> verified_index;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
@@ -146,7 +152,6 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
     verified.push_back(f);
     verified_index.push_back(i);
   }
-
   closure::ClosureGraphSettings graph_settings;
   graph_settings.threads = settings.threads;
   const closure::ClosureGraphResult solved =
@@ -169,12 +174,13 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   report.priors_dropped = closures.priors.size() - out.priors.size();
   out.start = solved.poses;
   report.largest_move_m = largestChange(initial, out.start).translation_m;
-  report.seconds = secondsSince(start);
+}
 
+void logClosures(const ClosureReport& report, std::size_t candidates, std::size_t searched) {
   spdlog::info(
       "closures: {} candidates ({} from the caller, {} revisits), {} verified, {} used; {} priors "
       "used of {}; poses moved up to {:.3f} m, {:.2f} s",
-      candidates.size(), report.loops_given, searched, report.verified, report.loops_used, report.priors_used,
+      candidates, report.loops_given, searched, report.verified, report.loops_used, report.priors_used,
       report.priors_given, report.largest_move_m, report.seconds);
   if (report.rejected_by_planes > 0) {
     spdlog::info("  {} loop candidates not supported by the planes (report.json: closure.loops)",
@@ -184,6 +190,28 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
     spdlog::warn("  dropped as contradicted by the rest: {} loops, {} priors", report.dropped_as_inconsistent,
                  report.priors_dropped);
   }
+}
+
+}  // namespace
+
+ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
+                               const ClosureInputs& closures, const HbaSettings& settings) {
+  const auto start = Clock::now();
+  ClosureOutcome out;
+  out.start = initial;
+  ClosureReport& report = out.report;
+  report.loops_given = closures.loops.size();
+  report.priors_given = closures.priors.size();
+  report.revisits_searched = settings.revisits;
+  std::size_t searched = 0;
+  std::vector<Candidate> candidates = gatherCandidates(initial, closures, settings, report, searched);
+  if (candidates.empty() && closures.priors.empty() && closures.session_starts.empty()) return out;
+  report.ran = true;
+  const std::vector<closure::LoopCheck> checks =
+      verifyCandidates(clouds, initial, candidates, closures.session_starts, settings);
+  closeVerified(initial, closures, candidates, checks, settings, out);
+  report.seconds = secondsSince(start);
+  logClosures(report, candidates.size(), searched);
   return out;
 }
 

@@ -178,9 +178,8 @@ void completeShorthands(std::vector<Setting>& table) {
   }
 }
 
-std::vector<Setting> makeTable() {
-  std::vector<Setting> t;
-  // Shorthands first: they are applied before the settings they set.
+// Shorthands first: they are applied before the settings they set.
+void addShorthands(std::vector<Setting>& t) {
   t.push_back(shorthand("voxel", "--voxel", {"local.voxel_size", "global.voxel_size", "voxel_scans"},
                         "root voxel V of every BA, m"));
   t.push_back(shorthand("final_voxel", "--final-voxel", {"local.final_voxel_size", "global.final_voxel_size"},
@@ -189,7 +188,10 @@ std::vector<Setting> makeTable() {
                         "share of the worst planes every BA drops"));
   t.push_back(shorthand("ba_iterations", "--ba-iterations", {"local.max_iterations", "global.max_iterations"},
                         "LM iterations per association of every BA"));
+}
 
+// The pyramid's shape and its outer rounds.
+void addPyramidShape(std::vector<Setting>& t) {
   // Automatic windows (0) hold enough points to place their frames better
   // than the odometry (window_size.hpp): ten dense scans, more sparse ones.
   Setting window = integer(
@@ -222,6 +224,10 @@ std::vector<Setting> makeTable() {
       "settle_rotation", "--settle-rotation", 0.01, between(1e-6, 10),
       [](HbaSettings& h) -> double& { return h.settle_rotation_deg; },
       "a round that turns no pose further (and no more than settle_translation) settles the poses, deg"));
+}
+
+// How dense the scans and keyframes are, and where the windows' plane maps start.
+void addDensity(std::vector<Setting>& t) {
   // Downsampling, named apart from the plane maps' root voxels (--voxel-*).
   t.push_back(withAliases(real(
                               "downsample_scans", "--downsample-scans", 0.1, zeroOr("off", 1e-3, 100),
@@ -242,6 +248,10 @@ std::vector<Setting> makeTable() {
                               [](HbaSettings& h) -> double& { return h.scan_window_voxel; },
                               "root voxel of the layer-1 (scan) windows, m"),
                           {"scan_window_voxel"}));
+}
+
+// The top-down pose graph and the weights of its factors.
+void addTopDown(std::vector<Setting>& t) {
   t.push_back(choice<TopDownMode>(
       "top_down", "--top-down", TopDownMode::PoseGraph,
       [](HbaSettings& h) -> TopDownMode& { return h.top_down; },
@@ -272,6 +282,10 @@ std::vector<Setting> makeTable() {
       [](HbaSettings& h) -> graph::RobustLoss& { return h.graph.robust_loss; },
       "robust loss on the pose graph's window factors (a window that went wrong "
       "pulls less)"));
+}
+
+// The closure stage's revisits.
+void addClosures(std::vector<Setting>& t) {
   t.push_back(onOff(
       "revisits", "--no-revisits", true, [](HbaSettings& h) -> bool& { return h.revisits; },
       "find places the poses come back to, verify them with the plane BA and close them"));
@@ -287,6 +301,10 @@ std::vector<Setting> makeTable() {
       "revisit_min_path", "", 50.0, between(1, 1e6),
       [](HbaSettings& h) -> double& { return h.revisit.min_separation_m; },
       "less path than this between two frames is one pass, not a revisit, m"));
+}
+
+// The last stage: refinement, blocks, groups.
+void addRefinement(std::vector<Setting>& t) {
   t.push_back(onOff(
       "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
       "the final sparse BA over every scan"));
@@ -327,6 +345,16 @@ std::vector<Setting> makeTable() {
       "group_voxel", "", 0.4, zeroOr("no downsampling", 1e-3, 100),
       [](HbaSettings& h) -> double& { return h.group_voxel; },
       "groups' merged clouds downsampled to this, m"));
+}
+
+std::vector<Setting> makeTable() {
+  std::vector<Setting> t;
+  addShorthands(t);
+  addPyramidShape(t);
+  addDensity(t);
+  addTopDown(t);
+  addClosures(t);
+  addRefinement(t);
   addBaSettings(t, "local", "local", 0.05, &HbaSettings::local);
   addBaSettings(t, "global", "global", 0.1, &HbaSettings::global);
   completeShorthands(t);

@@ -299,7 +299,18 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     recording.recorded_.stamps.push_back(pose.stamp);
   }
 
-  // Every cloud's own stamp, and its pose there.
+  recording.placeClouds(bag, options, trajectory);
+  if (!options.keepsEveryScan()) recording.keepKeyframes(options, trajectory);
+  recording.joinFrames(bag, trajectory.front().child_frame_id);
+  return recording;
+}
+
+// Every cloud's own stamp, and its pose there: those the trajectory covers
+// are kept.
+void Recording::placeClouds(const MessageStore& bag, const RecordingOptions& options,
+                            const std::vector<StampedPose>& trajectory) {
+  Recording& recording = *this;
+  const fs::path& path = path_;
   const std::vector<StoredMessage> clouds = bag.messages(recording.cloud_topic_);
   recording.cloud_messages_ = clouds.size();
   std::vector<double> dropped;
@@ -342,7 +353,12 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
                     clouds.size(), span));
   }
   recording.covered_ = recording.trajectory_;
-  if (!options.keepsEveryScan()) {
+}
+
+// Keyframes by distance and angle: the other scans are left out.
+void Recording::keepKeyframes(const RecordingOptions& options, const std::vector<StampedPose>& trajectory) {
+  Recording& recording = *this;
+  {
     // An earlier run's keyframe poses given back: its keyframes, not new ones
     // chosen by poses that moved since.
     std::vector<std::size_t> keyframes =
@@ -366,7 +382,11 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
     recording.notes_.push_back(
         fmt::format("{} of {} scans kept as keyframes (a new one {})", keyframes.size(), covered, rule));
   }
-  const std::string& pose_frame = trajectory.front().child_frame_id;
+}
+
+// Clouds and poses in frames of other names are joined by /tf_static.
+void Recording::joinFrames(const MessageStore& bag, const std::string& pose_frame) {
+  Recording& recording = *this;
   recording.pose_frame_ = pose_frame;
   if (!pose_frame.empty() && !recording.cloud_frame_.empty() &&
       frameName(pose_frame) != frameName(recording.cloud_frame_)) {
@@ -381,7 +401,6 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
                                  "(give --extrinsic if they differ)");
     }
   }
-  return recording;
 }
 
 PointCloud Recording::loadScan(std::size_t i) const {

@@ -18,6 +18,9 @@
 
 namespace hba::rec {
 
+class MessageStore;  // message_store.hpp (internal)
+struct StampedPose;  // ros_messages.hpp
+
 struct RecordingOptions {
   std::string cloud_topic;  // empty: the only PointCloud2 topic
   std::string pose_topic;   // empty: the only trajectory topic
@@ -99,6 +102,11 @@ class Recording {
  private:
   Recording();
   struct Clouds;
+  // The steps of open().
+  void placeClouds(const MessageStore& bag, const RecordingOptions& options,
+                   const std::vector<StampedPose>& trajectory);
+  void keepKeyframes(const RecordingOptions& options, const std::vector<StampedPose>& trajectory);
+  void joinFrames(const MessageStore& bag, const std::string& pose_frame);
   std::filesystem::path path_;
   std::string format_, cloud_topic_, cloud_type_, pose_topic_, cloud_frame_;
   std::vector<RecordingTopic> topics_;

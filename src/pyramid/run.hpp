@@ -1,0 +1,33 @@
+#pragma once
+// What the stages of one run of the method share (pipeline.cpp): its
+// inputs, the poses as they pass from stage to stage, and the report.
+#include <vector>
+
+#include "closure_stage.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/dist/group.hpp"
+#include "hba/pyramid/hierarchical_ba.hpp"
+#include "timed_clouds.hpp"
+
+namespace hba::pyramid {
+
+struct Run {
+  Run(const TimedClouds& scans_in, const HbaSettings& settings_in, const dist::Group& group_in)
+      : scans(scans_in), settings(settings_in), group(group_in) {}
+
+  const TimedClouds& scans;     // layer 1: every scan read and downsampled once
+  const HbaSettings& settings;  // resolved: window size and threads chosen
+  const dist::Group& group;     // the processes of an mpirun (one, usually)
+  ClosureInputs closures;       // loops and priors to close, in the frame of `input`
+  // World points are floats: 4000 km from the origin (UTM) they are 0.25 m
+  // apart. The stages work near the first input pose (`origin`), and after
+  // the closure stage near its start's first pose (`origin + shift`).
+  Vec3 origin = Vec3::Zero();
+  Vec3 shift = Vec3::Zero();
+  std::vector<Pose> input;      // the input poses, near the origin
+  ClosureOutcome closed;        // the closure stage's start, loops and priors
+  std::vector<Pose> poses;      // the current poses, handed from stage to stage
+  HbaReport report;
+};
+
+}  // namespace hba::pyramid

@@ -1,0 +1,68 @@
+// The stages around the paper's pyramid: the closures before it, the
+// refinement and the priors' anchoring after it.
+#include "stages.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <utility>
+
+#include "hba/closure/closure_graph.hpp"
+#include "refine_settings.hpp"
+#include "shared_outcomes.hpp"
+
+namespace hba::pyramid {
+
+void closeLoops(Run& run) {
+  // In the first process, its outcome sent to the others.
+  run.closed = run.group.root() ? runClosureStage(run.scans.source(), run.input, run.closures, run.settings)
+                                : ClosureOutcome{};
+  if (run.group.size() > 1) shareClosures(run.group, run.closed);
+  run.report.closure = run.closed.report;
+  // Priors may put the start far from the input (UTM coordinates): the
+  // stages after work near the start's first pose instead.
+  run.shift = run.closed.start.front().t;
+  run.closed.start = translated(run.closed.start, -run.shift);
+  for (auto& prior : run.closed.priors) prior.position -= run.shift;
+  run.input = translated(run.input, -run.shift);
+  run.poses = run.closed.start;
+}
+
+void refineMap(Run& run) {
+  HbaReport& report = run.report;
+  refine::HierarchyFacts facts;
+  facts.layers = report.layers;
+  facts.layer_one_points = report.layer_reports.empty() ? 0 : report.layer_reports.front().cloud_points;
+  facts.scans_kept = run.scans.kept();
+  // The motion prior and the self-check take the closed start as the
+  // input: its steps are the input's, its loops closed.
+  refine::RefineOutcome refined = refine::refineAndCheck(run.scans.source(), run.closed.start, run.poses, facts,
+                                                         run.closed.priors, refineSettingsOf(run.settings));
+  run.poses = std::move(refined.poses);
+  report.consistency = std::move(refined.consistency);
+  report.refinement = std::move(refined.refinement);
+  report.warnings.insert(report.warnings.end(), refined.notes.warnings.begin(), refined.notes.warnings.end());
+  report.seconds_voxelize += refined.notes.seconds_voxelize;
+  report.seconds_solve += refined.notes.seconds_solve;
+}
+
+void anchorOnPriors(Run& run) {
+  const std::vector<graph::PositionPriorFactor>& priors = run.closed.priors;
+  const RefinementReport& r = run.report.refinement;
+  // The refinement's blocks hold the priors themselves; the hierarchy (held
+  // at its first frame) and the groups (which do not see them) do not.
+  if (priors.empty() || (r.ran && !(r.groups.ran && !r.groups.rejected))) return;
+  closure::ClosureGraphSettings anchoring;
+  anchoring.threads = run.settings.threads;
+  const closure::ClosureGraphResult anchored =
+      closure::anchorToPriors(run.poses, priors, anchoring, run.closures.session_starts);
+  ClosureReport& c = run.report.closure;
+  c.anchoring_move_m = largestChange(run.poses, anchored.poses).translation_m;
+  c.anchoring_priors_dropped =
+      static_cast<std::size_t>(std::count(anchored.prior_kept.begin(), anchored.prior_kept.end(), false));
+  spdlog::info("re-anchored on {} priors: poses moved up to {:.3f} m", priors.size() - c.anchoring_priors_dropped,
+               c.anchoring_move_m);
+  run.poses = anchored.poses;
+}
+
+}  // namespace hba::pyramid
