@@ -9,6 +9,7 @@
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "hba/io/wide_cloud.hpp"
 
 namespace hba::fuzz {
@@ -80,7 +81,7 @@ void feedLas(const fs::path& input) {
   rejectOnlyWithError([&] {
     const PointCloud cloud = io::readLas(input);
     checkCloud(cloud);
-    checkWideAgainstCloud(io::readScanWide(input, io::ScanFormat::Las), cloud);
+    checkWideAgainstCloud(io::scanFormatOf("fuzzed.las").read_wide(input), cloud);
   });
 }
 

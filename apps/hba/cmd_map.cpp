@@ -13,6 +13,7 @@
 #include "hba/io/las.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "hba/io/scan_source.hpp"
 #include "number_checks.hpp"
 #include "output_dir.hpp"
@@ -31,10 +32,11 @@ struct MapArgs {
 
 void run(MapArgs& args) {
   const fs::path output = args.output;
-  const std::string extension = output.extension().string();
-  if (extension != ".pcd" && extension != ".ply" && extension != ".las") {
-    failAt(output, "the map must be a .pcd, .ply or .las file");
+  const io::ScanFormat* format = io::findScanFormat(output);
+  if (!format || !format->keeps_doubles) {
+    failAt(output, "the map must be a " + io::scanFormatList(true) + " file");
   }
+  const bool las = std::string(format->extension) == ".las";
   args.settings.color = parseEnum<eval::MapColor>(args.color);
 
   const io::Dataset dataset = args.data.open();
@@ -51,16 +53,14 @@ void run(MapArgs& args) {
   PointCloud map;
   try {
     map = eval::buildMergedMap(scans, dataset.trajectory().poses, args.settings,
-                               extension == ".las" ? &las_extras.scan_index : nullptr);
+                               las ? &las_extras.scan_index : nullptr);
   } catch (const MemoryExceeded& e) {
     failAt(output, std::string("not written: ") + e.what() + "; a larger --voxel keeps fewer points");
   }
-  if (extension == ".pcd") {
-    io::writePcd(output, map);
-  } else if (extension == ".las") {
+  if (las) {
     io::writeLas(output, map, las_extras);
   } else {
-    io::writePly(output, map);
+    format->write(output, map);
   }
   spdlog::info("wrote {} ({} points, voxel {} m, intensity = {})", output.string(), map.size(),
                args.settings.voxel, args.color == "none" ? "mean scan intensity" : args.color);
@@ -72,7 +72,8 @@ void registerMapCommand(CLI::App& app) {
   auto args = std::make_shared<MapArgs>();
   auto* command = app.add_subcommand("map", "Write the merged, voxel-downsampled map of a dataset");
   args->data.addTo(command);
-  command->add_option("-o,--output", args->output, "Output map file (.pcd, .ply or .las)")->required();
+  command->add_option("-o,--output", args->output, "Output map file (" + io::scanFormatList(true) + ")")
+      ->required();
   command->add_flag("--force", args->force, "Replace an existing output file");
   command->add_option("--voxel", args->settings.voxel, "Voxel size (m; 0 = keep every point)")
       ->check(mapVoxel())

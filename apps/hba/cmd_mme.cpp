@@ -13,6 +13,7 @@
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "hba/io/scan_source.hpp"
 #include "number_checks.hpp"
 
@@ -73,7 +74,8 @@ void registerMmeCommand(CLI::App& app) {
   args->data.addTo(command);
   command->get_option("DIR")->required(false);
   command
-      ->add_option("--map", args->map_file, "A single map cloud (.pcd/.ply/.bin/.las) instead of a dataset")
+      ->add_option("--map", args->map_file,
+                   "A single map cloud (" + io::scanFormatList() + ") instead of a dataset")
       ->check(inputFile());
   command->add_option("--voxel", args->map.voxel, "Voxel size of the merged map (m; 0 = keep all)")
       ->check(mapVoxel())

@@ -14,6 +14,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/staging_folder.hpp"
 #include "hba/core/temporary_folder.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "json_text.hpp"
@@ -153,9 +154,10 @@ void registerOptimizeCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--map", args->map,
-                   "A map that stays put (a .pcd, .ply or .las cloud, e.g. from hba map, or an earlier "
-                   "output folder): DIR is placed in it, optimized and refined against it; poses in the "
-                   "map's frame (docs/closure.md)")
+                   "A map that stays put (a " + io::scanFormatList(true) +
+                       " cloud, e.g. from hba map, or an earlier "
+                       "output folder): DIR is placed in it, optimized and refined against it; poses in the "
+                       "map's frame (docs/closure.md)")
       ->check(CLI::ExistingPath);
   command
       ->add_option("--fixed", args->fixed,

@@ -12,6 +12,7 @@
 #include "hba/core/staging_folder.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "memory_check.hpp"
@@ -50,7 +51,8 @@ FixedMap readEarlierOutput(const fs::path& folder) {
   if (!fs::exists(folder / "report.json") || !fs::exists(folder / "pose.json")) {
     failAt(folder,
            "is a folder but not an hba optimize output (no report.json and pose.json): give a map file "
-           "(.pcd, .ply, .las) or --fixed DATASET");
+           "(" +
+               io::scanFormatList(true) + ") or --fixed DATASET");
   }
   const nlohmann::json report = nlohmann::json::parse(readTextFile(folder / "report.json"), nullptr, false);
   if (report.is_discarded() || !report.contains("input") || !report["input"].contains("dataset")) {

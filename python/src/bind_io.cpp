@@ -14,6 +14,7 @@
 #include "hba/io/dataset.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "numpy_convert.hpp"
 
 namespace py = pybind11;
@@ -134,16 +135,19 @@ void bindDataset(py::module_& m) {
       });
 }
 
-const char* const kReadScanDoc = R"(Reads a scan or map: .pcd, .bin, .ply or .las (LAS 1.0-1.4).
+// The docstrings name the formats of the table (hba/io/scan_formats.hpp).
+std::string readScanDoc() {
+  return "Reads a scan or map: " + io::scanFormatList() + R"( (LAS 1.0-1.4).
 
 Returns (N, 4) float64 (x y z intensity), (N, 3) when the file has no
 intensity (a LAS file always has one). Coordinates are exactly as stored:
 float64 fields to the last bit, LAS's scaled integers (UTM included) to the
 file's scale, float32 fields widened. Points with a NaN or infinite
 coordinate are dropped. Raises hba.Error naming the file.)";
+}
 
-const char* const kWriteScanDoc =
-    R"(Writes points in the format the extension names: .pcd, .bin, .ply or .las.
+std::string writeScanDoc() {
+  return "Writes points in the format the extension names: " + io::scanFormatList() + R"(.
 
 points: (N, 3) or (N, 4) (x y z [intensity]) of any real, integer or bool
 dtype, in any memory layout; every coordinate must be exactly a float64.
@@ -152,12 +156,16 @@ coordinate is exactly a float32 and float64 otherwise; .las stores
 millimetres (scale 0.001) from an offset at the cloud's centre; .bin holds
 float32 only and refuses coordinates a float32 would round. Intensities are
 stored as float32 (.las: uint16, rounded). Raises hba.Error.)";
+}
 
 }  // namespace
 
 void bindIo(py::module_& m) {
-  m.def("read_scan", &readScan, py::arg("path"), kReadScanDoc);
-  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"), kWriteScanDoc);
+  // pybind11 keeps the pointer: the strings live as long as the module.
+  static const std::string read_doc = readScanDoc();
+  static const std::string write_doc = writeScanDoc();
+  m.def("read_scan", &readScan, py::arg("path"), read_doc.c_str());
+  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"), write_doc.c_str());
   m.def("read_poses", &readPoses, py::arg("path"), py::arg("format") = py::none(),
         py::arg("return_stamps") = false,
         "Reads a trajectory (hba pose.json, kitti, tum; detected unless `format`): (K, 4, 4) "

@@ -9,6 +9,7 @@
 #include "hba/core/input_file.hpp"
 #include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 
 namespace hba::io {
 namespace fs = std::filesystem;
@@ -19,7 +20,7 @@ std::string layoutOf(const DatasetOverrides& overrides, const fs::path& scans_di
                      const fs::path& first_scan) {
   if (overrides.scans_dir && overrides.poses_file) return "explicit";
   if (scans_dir.filename() == "pcd" && poses_file.filename() == "pose.json") return "hba";
-  if (scanFormatFromExtension(first_scan) == ScanFormat::KittiBin) return "kitti";
+  if (std::string(scanFormatOf(first_scan).extension) == ".bin") return "kitti";
   return "scans";
 }
 

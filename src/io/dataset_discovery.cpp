@@ -9,6 +9,7 @@
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/input_file.hpp"
+#include "hba/io/scan_formats.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;
@@ -103,7 +104,8 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
     return root;
   }
   failAt(root, "no scans found: none of the folders " + joined(asStrings(kScanFolderNames)) +
-                   " exists with .pcd/.bin/.ply/.las files in it, nor are there scans in the folder "
+                   " exists with " + scanFormatList() +
+                   " files in it, nor are there scans in the folder "
                    "itself; give the folder with --scans");
 }
 

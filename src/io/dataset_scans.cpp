@@ -13,6 +13,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/input_file.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;
@@ -151,7 +152,7 @@ ScanFiles listScans(const fs::path& dir) {
     files.push_back(path);
     return true;
   });
-  if (files.empty()) failAt(dir, "no scan files (.pcd, .bin, .ply or .las) in this folder");
+  if (files.empty()) failAt(dir, "no scan files (" + scanFormatList() + ") in this folder");
 
   std::vector<NumberedScan> scans;
   scans.reserve(files.size());

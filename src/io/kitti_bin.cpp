@@ -14,6 +14,7 @@
 #include "file_bytes.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "point_columns.hpp"
 
 namespace hba::io {
@@ -37,7 +38,8 @@ std::string records(const std::filesystem::path& path, const detail::CloudView& 
     if (world.allFinite() && p.cast<double>() != world) {
       failAt(path, "cannot write point " + std::to_string(i) + " (" +
                        fmt::format("{} {} {}", world.x(), world.y(), world.z()) +
-                       ") exactly: a .bin stores float32 x y z; write .pcd, .ply or .las to keep it");
+                       ") exactly: a .bin stores float32 x y z; write " + scanFormatList(true) +
+                       " to keep it");
     }
     // A KITTI record always carries an intensity; 0 stands for "none".
     const float record[4] = {p.x(), p.y(), p.z(), cloud.hasIntensity() ? cloud.intensity(i) : 0.0f};

@@ -64,7 +64,8 @@ void addStageTimes(const StageTimes& times, HbaReport& report) {
 
 // The clouds `layer` reads: layer 1 the scans, an upper layer its stored
 // keyframes, timed in `stored` (all of their load is reading).
-const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans, std::unique_ptr<TimedClouds>& stored) {
+const TimedClouds& cloudsOf(const Layer& layer, const TimedClouds& scans,
+                            std::unique_ptr<TimedClouds>& stored) {
   if (!layer.keyframes) return scans;
   stored = std::make_unique<TimedClouds>(*layer.keyframes);
   return *stored;
@@ -99,9 +100,9 @@ Pyramid bottomUp(Run& run, int iteration, StageTimes& times) {
     const std::vector<Window> next_windows =
         top ? std::vector<Window>{} : planLayer(windows.size(), settings, level + 1 == layers);
     const std::string label = "layer " + std::to_string(level) + (top ? " (global BA)" : "");
-    LayerOutcome outcome = optimizeLayer(layer, clouds, windows, windowSettings(settings, level, top), settings,
-                                         keyframes.get(), top ? 0.0 : keyframeVoxel(settings, level + 1), times,
-                                         label, run.group, next_windows);
+    LayerOutcome outcome =
+        optimizeLayer(layer, clouds, windows, windowSettings(settings, level, top), settings, keyframes.get(),
+                      top ? 0.0 : keyframeVoxel(settings, level + 1), times, label, run.group, next_windows);
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
     outcome.report.global = top;

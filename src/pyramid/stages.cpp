@@ -36,8 +36,9 @@ void refineMap(Run& run) {
   facts.scans_kept = run.scans.kept();
   // The motion prior and the self-check take the closed start as the
   // input: its steps are the input's, its loops closed.
-  refine::RefineOutcome refined = refine::refineAndCheck(run.scans.source(), run.closed.start, run.poses, facts,
-                                                         run.closed.priors, refineSettingsOf(run.settings));
+  refine::RefineOutcome refined =
+      refine::refineAndCheck(run.scans.source(), run.closed.start, run.poses, facts, run.closed.priors,
+                             refineSettingsOf(run.settings));
   run.poses = std::move(refined.poses);
   report.consistency = std::move(refined.consistency);
   report.refinement = std::move(refined.refinement);
@@ -60,8 +61,8 @@ void anchorOnPriors(Run& run) {
   c.anchoring_move_m = largestChange(run.poses, anchored.poses).translation_m;
   c.anchoring_priors_dropped =
       static_cast<std::size_t>(std::count(anchored.prior_kept.begin(), anchored.prior_kept.end(), false));
-  spdlog::info("re-anchored on {} priors: poses moved up to {:.3f} m", priors.size() - c.anchoring_priors_dropped,
-               c.anchoring_move_m);
+  spdlog::info("re-anchored on {} priors: poses moved up to {:.3f} m",
+               priors.size() - c.anchoring_priors_dropped, c.anchoring_move_m);
   run.poses = anchored.poses;
 }
 

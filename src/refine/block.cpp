@@ -41,9 +41,10 @@ void refineFrom(const Block& block, std::size_t index, const std::vector<Pose>& 
   out.poses = std::move(out.refinement.poses);
   out.refinement.poses.clear();
   if (out.refinement.still_sliding > 0) {
-    out.notes.warn(fmt::format("frames {}-{}: {} pairs of neighbouring frames still move apart "
-                               "beyond what odometry plausibly gets wrong, though held",
-                               block.first, block.end - 1, out.refinement.still_sliding));
+    out.notes.warn(
+        fmt::format("frames {}-{}: {} pairs of neighbouring frames still move apart "
+                    "beyond what odometry plausibly gets wrong, though held",
+                    block.first, block.end - 1, out.refinement.still_sliding));
   }
   out.notes.seconds_voxelize += out.refinement.seconds_associate;
   out.notes.seconds_solve += out.refinement.seconds_solve;
@@ -91,8 +92,8 @@ Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_
 
 BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
                          const std::vector<Pose>& result, const std::vector<double>& steps,
-                         const std::vector<graph::PositionPriorFactor>& priors, const RefineSettings& settings,
-                         bool refines) {
+                         const std::vector<graph::PositionPriorFactor>& priors,
+                         const RefineSettings& settings, bool refines) {
   std::vector<const PointCloud*> pointers;
   for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
   // The input of this block, moved rigidly onto the result at its first
@@ -114,22 +115,24 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
     out.poses = input;
     // Said as it is: without the refinement the hierarchy's work is simply
     // lost here (--no-refine returns the input, loops closed).
-    out.notes.warn(fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
-                               "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
-                               block.first, block.end - 1, out.input_rms, out.hierarchy_rms,
-                               refines ? "refining from the input"
-                                       : "keeping the input poses (with the closure stage's loops), "
-                                         "unrefined"));
+    out.notes.warn(
+        fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
+                    "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
+                    block.first, block.end - 1, out.input_rms, out.hierarchy_rms,
+                    refines ? "refining from the input"
+                            : "keeping the input poses (with the closure stage's loops), "
+                              "unrefined"));
   }
   if (refines) refineFrom(block, index, input, steps, priors, settings, out);
   FixedPlaneMap::Figures at_final = out.map.figures(out.poses);
   out.final_rms = at_final.rms;
   if (!(out.final_rms <= out.input_rms * kEqualMapMargin)) {
     out.final_rejected = true;
-    out.notes.warn(fmt::format("frames {}-{}: the result is less consistent than the input (plane "
-                               "RMS {:.4f} -> {:.4f} m on the input's planes): keeping the input "
-                               "poses there",
-                               block.first, block.end - 1, out.input_rms, out.final_rms));
+    out.notes.warn(
+        fmt::format("frames {}-{}: the result is less consistent than the input (plane "
+                    "RMS {:.4f} -> {:.4f} m on the input's planes): keeping the input "
+                    "poses there",
+                    block.first, block.end - 1, out.input_rms, out.final_rms));
     out.poses = input;
     out.final_rms = out.input_rms;
     at_final = at_input;

@@ -58,7 +58,7 @@ struct BlockOutcome {
 // their first frame, which the block before placed.
 BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
                          const std::vector<Pose>& result, const std::vector<double>& steps,
-                         const std::vector<graph::PositionPriorFactor>& priors, const RefineSettings& settings,
-                         bool refines);
+                         const std::vector<graph::PositionPriorFactor>& priors,
+                         const RefineSettings& settings, bool refines);
 
 }  // namespace hba::refine

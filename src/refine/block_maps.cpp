@@ -30,7 +30,8 @@ void BlockMaps::keep(const FixedPlaneMap& map) {
 FixedPlaneMap BlockMaps::load(std::size_t block) const { return FixedPlaneMap::load(files_.at(block)); }
 
 double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& result,
-                 const std::vector<FrameSpan>& spans, const BlockMaps& kept, std::vector<RegionFigures>& regions) {
+                 const std::vector<FrameSpan>& spans, const BlockMaps& kept,
+                 std::vector<RegionFigures>& regions) {
   RmsSum final_sum;
   regions.clear();
   for (std::size_t b = 0; b < spans.size(); ++b) {

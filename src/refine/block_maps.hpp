@@ -56,6 +56,7 @@ class BlockMaps {
 // moved them after the blocks were checked): the overall final RMS, and
 // `regions` filled again.
 double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& result,
-                 const std::vector<FrameSpan>& spans, const BlockMaps& kept, std::vector<RegionFigures>& regions);
+                 const std::vector<FrameSpan>& spans, const BlockMaps& kept,
+                 std::vector<RegionFigures>& regions);
 
 }  // namespace hba::refine

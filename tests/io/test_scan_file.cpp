@@ -3,6 +3,7 @@
 
 #include "hba/io/pcd.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_formats.hpp"
 #include "test_scan_helpers.hpp"
 
 namespace hba::io {
@@ -10,16 +11,23 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(ScanFile, FormatFollowsTheExtensionInAnyCase) {
-  EXPECT_EQ(scanFormatFromExtension("a/000001.pcd"), ScanFormat::Pcd);
-  EXPECT_EQ(scanFormatFromExtension("a/000001.PCD"), ScanFormat::Pcd);
-  EXPECT_EQ(scanFormatFromExtension("velodyne/000001.bin"), ScanFormat::KittiBin);
-  EXPECT_EQ(scanFormatFromExtension("cloud.Ply"), ScanFormat::Ply);
-  EXPECT_EQ(scanFormatFromExtension("survey/strip.LAS"), ScanFormat::Las);
+  EXPECT_STREQ(scanFormatOf("a/000001.pcd").name, "PCD");
+  EXPECT_STREQ(scanFormatOf("a/000001.PCD").name, "PCD");
+  EXPECT_STREQ(scanFormatOf("velodyne/000001.bin").name, "KITTI .bin");
+  EXPECT_STREQ(scanFormatOf("cloud.Ply").name, "PLY");
+  EXPECT_STREQ(scanFormatOf("survey/strip.LAS").name, "LAS");
   EXPECT_TRUE(isScanFile("x.pcd"));
   EXPECT_FALSE(isScanFile("pose.json"));
   EXPECT_FALSE(isScanFile("pcd"));
-  test::expectErrorAbout("scan.laz", "unknown scan format '.laz'",
-                         [] { scanFormatFromExtension("scan.laz"); });
+  test::expectErrorAbout("scan.laz", "unknown scan format '.laz'", [] { scanFormatOf("scan.laz"); });
+}
+
+// Every message that lists the formats takes the list from the table.
+TEST(ScanFile, ErrorsListTheFormatsOfTheTable) {
+  const std::string list = scanFormatList();
+  for (const ScanFormat& format : scanFormats()) EXPECT_NE(list.find(format.extension), std::string::npos);
+  test::expectErrorAbout("scan.laz", list, [] { readScan("scan.laz"); });
+  EXPECT_EQ(scanFormatList(true).find(".bin"), std::string::npos);  // float32 only: no maps
 }
 
 TEST(ScanFile, WritesAndReadsEveryFormatByExtension) {

@@ -51,9 +51,9 @@ TEST(ScanFileSummary, BadFilesAreErrorsNamingThem) {
   test::TempDir dir;
   test::writeText(dir / "odd.bin", std::string(20, '\0'));
   test::expectErrorAbout(dir / "odd.bin", "not a multiple of 16", [&] { storedPointCount(dir / "odd.bin"); });
-  test::writeText(dir / "scan.xyz", "");
-  test::expectErrorAbout(dir / "scan.xyz", "unknown scan format",
-                         [&] { describeScanFields(dir / "scan.xyz"); });
+  test::writeText(dir / "scan.e57", "");
+  test::expectErrorAbout(dir / "scan.e57", "unknown scan format",
+                         [&] { describeScanFields(dir / "scan.e57"); });
 }
 
 }  // namespace

@@ -10,11 +10,12 @@
 namespace hba::refine {
 
 inline std::vector<Pose> refineAs3Layers(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                                         const std::vector<Pose>& hierarchy, const pyramid::HbaSettings& settings,
-                                         pyramid::HbaReport& report) {
+                                         const std::vector<Pose>& hierarchy,
+                                         const pyramid::HbaSettings& settings, pyramid::HbaReport& report) {
   HierarchyFacts facts;
   facts.layers = 3;
-  RefineOutcome out = refineAndCheck(scans, initial, hierarchy, facts, {}, pyramid::refineSettingsOf(settings));
+  RefineOutcome out =
+      refineAndCheck(scans, initial, hierarchy, facts, {}, pyramid::refineSettingsOf(settings));
   report.consistency = out.consistency;
   report.refinement = out.refinement;
   report.warnings = out.notes.warnings;

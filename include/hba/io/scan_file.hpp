@@ -1,17 +1,14 @@
 #pragma once
-// Reads or writes a scan in the format its extension names (.pcd, .bin, .ply, .las).
+// Reads or writes a scan in the format its extension names
+// (scan_formats.hpp lists them).
 #include <filesystem>
-#include <string>
 
 #include "hba/core/point_cloud.hpp"
 
 namespace hba::io {
 
-enum class ScanFormat { Pcd, KittiBin, Ply, Las };
-
-// Throws hba::Error for an extension hba does not read.
-ScanFormat scanFormatFromExtension(const std::filesystem::path& path);
-bool isScanFile(const std::filesystem::path& path);  // .pcd, .bin, .ply or .las
+bool isScanFile(const std::filesystem::path& path);  // an extension of scanFormats()
+// Throw hba::Error naming the file (an extension hba does not read, a bad file).
 PointCloud readScan(const std::filesystem::path& path);
 void writeScan(const std::filesystem::path& path, const PointCloud& cloud);
 

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "hba/core/types.hpp"
-#include "hba/io/scan_file.hpp"
 
 namespace hba::io {
 
@@ -37,8 +36,6 @@ struct WideCloud {
 // float64 fields and LAS's scaled integers exactly, float32 ones widened.
 // NaN/Inf points are dropped. Throws hba::Error.
 WideCloud readScanWide(const std::filesystem::path& path);
-// The same for a file of the given format, whatever its name.
-WideCloud readScanWide(const std::filesystem::path& path, ScanFormat format);
 
 // The formats of writeScan, keeping every coordinate: .pcd and .ply get
 // float64 x y z when one is not exactly a float32 (float32 otherwise, as
