@@ -12,6 +12,9 @@
 #include "text_parsing.hpp"
 
 namespace hba::io {
+
+ScanFormat xyzTextFormat();  // xyz_text.cpp
+
 namespace {
 
 std::string pcdEncodingName(PcdEncoding encoding) {
@@ -30,7 +33,8 @@ ScanFileFields describePcd(const std::filesystem::path& path) {
   ScanFileFields out;
   const PcdHeader header = readPcdHeader(path);
   for (const PcdField& field : header.fields) {
-    out.fields.push_back(field.count == 1 ? field.name : field.name + "[" + std::to_string(field.count) + "]");
+    out.fields.push_back(field.count == 1 ? field.name
+                                          : field.name + "[" + std::to_string(field.count) + "]");
   }
   out.encoding = pcdEncodingName(header.encoding);
   return out;
@@ -64,9 +68,13 @@ ScanFormat kittiBinFormat() {
           &readKittiBin,
           &writeKittiBin,
           &detail::readKittiBinAs<WideCloud>,
-          [](const std::filesystem::path& p, const WideCloud& c) { detail::writeKittiBinView(p, detail::CloudView(c)); },
+          [](const std::filesystem::path& p, const WideCloud& c) {
+            detail::writeKittiBinView(p, detail::CloudView(c));
+          },
           &kittiBinPointCount,
-          [](const std::filesystem::path&) { return ScanFileFields{{"x", "y", "z", "intensity"}, "KITTI float32"}; }};
+          [](const std::filesystem::path&) {
+            return ScanFileFields{{"x", "y", "z", "intensity"}, "KITTI float32"};
+          }};
 }
 
 ScanFormat plyFormat() {
@@ -94,7 +102,9 @@ ScanFormat lasFormat() {
           [](const std::filesystem::path& p) { return readLas(p); },
           [](const std::filesystem::path& p, const PointCloud& c) { writeLas(p, c); },
           &detail::readLasAs<WideCloud>,
-          [](const std::filesystem::path& p, const WideCloud& c) { detail::writeLasView(p, detail::CloudView(c), {}); },
+          [](const std::filesystem::path& p, const WideCloud& c) {
+            detail::writeLasView(p, detail::CloudView(c), {});
+          },
           [](const std::filesystem::path& p) -> std::uint64_t { return readLasHeader(p).point_count; },
           &describeLas};
 }
@@ -102,7 +112,8 @@ ScanFormat lasFormat() {
 }  // namespace
 
 const std::vector<ScanFormat>& scanFormats() {
-  static const std::vector<ScanFormat> formats{pcdFormat(), kittiBinFormat(), plyFormat(), lasFormat()};
+  static const std::vector<ScanFormat> formats{pcdFormat(), kittiBinFormat(), plyFormat(), lasFormat(),
+                                               xyzTextFormat()};
   return formats;
 }
 

@@ -3,7 +3,9 @@
 
 #include "hba/io/pcd.hpp"
 #include "hba/io/scan_file.hpp"
+#include "hba/io/scan_file_summary.hpp"
 #include "hba/io/scan_formats.hpp"
+#include "hba/io/wide_cloud.hpp"
 #include "test_scan_helpers.hpp"
 
 namespace hba::io {
@@ -45,6 +47,37 @@ TEST(ScanFile, ReadsTheFixturesOfEveryFormatAlike) {
   const PointCloud pcd = readScan(test::pcdFixture("hku1_cut_binary_compressed.pcd"));
   test::expectSameCloud(pcd, readScan(test::binFixture("hku1_cut.bin")));
   test::expectSameCloud(pcd, readScan(test::plyFixture("hku1_cut_binary.ply")));
+}
+
+// .xyz text, one entry of the format table: the points of a binary PCD
+// read back alike, doubles of a UTM map to the bit, CloudCompare's
+// comma-separated export with a comment, and errors naming file and line.
+TEST(ScanFile, XyzTextIsOneMoreFormat) {
+  test::TempDir dir;
+  const PointCloud fixture = readScan(test::pcdFixture("hku1_cut_binary_compressed.pcd"));
+  writeScan(dir / "hku1.xyz", fixture);
+  test::expectSameCloud(fixture, readScan(dir / "hku1.xyz"));
+  EXPECT_EQ(describeScanFields(dir / "hku1.xyz").fields.size(), 4u);
+
+  WideCloud utm;
+  utm.add(Vec3(500123.123456789, 4400321.987654321, 12.3456789), 7.5f);
+  utm.add(Vec3(500124.000000001, 4400322.1, -0.25), 0.0f);
+  writeScanWide(dir / "map.XYZ", utm);
+  EXPECT_EQ(readScanWide(dir / "map.XYZ").points, utm.points);
+
+  test::writeText(dir / "cc.xyz", "//X,Y,Z\n1.5,2.5,3.5\n\n-1,-2,-3\n");
+  const WideCloud cc = readScanWide(dir / "cc.xyz");
+  ASSERT_EQ(cc.size(), 2u);
+  EXPECT_FALSE(cc.hasIntensity());
+  EXPECT_EQ(cc.points[1], Vec3(-1, -2, -3));
+  EXPECT_EQ(storedPointCount(dir / "cc.xyz"), 2u);
+
+  test::writeText(dir / "bad.xyz", "1 2 3\n4 5 x\n");
+  test::expectErrorAbout(dir / "bad.xyz", "line 2", [&] { readScan(dir / "bad.xyz"); });
+  test::writeText(dir / "ragged.xyz", "1 2 3 4\n4 5 6\n");
+  test::expectErrorAbout(dir / "ragged.xyz", "line 2: 3 numbers, expected 4",
+                         [&] { readScan(dir / "ragged.xyz"); });
+  EXPECT_NE(scanFormatList(true).find(".xyz"), std::string::npos);  // maps may be written as text
 }
 
 // All 314 Livox scans of the hku1 sequence read, with intensity, and agree
