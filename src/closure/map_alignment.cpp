@@ -25,9 +25,14 @@ Tiles cutTiles(const PointCloud& sparse, double radius, std::size_t min_points) 
   std::map<std::tuple<long, long, long>, std::pair<Vec3, std::size_t>> cells;
   for (const Vec3f& p : sparse.points) {
     const Vec3 q = p.cast<double>();
-    auto& [sum, count] =
-        cells[{static_cast<long>(std::floor(q.x() / radius)), static_cast<long>(std::floor(q.y() / radius)),
-               static_cast<long>(std::floor(q.z() / radius))}];
+    // Eigen leaves a default-built vector unset: each cell starts at zero
+    // explicitly (else its centroid, and the tiles, varied run to run).
+    auto& [sum, count] = cells
+                             .try_emplace({static_cast<long>(std::floor(q.x() / radius)),
+                                           static_cast<long>(std::floor(q.y() / radius)),
+                                           static_cast<long>(std::floor(q.z() / radius))},
+                                          Vec3::Zero(), std::size_t{0})
+                             .first->second;
     sum += q;
     ++count;
   }
