@@ -8,8 +8,13 @@
 namespace hba::graph {
 
 BetweenFactorModel::BetweenFactorModel(std::size_t from, std::size_t to, const Pose& measurement,
-                                       const Mat6& information)
-    : from_(from), to_(to), measurement_(measurement), information_(information) {}
+                                       const Mat6& information, BetweenLoss loss)
+    : from_(from), to_(to), measurement_(measurement), information_(information), loss_(loss) {}
+
+FactorModelPtr betweenModel(std::size_t from, std::size_t to, const Pose& measurement,
+                            const Mat6& information, BetweenLoss loss) {
+  return std::make_shared<const BetweenFactorModel>(from, to, measurement, information, loss);
+}
 
 void BetweenFactorModel::validate(std::size_t num_poses, const std::string& label) const {
   checkNode(from_, num_poses, label);

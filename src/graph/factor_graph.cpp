@@ -7,15 +7,14 @@
 
 namespace hba::graph {
 
-// Each kind's add() lives with its model, in that kind's source file.
 FactorGraph::FactorGraph(const std::vector<RelativePoseFactor>& relative_factors) {
   models_.reserve(relative_factors.size());
   for (const RelativePoseFactor& factor : relative_factors) add(factor);
 }
 
-std::size_t FactorGraph::count(FactorKind kind) const {
+std::size_t FactorGraph::count(std::string_view kind) const {
   std::size_t n = 0;
-  for (const auto& model : models_) n += model->kind() == kind ? 1 : 0;
+  for (const auto& model : models_) n += model->name() == kind ? 1 : 0;
   return n;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // The solver's interface to one factor kind. A new kind is one source file
-// that implements FactorModel and defines FactorGraph::add for its data
-// struct (see relative_factor.cpp), plus its struct in hba/graph/factors.hpp
-// and its add() declaration: the solver, the cost sum, the validation and the
-// gauge rule go through this interface only.
+// that implements FactorModel and defines modelOf() for its data struct
+// (see position_prior_factor.cpp), plus its struct and modelOf()
+// declaration in hba/graph/factors.hpp: the solver, the cost sum, the
+// validation and the gauge rule go through this interface only.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -25,8 +25,7 @@ class FactorModel {
  public:
   virtual ~FactorModel() = default;
 
-  virtual FactorKind kind() const = 0;
-  // For messages: "relative", "loop closure", ...
+  // For messages and FactorGraph::count: "relative", "loop closure", ...
   virtual const char* name() const = 0;
   // The nodes the residual depends on, in the order of the Ceres cost's
   // parameter blocks (PoseBlocks under WorldPoseManifold's tangent).

@@ -42,7 +42,6 @@ class PosePriorModel final : public FactorModel {
  public:
   explicit PosePriorModel(const PosePriorFactor& f) : f_(f) {}
 
-  FactorKind kind() const override { return FactorKind::PosePrior; }
   const char* name() const override { return "pose prior"; }
   std::vector<std::size_t> nodes() const override { return {f_.node}; }
   LossGroup lossGroup() const override { return LossGroup::Prior; }
@@ -71,8 +70,8 @@ class PosePriorModel final : public FactorModel {
 
 }  // namespace
 
-void FactorGraph::add(const PosePriorFactor& factor) {
-  models_.push_back(std::make_shared<const PosePriorModel>(factor));
+FactorModelPtr modelOf(const PosePriorFactor& factor) {
+  return std::make_shared<const PosePriorModel>(factor);
 }
 
 }  // namespace hba::graph

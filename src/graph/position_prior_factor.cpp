@@ -37,7 +37,6 @@ class PositionPriorModel final : public FactorModel {
  public:
   explicit PositionPriorModel(const PositionPriorFactor& f) : f_(f) {}
 
-  FactorKind kind() const override { return FactorKind::PositionPrior; }
   const char* name() const override { return "position prior"; }
   std::vector<std::size_t> nodes() const override { return {f_.node}; }
   LossGroup lossGroup() const override { return LossGroup::Prior; }
@@ -67,8 +66,8 @@ class PositionPriorModel final : public FactorModel {
 
 }  // namespace
 
-void FactorGraph::add(const PositionPriorFactor& factor) {
-  models_.push_back(std::make_shared<const PositionPriorModel>(factor));
+FactorModelPtr modelOf(const PositionPriorFactor& factor) {
+  return std::make_shared<const PositionPriorModel>(factor);
 }
 
 }  // namespace hba::graph

@@ -78,7 +78,6 @@ class WindowShapeCost final : public ceres::CostFunction {
 class WindowShapeFactorModel final : public FactorModel {
  public:
   explicit WindowShapeFactorModel(const WindowShapeFactor& f) : factor_(f) {}
-  FactorKind kind() const override { return FactorKind::WindowShape; }
   const char* name() const override { return "window shape"; }
   std::vector<std::size_t> nodes() const override { return factor_.nodes; }
   LossGroup lossGroup() const override { return LossGroup::Window; }
@@ -125,8 +124,8 @@ class WindowShapeFactorModel final : public FactorModel {
 
 }  // namespace
 
-void FactorGraph::add(const WindowShapeFactor& factor) {
-  models_.push_back(std::make_shared<const WindowShapeFactorModel>(factor));
+FactorModelPtr modelOf(const WindowShapeFactor& factor) {
+  return std::make_shared<const WindowShapeFactorModel>(factor);
 }
 
 }  // namespace hba::graph

@@ -21,7 +21,8 @@ namespace hba::io {
 namespace {
 
 // The numbers of one line (empty for a blank or comment line).
-std::vector<double> numbersOf(const std::filesystem::path& path, const std::string& line, std::size_t number) {
+std::vector<double> numbersOf(const std::filesystem::path& path, const std::string& line,
+                              std::size_t number) {
   std::vector<double> values;
   const std::size_t start = line.find_first_not_of(" \t\r");
   if (start == std::string::npos || line[start] == '#' || line.compare(start, 2, "//") == 0) return values;
@@ -29,7 +30,8 @@ std::vector<double> numbersOf(const std::filesystem::path& path, const std::stri
   while (*p != '\0') {
     char* end = nullptr;
     const double value = std::strtod(p, &end);
-    if (end == p) failAt(path, fmt::format("line {}: '{}' is not a number", number, std::string(p).substr(0, 20)));
+    if (end == p)
+      failAt(path, fmt::format("line {}: '{}' is not a number", number, std::string(p).substr(0, 20)));
     values.push_back(value);
     p = end;
     while (*p == ' ' || *p == '\t' || *p == ',' || *p == '\r') ++p;
@@ -50,8 +52,9 @@ Cloud readXyz(const std::filesystem::path& path) {
     if (values.empty()) continue;
     if (columns == 0) columns = values.size();
     if ((values.size() != 3 && values.size() != 4) || values.size() != columns) {
-      failAt(path, fmt::format("line {}: {} numbers, expected {} (x y z or x y z intensity, the same on every line)",
-                               number, values.size(), columns == 4 ? 4 : 3));
+      failAt(path, fmt::format(
+                       "line {}: {} numbers, expected {} (x y z or x y z intensity, the same on every line)",
+                       number, values.size(), columns == 4 ? 4 : 3));
     }
     rows.push_back(std::move(values));
   }

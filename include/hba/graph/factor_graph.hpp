@@ -3,16 +3,12 @@
 // (the order fixes the solver's problem, so it is part of the result).
 #include <cstddef>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "hba/graph/factors.hpp"
 
 namespace hba::graph {
-
-// The solver's view of one factor: residual, cost, checks and what it does to
-// the gauge (src/graph/factor_model.hpp). Each factor kind implements it in
-// its own source file, which also defines that kind's add().
-class FactorModel;
 
 class FactorGraph {
  public:
@@ -20,15 +16,18 @@ class FactorGraph {
   // A graph of relative factors only, as the pyramid builds it.
   explicit FactorGraph(const std::vector<RelativePoseFactor>& relative_factors);
 
-  void add(const RelativePoseFactor& factor);
-  void add(const LoopClosureFactor& factor);
-  void add(const PosePriorFactor& factor);
-  void add(const PositionPriorFactor& factor);
-  void add(const WindowShapeFactor& factor);
+  // Any kind of hba/graph/factors.hpp: its modelOf() makes the solver's
+  // model (residual, cost, checks, what it does to the gauge).
+  template <typename Factor>
+  void add(const Factor& factor) {
+    models_.push_back(modelOf(factor));
+  }
 
   std::size_t size() const { return models_.size(); }
   bool empty() const { return models_.empty(); }
-  std::size_t count(FactorKind kind) const;
+  // Factors of the kind named ("relative", "loop closure", "pose prior",
+  // "position prior", "window shape": FactorModel::name()).
+  std::size_t count(std::string_view kind) const;
 
   // For the solver; the models are immutable, so copies of a graph share them.
   const std::vector<std::shared_ptr<const FactorModel>>& models() const { return models_; }

@@ -1,8 +1,12 @@
 #pragma once
-// The kinds of pose-graph factor, as plain data. A FactorGraph
-// (hba/graph/factor_graph.hpp) takes any of them; optimizeFactorGraph
-// (hba/graph/pose_graph.hpp) solves it. See docs/graph.md.
+// The kinds of pose-graph factor, as plain data, each with the function
+// that makes its solver model (one source file a kind in src/graph). A
+// FactorGraph (hba/graph/factor_graph.hpp) takes any of them;
+// optimizeFactorGraph (hba/graph/pose_graph.hpp) solves it. A new kind is
+// its struct and modelOf() here, its source file, and one CMake line. See
+// docs/graph.md.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -12,26 +16,38 @@
 
 namespace hba::graph {
 
-// A measured relative pose T_from^-1 * T_to with its 6x6 information matrix,
-// from a BA window. The information is expressed in the tangent of the
-// residual of hba/core/relative_pose_error.hpp (translation first, then
-// rotation); it must be symmetric positive semi-definite.
-struct RelativePoseFactor {
-  std::size_t from = 0;
-  std::size_t to = 0;
-  Pose measurement;
-  Mat6 information = Mat6::Identity();
-};
+// The solver's view of one factor (src/graph/factor_model.hpp).
+class FactorModel;
+using FactorModelPtr = std::shared_ptr<const FactorModel>;
 
-// The same residual between two arbitrary nodes, from place recognition or
-// from another session's map. Kept apart from the window factors so it can be
-// counted and given its own robust loss (PoseGraphSettings::loop_robust_loss).
-struct LoopClosureFactor {
+// Which robust loss of PoseGraphSettings a between factor gets.
+enum class BetweenLoss { Window, Loop };
+
+// A measured relative pose T_from^-1 * T_to with its 6x6 information matrix.
+// The information is expressed in the tangent of the residual of
+// hba/core/relative_pose_error.hpp (translation first, then rotation); it
+// must be symmetric positive semi-definite. `Loss` tags the robust loss.
+template <BetweenLoss Loss>
+struct BetweenFactor {
   std::size_t from = 0;
   std::size_t to = 0;
   Pose measurement;
   Mat6 information = Mat6::Identity();
 };
+// From a BA window.
+using RelativePoseFactor = BetweenFactor<BetweenLoss::Window>;
+// Between two arbitrary nodes, from place recognition or from another
+// session's map: counted apart, under its own robust loss
+// (PoseGraphSettings::loop_robust_loss).
+using LoopClosureFactor = BetweenFactor<BetweenLoss::Loop>;
+
+FactorModelPtr betweenModel(std::size_t from, std::size_t to, const Pose& measurement,
+                            const Mat6& information,
+                            BetweenLoss loss);  // between_factor_model.cpp
+template <BetweenLoss Loss>
+FactorModelPtr modelOf(const BetweenFactor<Loss>& factor) {
+  return betweenModel(factor.from, factor.to, factor.measurement, factor.information, Loss);
+}
 
 // A prior on one node's full pose in the world frame. Its residual is a
 // relative factor's from the world origin, (R_m^T (t - t_m), Log(R_m^T R)),
@@ -41,6 +57,7 @@ struct PosePriorFactor {
   Pose measurement;
   Mat6 information = Mat6::Identity();
 };
+FactorModelPtr modelOf(const PosePriorFactor& factor);  // pose_prior_factor.cpp
 
 // A prior on one node's position in the world frame (GNSS in a local metric
 // frame, a surveyed point): residual t - position, information in world axes.
@@ -49,6 +66,7 @@ struct PositionPriorFactor {
   Vec3 position = Vec3::Zero();
   Mat3 information = Mat3::Identity();
 };
+FactorModelPtr modelOf(const PositionPriorFactor& factor);  // position_prior_factor.cpp
 
 // The shape of one whole BA window: the relative pose of each of its frames
 // k = 1 .. K-1 from its first, T_0^-1 T_k, measured together, with one
@@ -61,8 +79,6 @@ struct WindowShapeFactor {
   std::vector<Pose> relative;      // K-1 measurements, relative[k-1] for frame k
   Eigen::MatrixXd information;     // 6(K-1) x 6(K-1), symmetric positive semi-definite
 };
-
-// Which of the above a factor is, for counting and reports.
-enum class FactorKind { Relative, LoopClosure, PosePrior, PositionPrior, WindowShape };
+FactorModelPtr modelOf(const WindowShapeFactor& factor);  // window_shape_factor.cpp
 
 }  // namespace hba::graph
