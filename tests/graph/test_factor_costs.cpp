@@ -11,9 +11,11 @@
 
 #include "factor_model.hpp"
 #include "graph_test_utils.hpp"
+#include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/core/relative_pose_error.hpp"
 #include "hba/graph/factor_graph.hpp"
+#include "hba/graph/pose_graph.hpp"
 #include "orientation_held_manifold.hpp"
 #include "pose_block.hpp"
 #include "relative_pose_cost.hpp"
@@ -43,6 +45,7 @@ FactorGraph oneFactorOfEachKind(std::mt19937& rng) {
   graph.add(LoopClosureFactor{1, 0, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
   graph.add(PosePriorFactor{1, randomPose(rng, 5.0, 1.2), randomInformation<6>(rng)});
   graph.add(PositionPriorFactor{0, randomVec3(rng, 5.0), randomInformation<3>(rng)});
+  graph.add(HeightPriorFactor{3, 7.5, 4.0});
   // A window of three frames whose gauge frame is not the first node.
   graph.add(WindowShapeFactor{
       {2, 0, 3}, {randomPose(rng, 5.0, 1.2), randomPose(rng, 5.0, 1.2)}, randomInformation<12>(rng)});
@@ -79,8 +82,9 @@ Eigen::VectorXd residualAt(const ceres::CostFunction& cost, const std::vector<Po
 TEST(FactorCosts, EveryKindIsCounted) {
   std::mt19937 rng(31);
   const FactorGraph graph = oneFactorOfEachKind(rng);
-  EXPECT_EQ(graph.size(), 5u);
-  for (const char* kind : {"relative", "loop closure", "pose prior", "position prior", "window shape"}) {
+  EXPECT_EQ(graph.size(), 6u);
+  for (const char* kind :
+       {"relative", "loop closure", "pose prior", "position prior", "height prior", "window shape"}) {
     EXPECT_EQ(graph.count(kind), 1u) << kind;
   }
 }
@@ -156,6 +160,24 @@ TEST(FactorCosts, PriorResidualsAreTheDocumentedOnes) {
   // and the position prior is the world offset of the position.
   const std::unique_ptr<ceres::CostFunction> position_prior(graph.models()[1]->newCost());
   EXPECT_LT((residualAt(*position_prior, blocks) - (pose.t - position)).norm(), 1e-12);
+}
+
+// Two nodes 1 m apart along x, the first held near the origin by a position
+// prior: a height prior of 0.3 m on the second, as stiff as the relative
+// factor, meets it where the three quadratic costs balance (z 0.1 and 0.2).
+TEST(FactorCosts, HeightPriorPullsByItsWeight) {
+  FactorGraph graph;
+  graph.add(PositionPriorFactor{0, Vec3::Zero(), Mat3::Identity()});
+  graph.add(RelativePoseFactor{0, 1, Pose(Quat::Identity(), Vec3(1, 0, 0)), Mat6::Identity()});
+  graph.add(HeightPriorFactor{1, 0.3, 1.0});
+  const std::vector<Pose> start = {Pose(), Pose(Quat::Identity(), Vec3(1, 0, 0))};
+  const PoseGraphResult solved = optimizeFactorGraph(start, graph, PoseGraphSettings{});
+  EXPECT_NEAR(solved.poses[0].t.z(), 0.1, 1e-6);
+  EXPECT_NEAR(solved.poses[1].t.z(), 0.2, 1e-6);
+  EXPECT_NEAR(solved.poses[1].t.x(), 1.0, 1e-6);
+  FactorGraph bad;
+  bad.add(HeightPriorFactor{0, std::nan(""), 1.0});
+  EXPECT_THROW(optimizeFactorGraph(start, bad, PoseGraphSettings{}), Error);
 }
 
 TEST(OrientationHeldManifold, MovesThePositionOnlyAndInvertsItself) {

@@ -68,6 +68,15 @@ struct PositionPriorFactor {
 };
 FactorModelPtr modelOf(const PositionPriorFactor& factor);  // position_prior_factor.cpp
 
+// A prior on one node's height in the world frame (a barometer, a floor
+// known to be level): residual z - height, information 1 / sigma^2 (1/m^2).
+struct HeightPriorFactor {
+  std::size_t node = 0;
+  double height = 0.0;
+  double information = 1.0;
+};
+FactorModelPtr modelOf(const HeightPriorFactor& factor);  // height_prior_factor.cpp
+
 // The shape of one whole BA window: the relative pose of each of its frames
 // k = 1 .. K-1 from its first, T_0^-1 T_k, measured together, with one
 // joint information matrix over the stacked residuals (those of
