@@ -98,8 +98,9 @@ void finish(Run& run) {
 void runStages(Run& run) {
   for (const Stage& stage : kStages) {
     if (stage.where == Where::FirstProcess && !run.group.root()) continue;
-    spdlog::debug("stage {}", stage.name);
+    const auto start = Clock::now();
     stage.run(run);
+    run.stage_seconds.emplace_back(stage.name, secondsSince(start));
   }
   if (run.group.root()) finish(run);
   if (run.group.size() > 1) run.poses = posesFromRoot(run.group, run.poses);

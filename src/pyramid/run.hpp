@@ -1,6 +1,8 @@
 #pragma once
 // What the stages of one run of the method share (pipeline.cpp): its
 // inputs, the poses as they pass from stage to stage, and the report.
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "closure_stage.hpp"
@@ -28,6 +30,8 @@ struct Run {
   ClosureOutcome closed;    // the closure stage's start, loops and priors
   std::vector<Pose> poses;  // the current poses, handed from stage to stage
   HbaReport report;
+  // Each stage run so far, in order, and its wall time (s).
+  std::vector<std::pair<std::string, double>> stage_seconds;
 };
 
 }  // namespace hba::pyramid
