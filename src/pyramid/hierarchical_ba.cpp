@@ -17,6 +17,9 @@
 #include "stages.hpp"
 
 namespace hba::pyramid {
+
+void logStageTimes(Run& run);  // stage_times.cpp
+
 namespace {
 
 // Where a stage runs in a group of processes. The stages after the pyramid
@@ -30,12 +33,15 @@ struct Stage {
   Where where;
 };
 
+// clang-format off
 constexpr Stage kStages[] = {
-    {"closures", closeLoops, Where::EveryProcess},
-    {"pyramid", buildPyramid, Where::EveryProcess},
-    {"refinement", refineMap, Where::FirstProcess},
-    {"anchoring", anchorOnPriors, Where::FirstProcess},
+    {"closures",    closeLoops,     Where::EveryProcess},
+    {"pyramid",     buildPyramid,   Where::EveryProcess},
+    {"refinement",  refineMap,      Where::FirstProcess},
+    {"anchoring",   anchorOnPriors, Where::FirstProcess},
+    {"stage times", logStageTimes,  Where::FirstProcess},
 };
+// clang-format on
 
 void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const HbaSettings& s,
               const ClosureInputs& closures) {

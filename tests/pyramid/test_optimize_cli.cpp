@@ -28,6 +28,23 @@ class OptimizeSimulated : public testing::Test {
   fs::path out() const { return dir / "result"; }
 };
 
+// The stage table's last entry logs every stage's time, in the order they ran.
+TEST_F(OptimizeSimulated, LogsTheTimeOfEveryStage) {
+  run(hba() + " -q simulate --frames 40 --seed 2 -o " + data().string());
+  const test::CommandResult r = test::runCommand(hba() + " optimize " + data().string() + " --no-render -o " +
+                                                 out().string() + " 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::size_t line = r.output.find("stages: closures ");
+  ASSERT_NE(line, std::string::npos) << r.output;
+  const std::size_t pyramid = r.output.find(" s, pyramid ", line);
+  const std::size_t refinement = r.output.find(" s, refinement ", line);
+  const std::size_t anchoring = r.output.find(" s, anchoring ", line);
+  EXPECT_LT(line, pyramid);
+  EXPECT_LT(pyramid, refinement);
+  EXPECT_LT(refinement, anchoring);
+  EXPECT_NE(anchoring, std::string::npos);
+}
+
 TEST_F(OptimizeSimulated, DriftingSequenceGetsFiveTimesMoreAccurate) {
   run(hba() + " -q simulate --frames 120 --seed 5 --drift-translation 0.03 --drift-rotation 0.05 -o " +
       data().string());
