@@ -60,6 +60,8 @@ class HeightPriorModel final : public FactorModel {
 
 }  // namespace
 
-FactorModelPtr modelOf(const HeightPriorFactor& factor) { return std::make_shared<const HeightPriorModel>(factor); }
+FactorModelPtr modelOf(const HeightPriorFactor& factor) {
+  return std::make_shared<const HeightPriorModel>(factor);
+}
 
 }  // namespace hba::graph
