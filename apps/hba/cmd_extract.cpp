@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "core/progress.hpp"
+#include "core/staging_folder.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/progress.hpp"
-#include "hba/core/staging_folder.hpp"
 #include "hba/io/pcd.hpp"
 #include "hba/io/pose_file.hpp"
 #include "output_dir.hpp"

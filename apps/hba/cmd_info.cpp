@@ -19,8 +19,8 @@
 #include "commands.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
-#include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file_summary.hpp"
+#include "io/file_warnings.hpp"
 #include "json_text.hpp"
 #include "number_checks.hpp"
 

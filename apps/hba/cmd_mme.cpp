@@ -5,11 +5,11 @@
 #include <string>
 
 #include "commands.hpp"
+#include "core/stopwatch.hpp"
 #include "dataset_args.hpp"
 #include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/memory_budget.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/eval/map_entropy.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"

@@ -9,11 +9,11 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "core/staging_folder.hpp"
+#include "core/temporary_folder.hpp"
 #include "enum_choice.hpp"
 #include "file_checks.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/staging_folder.hpp"
-#include "hba/core/temporary_folder.hpp"
 #include "hba/io/scan_formats.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"

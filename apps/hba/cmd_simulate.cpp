@@ -5,10 +5,10 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "core/input_file.hpp"
+#include "core/stopwatch.hpp"
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/sim/sessions.hpp"
 #include "hba/sim/simulation.hpp"
 #include "number_checks.hpp"

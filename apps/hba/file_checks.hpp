@@ -5,8 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 
 namespace hba::cli {
 

@@ -13,8 +13,8 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "core/remove_on_interrupt.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/remove_on_interrupt.hpp"
 #include "hba/version.hpp"
 #include "log_file.hpp"
 #include "number_checks.hpp"

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "hba/core/available_memory.hpp"
+#include "core/available_memory.hpp"
 #include "hba/core/error.hpp"
 #include "hba/pyramid/memory_estimate.hpp"
 #include "hba/pyramid/window_plan.hpp"

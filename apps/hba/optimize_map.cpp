@@ -5,11 +5,11 @@
 
 #include <optional>
 
+#include "core/input_file.hpp"
+#include "core/staging_folder.hpp"
 #include "hba/ba/map_refinement.hpp"
 #include "hba/closure/map_alignment.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
-#include "hba/core/staging_folder.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
 #include "hba/io/scan_formats.hpp"

@@ -8,19 +8,19 @@
 #include <map>
 #include <optional>
 
+#include "core/input_file.hpp"
 #include "hba/closure/frame_priors.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "hba/core/memory_budget.hpp"
 #include "hba/io/loop_file.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/io/position_prior_file.hpp"
-#include "hba/pyramid/convention_check.hpp"
-#include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
 #include "json_text.hpp"
+#include "pyramid/convention_check.hpp"
+#include "pyramid/report_json.hpp"
 #include "version_text.hpp"
 
 namespace hba::cli::optimize {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "core/staging_folder.hpp"
 #include "dataset_args.hpp"
 #include "hba/closure/session_alignment.hpp"
-#include "hba/core/staging_folder.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"

@@ -4,11 +4,11 @@
 
 #include <sstream>
 
+#include "core/input_file.hpp"
+#include "core/staging_folder.hpp"
 #include "hba/closure/session_alignment.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
-#include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "memory_check.hpp"

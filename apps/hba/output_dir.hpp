@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "hba/core/output_lock.hpp"
-#include "hba/core/path_inside.hpp"
+#include "core/output_lock.hpp"
+#include "core/path_inside.hpp"
 #include "hba/io/dataset.hpp"
 
 namespace hba::cli {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "hba/core/progress.hpp"
+#include "core/progress.hpp"
 
 namespace hba::cli {
 namespace {

@@ -13,8 +13,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "core/stopwatch.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/voxel/downsample.hpp"

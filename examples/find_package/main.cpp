@@ -1,11 +1,7 @@
 // Optimizes a small simulated drive with the installed library and prints
 // how far the poses were from the truth before and after; exit 0 when the
 // result is closer.
-#include <hba/eval/trajectory_error.hpp>
-#include <hba/io/scan_source.hpp>
-#include <hba/pyramid/hierarchical_ba.hpp>
-#include <hba/sim/simulation.hpp>
-#include <hba/version.hpp>
+#include <hba/hba.hpp>
 
 #include <iostream>
 

@@ -3,10 +3,10 @@
 
 #include "bindings.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/report_json.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "json_to_python.hpp"
 #include "numpy_convert.hpp"
+#include "pyramid/report_json.hpp"
 #include "settings_kwargs.hpp"
 
 namespace py = pybind11;

@@ -6,8 +6,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/release_memory.hpp"
 #include "hba/ba/plane_problem.hpp"
-#include "hba/core/release_memory.hpp"
 
 namespace hba::ba {
 

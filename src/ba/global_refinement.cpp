@@ -1,15 +1,15 @@
 #include "hba/ba/global_refinement.hpp"
 
-#include "hba/core/progress.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <string>
 
+#include "core/stopwatch.hpp"
 #include "hba/ba/association.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/stopwatch.hpp"
 
 namespace hba::ba {
 

@@ -5,8 +5,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/symmetric_eigenvalues.hpp"
 #include "hba/core/lie.hpp"
-#include "hba/core/symmetric_eigenvalues.hpp"
 
 // Derivation (docs/ba.md has the long form). A frame-i point q = r + t_i
 // with r = R_i p moves as dq = dt + dphi x r (+ 1/2 dphi x (dphi x r)).

@@ -6,11 +6,11 @@
 #include <string>
 #include <utility>
 
+#include "core/stopwatch.hpp"
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/stopwatch.hpp"
 
 namespace hba::ba {
 namespace {

@@ -7,10 +7,10 @@
 #include <cstdio>
 #include <set>
 
+#include "core/stopwatch.hpp"
 #include "hba/closure/point_features.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "kd_tree.hpp"
 #include "neighbourhood.hpp"
 #include "place_alignment.hpp"

@@ -1,4 +1,4 @@
-#include "hba/core/input_file.hpp"
+#include "core/input_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -5,8 +5,8 @@
 #include <fstream>
 #include <utility>
 
-#include "hba/core/available_memory.hpp"
-#include "hba/core/release_memory.hpp"
+#include "core/available_memory.hpp"
+#include "core/release_memory.hpp"
 
 namespace hba {
 

@@ -1,4 +1,4 @@
-#include "hba/core/output_lock.hpp"
+#include "core/output_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

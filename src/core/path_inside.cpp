@@ -1,4 +1,4 @@
-#include "hba/core/path_inside.hpp"
+#include "core/path_inside.hpp"
 
 namespace hba {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "hba/core/progress.hpp"
+#include "core/progress.hpp"
 
 #include <algorithm>
 #include <cmath>

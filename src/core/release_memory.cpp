@@ -1,4 +1,4 @@
-#include "hba/core/release_memory.hpp"
+#include "core/release_memory.hpp"
 
 #include <cstdlib>  // defines __GLIBC__ on glibc
 

@@ -1,4 +1,4 @@
-#include "hba/core/remove_on_interrupt.hpp"
+#include "core/remove_on_interrupt.hpp"
 
 #include <pthread.h>
 #include <signal.h>

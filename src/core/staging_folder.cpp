@@ -1,4 +1,4 @@
-#include "hba/core/staging_folder.hpp"
+#include "core/staging_folder.hpp"
 
 #include <signal.h>
 #include <unistd.h>
@@ -8,9 +8,9 @@
 #include <cstdlib>
 #include <system_error>
 
+#include "core/path_inside.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/path_inside.hpp"
 
 namespace hba {
 namespace fs = std::filesystem;

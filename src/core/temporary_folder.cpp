@@ -1,10 +1,10 @@
-#include "hba/core/temporary_folder.hpp"
+#include "core/temporary_folder.hpp"
 
 #include <cstdlib>
 #include <string>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 
 namespace hba {
 

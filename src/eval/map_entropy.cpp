@@ -8,8 +8,8 @@
 #include <nanoflann.hpp>
 #include <vector>
 
+#include "core/progress.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/progress.hpp"
 
 namespace hba::eval {
 namespace {

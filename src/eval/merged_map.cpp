@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "core/progress.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/progress.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::eval {

@@ -13,8 +13,8 @@
 #include <string>
 #include <system_error>
 
+#include "core/temporary_folder.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/temporary_folder.hpp"
 
 namespace hba::io {
 namespace fs = std::filesystem;

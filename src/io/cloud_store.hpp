@@ -12,7 +12,7 @@
 #include <memory>
 #include <vector>
 
-#include "hba/core/remove_on_interrupt.hpp"
+#include "core/remove_on_interrupt.hpp"
 #include "hba/io/scan_source.hpp"
 
 namespace hba::io {

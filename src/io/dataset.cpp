@@ -4,12 +4,12 @@
 
 #include <exception>
 
+#include "core/input_file.hpp"
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
-#include "hba/io/file_warnings.hpp"
 #include "hba/io/scan_file.hpp"
 #include "hba/io/scan_formats.hpp"
+#include "io/file_warnings.hpp"
 
 namespace hba::io {
 namespace fs = std::filesystem;

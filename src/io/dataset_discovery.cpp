@@ -6,9 +6,9 @@
 #include <string>
 #include <system_error>
 
+#include "core/input_file.hpp"
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "hba/io/scan_formats.hpp"
 
 namespace hba::io::detail {

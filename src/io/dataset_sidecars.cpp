@@ -6,9 +6,9 @@
 #include <string>
 #include <string_view>
 
+#include "core/input_file.hpp"
 #include "dataset_parts.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "pose_file_lines.hpp"
 
 namespace hba::io::detail {

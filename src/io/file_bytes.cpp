@@ -4,8 +4,8 @@
 #include <new>
 #include <string>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-#include "hba/io/file_warnings.hpp"
+#include "io/file_warnings.hpp"
 
 #include <spdlog/spdlog.h>
 

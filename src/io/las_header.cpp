@@ -9,7 +9,7 @@
 #include "checked_size.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
-#include "hba/io/file_warnings.hpp"
+#include "io/file_warnings.hpp"
 #include "las_format.hpp"
 
 namespace hba::io::detail {

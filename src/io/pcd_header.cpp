@@ -6,9 +6,9 @@
 #include <string>
 
 #include "checked_size.hpp"
+#include "core/input_file.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "pcd_format.hpp"
 #include "text_parsing.hpp"
 

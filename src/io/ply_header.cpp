@@ -2,8 +2,8 @@
 // properties (comment and obj_info lines skipped) up to "end_header".
 #include <string>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "ply_format.hpp"
 #include "text_parsing.hpp"
 

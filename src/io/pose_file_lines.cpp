@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 
 namespace hba::io::detail {
 namespace fs = std::filesystem;

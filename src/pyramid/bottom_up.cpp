@@ -3,8 +3,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "hba/core/progress.hpp"
-#include "hba/core/stopwatch.hpp"
+#include "core/progress.hpp"
+#include "core/stopwatch.hpp"
 #include "keyframe.hpp"
 #include "layer_report_sum.hpp"
 #include "streamed_clouds.hpp"

@@ -5,11 +5,11 @@
 
 #include <algorithm>
 
+#include "core/stopwatch.hpp"
 #include "hba/closure/closure_graph.hpp"
 #include "hba/closure/loop_check.hpp"
 #include "hba/closure/revisits.hpp"
 #include "hba/closure/sessions.hpp"
-#include "hba/core/stopwatch.hpp"
 
 namespace hba::pyramid {
 namespace {

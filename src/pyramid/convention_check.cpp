@@ -1,4 +1,4 @@
-#include "hba/pyramid/convention_check.hpp"
+#include "pyramid/convention_check.hpp"
 
 #include <fmt/format.h>
 

@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <memory>
 
+#include "core/stopwatch.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "shared_outcomes.hpp"
 #include "stages.hpp"

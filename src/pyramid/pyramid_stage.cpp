@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "bottom_up.hpp"
-#include "hba/core/stopwatch.hpp"
+#include "core/stopwatch.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "outer_rounds.hpp"
 #include "shared_outcomes.hpp"

@@ -1,4 +1,4 @@
-#include "hba/pyramid/report_json.hpp"
+#include "pyramid/report_json.hpp"
 
 namespace hba::pyramid {
 

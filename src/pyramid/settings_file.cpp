@@ -9,9 +9,9 @@
 #include <optional>
 #include <set>
 
+#include "core/input_file.hpp"
 #include "hba/core/did_you_mean.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/input_file.hpp"
 #include "hba/pyramid/setting_table.hpp"
 
 namespace hba::pyramid {

@@ -8,8 +8,8 @@
 #include <Eigen/Core>
 
 #include "closure_stage.hpp"
+#include "dist/bytes.hpp"
 #include "hba/core/error.hpp"
-#include "hba/dist/bytes.hpp"
 #include "hba/dist/group.hpp"
 #include "hba/graph/factors.hpp"
 

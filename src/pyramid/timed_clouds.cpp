@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "hba/core/stopwatch.hpp"
+#include "core/stopwatch.hpp"
 
 namespace hba::pyramid {
 

@@ -5,8 +5,8 @@
 #include <map>
 #include <string>
 
+#include "dist/bytes.hpp"
 #include "hba/core/error.hpp"
-#include "hba/dist/bytes.hpp"
 #include "shared_outcomes.hpp"
 
 namespace hba::pyramid {

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "hba/core/release_memory.hpp"
+#include "core/release_memory.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "refinement_priors.hpp"
 

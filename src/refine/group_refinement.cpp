@@ -7,9 +7,9 @@
 #include <algorithm>
 
 #include "consistency.hpp"
+#include "core/progress.hpp"
+#include "core/stopwatch.hpp"
 #include "hba/ba/global_refinement.hpp"
-#include "hba/core/progress.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "hba/voxel/downsample.hpp"
 
 namespace hba::refine {

@@ -9,9 +9,9 @@
 
 #include "block.hpp"
 #include "block_maps.hpp"
+#include "core/release_memory.hpp"
+#include "core/stopwatch.hpp"
 #include "group_refinement.hpp"
-#include "hba/core/release_memory.hpp"
-#include "hba/core/stopwatch.hpp"
 #include "io/spilled_scan_source.hpp"
 
 namespace hba::refine {

@@ -9,8 +9,8 @@
 #include <functional>
 #include <memory>
 
+#include "core/progress.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/progress.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "picture_points.hpp"

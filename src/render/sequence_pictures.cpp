@@ -2,8 +2,8 @@
 #include <tbb/parallel_invoke.h>
 
 #include "before_after_maps.hpp"
+#include "core/release_memory.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/release_memory.hpp"
 #include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"

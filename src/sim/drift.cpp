@@ -4,7 +4,7 @@
 
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
-#include "hba/sim/random.hpp"
+#include "sim/random.hpp"
 
 namespace hba::sim {
 namespace {

@@ -6,7 +6,7 @@
 #include <atomic>
 #include <mutex>
 
-#include "hba/core/progress.hpp"
+#include "core/progress.hpp"
 #include "hba/io/pcd.hpp"
 
 namespace hba::sim {

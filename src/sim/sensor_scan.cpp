@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hba/sim/random.hpp"
 #include "hba/sim/sensor.hpp"
+#include "sim/random.hpp"
 
 namespace hba::sim {
 namespace {

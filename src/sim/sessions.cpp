@@ -8,9 +8,9 @@
 #include <string>
 
 #include "hba/core/error.hpp"
-#include "hba/sim/random.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "shared_path.hpp"
+#include "sim/random.hpp"
 
 namespace hba::sim {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "hba/sim/random.hpp"
+#include "sim/random.hpp"
 
 namespace hba::sim {
 

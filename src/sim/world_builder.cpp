@@ -6,11 +6,11 @@
 
 #include "corridor.hpp"
 #include "hba/core/error.hpp"
-#include "hba/sim/random.hpp"
 #include "hba/sim/world.hpp"
 #include "mesh_builder.hpp"
 #include "path_clearance.hpp"
 #include "path_samples.hpp"
+#include "sim/random.hpp"
 
 namespace hba::sim {
 namespace {

@@ -3,8 +3,8 @@
 #include <charconv>
 #include <string>
 
+#include "core/staging_folder.hpp"
 #include "hba/core/atomic_file.hpp"
-#include "hba/core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/sim/sessions.hpp"
 #include "scan_writer.hpp"

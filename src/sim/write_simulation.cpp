@@ -1,5 +1,5 @@
 // Writing a simulated sequence: scans in parallel, then the pose files.
-#include "hba/core/staging_folder.hpp"
+#include "core/staging_folder.hpp"
 #include "hba/io/pose_file.hpp"
 #include "hba/sim/simulation.hpp"
 #include "scan_writer.hpp"

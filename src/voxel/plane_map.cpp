@@ -10,9 +10,9 @@
 #include <tbb/parallel_for.h>
 
 #include "cell_assignment.hpp"
+#include "core/shifted_moments.hpp"
+#include "core/symmetric_eigenvalues.hpp"
 #include "hba/core/error.hpp"
-#include "hba/core/shifted_moments.hpp"
-#include "hba/core/symmetric_eigenvalues.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {

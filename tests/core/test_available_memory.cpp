@@ -1,4 +1,4 @@
-#include "hba/core/available_memory.hpp"
+#include "core/available_memory.hpp"
 
 #include <gtest/gtest.h>
 #include <stdlib.h>

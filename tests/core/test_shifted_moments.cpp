@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "hba/core/shifted_moments.hpp"
+#include "core/shifted_moments.hpp"
 
 namespace hba {
 namespace {

@@ -1,4 +1,4 @@
-#include "hba/core/symmetric_eigenvalues.hpp"
+#include "core/symmetric_eigenvalues.hpp"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "hba/io/file_warnings.hpp"
+#include "io/file_warnings.hpp"
 #include "test_log_capture.hpp"
 
 namespace hba::io {

@@ -15,7 +15,7 @@
 #include <mutex>
 #include <thread>
 
-#include "hba/core/input_file.hpp"
+#include "core/input_file.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/loop_file.hpp"
 #include "hba/io/pcd.hpp"

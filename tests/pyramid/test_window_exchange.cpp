@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "dist/bytes.hpp"
 #include "hba/core/error.hpp"
-#include "hba/dist/bytes.hpp"
 #include "shared_outcomes.hpp"
 #include "window_exchange.hpp"
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "hba/core/remove_on_interrupt.hpp"
+#include "core/remove_on_interrupt.hpp"
 
 namespace hba {
 

@@ -15,8 +15,8 @@
 #include <memory>
 #include <string>
 
-#include "hba/core/output_lock.hpp"
-#include "hba/core/remove_on_interrupt.hpp"
+#include "core/output_lock.hpp"
+#include "core/remove_on_interrupt.hpp"
 
 namespace hba {
 
