@@ -1,8 +1,9 @@
 #include "pyramid/report_json.hpp"
 
 namespace hba::pyramid {
+namespace {
 
-nlohmann::json reportToJson(const HbaReport& r) {
+nlohmann::json layersJson(const HbaReport& r) {
   nlohmann::json layers = nlohmann::json::array();
   for (const auto& l : r.layer_reports) {
     layers.push_back({{"iteration", l.iteration},
@@ -25,6 +26,10 @@ nlohmann::json reportToJson(const HbaReport& r) {
                       {"plane_rms_after_m", l.rms_after},
                       {"seconds", l.seconds}});
   }
+  return layers;
+}
+
+nlohmann::json iterationsJson(const HbaReport& r) {
   nlohmann::json iterations = nlohmann::json::array();
   for (const auto& it : r.iterations) {
     iterations.push_back({{"iteration", it.iteration},
@@ -35,7 +40,10 @@ nlohmann::json reportToJson(const HbaReport& r) {
                           {"max_rotation_update_deg", it.max_rotation_update},
                           {"seconds_pose_graph", it.seconds_graph}});
   }
-  const ClosureReport& cl = r.closure;
+  return iterations;
+}
+
+nlohmann::json closureJson(const ClosureReport& cl) {
   nlohmann::json loops = nlohmann::json::array();
   for (const LoopReport& l : cl.loops) {
     loops.push_back({{"from", l.from},
@@ -50,69 +58,78 @@ nlohmann::json reportToJson(const HbaReport& r) {
                      {"correction_m", l.correction_m},
                      {"correction_deg", l.correction_deg}});
   }
-  const RefinementReport& f = r.refinement;
-  const ConsistencyReport& c = r.consistency;
+  return {{"ran", cl.ran},
+          {"revisits_searched", cl.revisits_searched},
+          {"loops_given", cl.loops_given},
+          {"revisit_candidates", cl.revisit_candidates},
+          {"verified", cl.verified},
+          {"rejected_by_planes", cl.rejected_by_planes},
+          {"dropped_as_inconsistent", cl.dropped_as_inconsistent},
+          {"loops_used", cl.loops_used},
+          {"priors_given", cl.priors_given},
+          {"priors_dropped", cl.priors_dropped},
+          {"priors_used", cl.priors_used},
+          {"largest_move_m", cl.largest_move_m},
+          {"anchoring_move_m", cl.anchoring_move_m},
+          {"anchoring_priors_dropped", cl.anchoring_priors_dropped},
+          {"loops", loops},
+          {"seconds", cl.seconds}};
+}
+
+nlohmann::json refinementJson(const RefinementReport& f) {
+  return {{"ran", f.ran},
+          {"blocks", f.blocks},
+          {"scan_points", f.scan_points},
+          {"planes", f.planes},
+          {"observations", f.observations},
+          {"plane_points", f.plane_points},
+          {"plane_rms_before_m", f.rms_before},
+          {"plane_rms_after_m", f.rms_after},
+          {"lm_iterations", f.iterations},
+          {"cg_products", f.cg_products},
+          {"associations", f.rounds},
+          {"held_pairs", f.held_pairs},
+          {"still_sliding", f.still_sliding},
+          {"position_priors", f.position_priors},
+          {"groups",
+           {{"ran", f.groups.ran},
+            {"groups", f.groups.groups},
+            {"frames_per_group", f.groups.frames_per_group},
+            {"points", f.groups.points},
+            {"planes", f.groups.planes},
+            {"plane_rms_before_m", f.groups.rms_before},
+            {"plane_rms_after_m", f.groups.rms_after},
+            {"rejected", f.groups.rejected},
+            {"largest_move_m", f.groups.largest_move_m},
+            {"seconds", f.groups.seconds}}},
+          {"seconds", f.seconds}};
+}
+
+nlohmann::json consistencyJson(const ConsistencyReport& c) {
   nlohmann::json regions = nlohmann::json::array();
   for (std::size_t k = 0; k < c.region_first_frame.size(); ++k) {
     regions.push_back({{"first_frame", c.region_first_frame[k]},
                        {"input_rms_m", c.region_input_rms[k]},
                        {"final_rms_m", c.region_final_rms[k]}});
   }
+  return {{"planes", c.planes},
+          {"input_rms_m", c.input_rms},
+          {"hierarchy_rms_m", c.hierarchy_rms},
+          {"final_rms_m", c.final_rms},
+          {"hierarchy_rejected", c.hierarchy_rejected},
+          {"final_rejected", c.final_rejected},
+          {"regions", regions}};
+}
+
+}  // namespace
+
+nlohmann::json reportToJson(const HbaReport& r) {
   return {{"frames", r.frames},
           {"largest_update",
            {{"translation_m", r.largest_translation_update}, {"rotation_deg", r.largest_rotation_update}}},
-          {"closure",
-           {{"ran", cl.ran},
-            {"revisits_searched", cl.revisits_searched},
-            {"loops_given", cl.loops_given},
-            {"revisit_candidates", cl.revisit_candidates},
-            {"verified", cl.verified},
-            {"rejected_by_planes", cl.rejected_by_planes},
-            {"dropped_as_inconsistent", cl.dropped_as_inconsistent},
-            {"loops_used", cl.loops_used},
-            {"priors_given", cl.priors_given},
-            {"priors_dropped", cl.priors_dropped},
-            {"priors_used", cl.priors_used},
-            {"largest_move_m", cl.largest_move_m},
-            {"anchoring_move_m", cl.anchoring_move_m},
-            {"anchoring_priors_dropped", cl.anchoring_priors_dropped},
-            {"loops", loops},
-            {"seconds", cl.seconds}}},
-          {"refinement",
-           {{"ran", f.ran},
-            {"blocks", f.blocks},
-            {"scan_points", f.scan_points},
-            {"planes", f.planes},
-            {"observations", f.observations},
-            {"plane_points", f.plane_points},
-            {"plane_rms_before_m", f.rms_before},
-            {"plane_rms_after_m", f.rms_after},
-            {"lm_iterations", f.iterations},
-            {"cg_products", f.cg_products},
-            {"associations", f.rounds},
-            {"held_pairs", f.held_pairs},
-            {"still_sliding", f.still_sliding},
-            {"position_priors", f.position_priors},
-            {"groups",
-             {{"ran", f.groups.ran},
-              {"groups", f.groups.groups},
-              {"frames_per_group", f.groups.frames_per_group},
-              {"points", f.groups.points},
-              {"planes", f.groups.planes},
-              {"plane_rms_before_m", f.groups.rms_before},
-              {"plane_rms_after_m", f.groups.rms_after},
-              {"rejected", f.groups.rejected},
-              {"largest_move_m", f.groups.largest_move_m},
-              {"seconds", f.groups.seconds}}},
-            {"seconds", f.seconds}}},
-          {"consistency",
-           {{"planes", c.planes},
-            {"input_rms_m", c.input_rms},
-            {"hierarchy_rms_m", c.hierarchy_rms},
-            {"final_rms_m", c.final_rms},
-            {"hierarchy_rejected", c.hierarchy_rejected},
-            {"final_rejected", c.final_rejected},
-            {"regions", regions}}},
+          {"closure", closureJson(r.closure)},
+          {"refinement", refinementJson(r.refinement)},
+          {"consistency", consistencyJson(r.consistency)},
           {"layers", r.layers},
           {"windows",
            {{"window", r.windows.window},
@@ -124,8 +141,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
           // "converged: false" read as a failure after the default single pass.
           {"outer_iterations",
            {{"run", r.iterations.size()}, {"stopped", r.rounds_stopped}, {"reason", r.rounds_reason}}},
-          {"layer_reports", layers},
-          {"iterations", iterations},
+          {"layer_reports", layersJson(r)},
+          {"iterations", iterationsJson(r)},
           {"seconds",
            {{"read", r.seconds_read},
             {"downsample", r.seconds_downsample},
