@@ -12,7 +12,7 @@ packages=(
   libpng-dev libstb-dev libnanoflann-dev liblzf-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
   pybind11-dev python3-dev python3-numpy
   libopenmpi-dev openmpi-bin
-  clang-format
+  clang-format universal-ctags
   # the tests' third-party writer of ROS 1 bags (not used by hba itself)
   python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-tf2-msgs
 )

@@ -1,5 +1,5 @@
 #pragma once
-// Verification of a loop-closure candidate (issue #16): a pair of frames that
+// Verification of a loop-closure candidate: a pair of frames that
 // a user or a revisit detector claims see the same place. The scans around
 // each end are merged into two local maps, aligned coarsely in bird's-eye
 // view when the guess may be far off, then by a plane BA of the two maps as
