@@ -13,6 +13,7 @@
 #include "hba/io/pcd.hpp"
 #include "hba/io/ply.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/io/scan_file.hpp"
 #include "hba/io/scan_source.hpp"
 #include "synthetic_scans.hpp"
 #include "test_support.hpp"
@@ -110,7 +111,15 @@ TEST(MapCli, WritesPlyAndRefusesToWriteIntoTheInput) {
   const CommandResult into_scans = runCommand(base + (tmp / "seq" / "Scans" / "map.pcd").string());
   EXPECT_NE(into_scans.exit_code, 0);
   EXPECT_FALSE(std::filesystem::exists(tmp / "seq" / "Scans" / "map.pcd"));
-  EXPECT_NE(runCommand(base + (tmp / "map.xyz").string()).exit_code, 0);
+  // A format the table does not hold, and one that cannot keep a map's
+  // coordinates (float32 .bin), are refused naming the formats that can.
+  const CommandResult unknown = runCommand(base + (tmp / "map.e57").string() + " 2>&1");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.output.find(".pcd, .ply, .las or .xyz"), std::string::npos) << unknown.output;
+  EXPECT_NE(runCommand(base + (tmp / "map.bin").string()).exit_code, 0);
+  // .xyz text keeps them: the same map as the PLY's.
+  ASSERT_EQ(runCommand(base + (tmp / "map.xyz").string()).exit_code, 0);
+  EXPECT_EQ(io::readScan(tmp / "map.xyz").size(), io::readPly(tmp / "map.ply").size());
 }
 
 // A LAS map carries the intensity --color chose and, in every point's point
