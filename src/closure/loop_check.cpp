@@ -41,6 +41,7 @@ ba::BaSettings jointWindowSettings(const LoopCheckSettings& settings) {
   ba::BaSettings ba;
   ba.planes.voxel_size = settings.voxel_size;
   ba.final_voxel_size = settings.final_voxel_size;
+  ba.association_rounds = settings.association_rounds;
   // The two ends are far apart along the path: no odometry relates them.
   ba.motion_prior.enabled = false;
   return ba;

@@ -54,9 +54,13 @@ struct LoopCheckSettings {
   double ambiguous_distance_m = 2.0;
   double ambiguous_yaw_deg = 5.0;
 
-  // The joint plane BA, coarse to fine as the windows do.
+  // The joint plane BA, coarse to fine as the windows do; its other
+  // settings are ba::BaSettings' own (stated here: they differ from the
+  // windows'). The two ends start from a guess metres off: three
+  // associations at the final voxel, where a window needs one.
   double voxel_size = 4.0;        // m, first association
   double final_voxel_size = 1.0;  // m, last association (the Hessian's)
+  int association_rounds = 3;
 
   // Acceptance.
   std::size_t min_shared_planes = 30;
