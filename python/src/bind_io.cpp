@@ -161,11 +161,8 @@ stored as float32 (.las: uint16, rounded). Raises hba.Error.)";
 }  // namespace
 
 void bindIo(py::module_& m) {
-  // pybind11 keeps the pointer: the strings live as long as the module.
-  static const std::string read_doc = readScanDoc();
-  static const std::string write_doc = writeScanDoc();
-  m.def("read_scan", &readScan, py::arg("path"), read_doc.c_str());
-  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"), write_doc.c_str());
+  m.def("read_scan", &readScan, py::arg("path"), readScanDoc().c_str());
+  m.def("write_scan", &writeScan, py::arg("path"), py::arg("points"), writeScanDoc().c_str());
   m.def("read_poses", &readPoses, py::arg("path"), py::arg("format") = py::none(),
         py::arg("return_stamps") = false,
         "Reads a trajectory (hba pose.json, kitti, tum; detected unless `format`): (K, 4, 4) "

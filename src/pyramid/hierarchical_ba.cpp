@@ -144,6 +144,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   if (initial.size() == 1) {
     warn(report, "a single scan: nothing to align it with, pose returned unchanged");
     result.poses = initial;
+    report.seconds_total = secondsSince(start);
     return result;
   }
   // Each scan read and downsampled once, and kept: the self-check and the

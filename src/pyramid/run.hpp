@@ -1,5 +1,5 @@
 #pragma once
-// What the stages of one run of the method share (pipeline.cpp): its
+// What the stages of one run of the method share (hierarchical_ba.cpp): its
 // inputs, the poses as they pass from stage to stage, and the report.
 #include <string>
 #include <utility>

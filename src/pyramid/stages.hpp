@@ -1,5 +1,5 @@
 #pragma once
-// The stages of the method, in the order pipeline.cpp runs them. Each
+// The stages of the method, in the order hierarchical_ba.cpp runs them. Each
 // reads and moves run.poses and fills its part of run.report.
 #include "run.hpp"
 

@@ -309,20 +309,17 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
 // are kept.
 void Recording::placeClouds(const MessageStore& bag, const RecordingOptions& options,
                             const std::vector<StampedPose>& trajectory) {
-  Recording& recording = *this;
-  const fs::path& path = path_;
-  const std::vector<StoredMessage> clouds = bag.messages(recording.cloud_topic_);
-  recording.cloud_messages_ = clouds.size();
+  const std::vector<StoredMessage> clouds = bag.messages(cloud_topic_);
+  cloud_messages_ = clouds.size();
   std::vector<double> dropped;
   std::vector<std::pair<double, StoredMessage>> stamped;
   for (const StoredMessage& message : clouds) {
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", path.string(), recording.cloud_topic_, message.time);
-    const CloudHeader header =
-        decodeCloudHeader(recording.cloud_type_, bag.read(message), bag.serialization(), what);
+        fmt::format("{}: {} message at {:.3f} s", path_.string(), cloud_topic_, message.time);
+    const CloudHeader header = decodeCloudHeader(cloud_type_, bag.read(message), bag.serialization(), what);
     if (stamped.empty()) {
-      recording.cloud_frame_ = header.frame_id;
-      recording.cloud_fields_ = header.fields;
+      cloud_frame_ = header.frame_id;
+      cloud_fields_ = header.fields;
     }
     stamped.emplace_back(header.stamp + options.time_offset, message);
   }
@@ -330,75 +327,68 @@ void Recording::placeClouds(const MessageStore& bag, const RecordingOptions& opt
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [stamp, message] : stamped) {
     Pose pose;
-    if (!poseAt(recording.recorded_, stamp, pose)) {
+    if (!poseAt(recorded_, stamp, pose)) {
       dropped.push_back(stamp);
       continue;
     }
-    recording.trajectory_.poses.push_back(pose);
-    recording.trajectory_.stamps.push_back(stamp);
-    recording.clouds_->kept.push_back(message);
+    trajectory_.poses.push_back(pose);
+    trajectory_.stamps.push_back(stamp);
+    clouds_->kept.push_back(message);
   }
   const std::string span =
       fmt::format("{:.3f} to {:.3f} s", trajectory.front().stamp, trajectory.back().stamp);
-  if (recording.trajectory_.empty()) {
-    failAt(path, fmt::format("{} covers none of the {} scans of {} (poses {}, scans {})",
-                             recording.pose_topic_, clouds.size(), recording.cloud_topic_, span,
-                             stamped.empty() ? std::string("none")
-                                             : fmt::format("{:.3f} to {:.3f} s", stamped.front().first,
-                                                           stamped.back().first)));
+  if (trajectory_.empty()) {
+    failAt(path_, fmt::format("{} covers none of the {} scans of {} (poses {}, scans {})", pose_topic_,
+                              clouds.size(), cloud_topic_, span,
+                              stamped.empty() ? std::string("none")
+                                              : fmt::format("{:.3f} to {:.3f} s", stamped.front().first,
+                                                            stamped.back().first)));
   }
   if (!dropped.empty()) {
-    recording.warnings_.push_back(
-        fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out", dropped.size(),
-                    clouds.size(), span));
+    warnings_.push_back(fmt::format("{} of {} scans lie outside the trajectory ({}) and are left out",
+                                    dropped.size(), clouds.size(), span));
   }
-  recording.covered_ = recording.trajectory_;
+  covered_ = trajectory_;
 }
 
 // Keyframes by distance and angle: the other scans are left out.
 void Recording::keepKeyframes(const RecordingOptions& options, const std::vector<StampedPose>& trajectory) {
-  Recording& recording = *this;
-  {
-    // An earlier run's keyframe poses given back: its keyframes, not new ones
-    // chosen by poses that moved since.
-    std::vector<std::size_t> keyframes =
-        options.poses ? scansAt(recording.trajectory_.stamps, trajectory) : std::vector<std::size_t>{};
-    if (keyframes.size() != trajectory.size()) keyframes = keyframesOf(recording.trajectory_.poses, options);
-    const std::size_t covered = recording.trajectory_.size();
-    Trajectory kept_trajectory;
-    std::vector<StoredMessage> kept_messages;
-    for (const std::size_t i : keyframes) {
-      kept_trajectory.poses.push_back(recording.trajectory_.poses[i]);
-      kept_trajectory.stamps.push_back(recording.trajectory_.stamps[i]);
-      kept_messages.push_back(recording.clouds_->kept[i]);
-    }
-    recording.trajectory_ = std::move(kept_trajectory);
-    recording.clouds_->kept = std::move(kept_messages);
-    std::string rule;
-    if (options.keyframe_distance > 0.0) rule = fmt::format("every {} m", options.keyframe_distance);
-    if (options.keyframe_angle > 0.0) {
-      rule += fmt::format("{}every {} deg", rule.empty() ? "" : " or ", options.keyframe_angle);
-    }
-    recording.notes_.push_back(
-        fmt::format("{} of {} scans kept as keyframes (a new one {})", keyframes.size(), covered, rule));
+  // An earlier run's keyframe poses given back: its keyframes, not new ones
+  // chosen by poses that moved since.
+  std::vector<std::size_t> keyframes =
+      options.poses ? scansAt(trajectory_.stamps, trajectory) : std::vector<std::size_t>{};
+  if (keyframes.size() != trajectory.size()) keyframes = keyframesOf(trajectory_.poses, options);
+  const std::size_t covered = trajectory_.size();
+  Trajectory kept_trajectory;
+  std::vector<StoredMessage> kept_messages;
+  for (const std::size_t i : keyframes) {
+    kept_trajectory.poses.push_back(trajectory_.poses[i]);
+    kept_trajectory.stamps.push_back(trajectory_.stamps[i]);
+    kept_messages.push_back(clouds_->kept[i]);
   }
+  trajectory_ = std::move(kept_trajectory);
+  clouds_->kept = std::move(kept_messages);
+  std::string rule;
+  if (options.keyframe_distance > 0.0) rule = fmt::format("every {} m", options.keyframe_distance);
+  if (options.keyframe_angle > 0.0) {
+    rule += fmt::format("{}every {} deg", rule.empty() ? "" : " or ", options.keyframe_angle);
+  }
+  notes_.push_back(
+      fmt::format("{} of {} scans kept as keyframes (a new one {})", keyframes.size(), covered, rule));
 }
 
 // Clouds and poses in frames of other names are joined by /tf_static.
 void Recording::joinFrames(const MessageStore& bag, const std::string& pose_frame) {
-  Recording& recording = *this;
-  recording.pose_frame_ = pose_frame;
-  if (!pose_frame.empty() && !recording.cloud_frame_.empty() &&
-      frameName(pose_frame) != frameName(recording.cloud_frame_)) {
-    recording.extrinsic_ = staticTransform(bag, pose_frame, recording.cloud_frame_);
-    if (recording.extrinsic_) {
-      recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ +
-                                 "', the poses place '" + pose_frame + "': joined by /tf_static");
+  pose_frame_ = pose_frame;
+  if (!pose_frame.empty() && !cloud_frame_.empty() && frameName(pose_frame) != frameName(cloud_frame_)) {
+    extrinsic_ = staticTransform(bag, pose_frame, cloud_frame_);
+    if (extrinsic_) {
+      notes_.push_back("the clouds are in frame '" + cloud_frame_ + "', the poses place '" + pose_frame +
+                       "': joined by /tf_static");
     } else {
-      recording.notes_.push_back("the clouds are in frame '" + recording.cloud_frame_ +
-                                 "', the poses place '" + pose_frame +
-                                 "', and /tf_static does not join them: read as the same frame "
-                                 "(give --extrinsic if they differ)");
+      notes_.push_back("the clouds are in frame '" + cloud_frame_ + "', the poses place '" + pose_frame +
+                       "', and /tf_static does not join them: read as the same frame "
+                       "(give --extrinsic if they differ)");
     }
   }
 }

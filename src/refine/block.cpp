@@ -18,11 +18,10 @@ namespace {
 std::size_t regionCount(std::size_t frames) { return std::clamp<std::size_t>(frames / 100, 4, 20); }
 
 // The block's plane BA from `poses`, held by the priors among its frames.
-void refineFrom(const Block& block, std::size_t index, const std::vector<Pose>& input,
-                const std::vector<double>& steps, const std::vector<graph::PositionPriorFactor>& priors,
-                const RefineSettings& settings, BlockOutcome& out) {
-  std::vector<const PointCloud*> pointers;
-  for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
+void refineFrom(const Block& block, const std::vector<const PointCloud*>& pointers, std::size_t index,
+                const std::vector<Pose>& input, const std::vector<double>& steps,
+                const std::vector<graph::PositionPriorFactor>& priors, const RefineSettings& settings,
+                BlockOutcome& out) {
   const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                         steps.begin() + static_cast<long>(block.end - 1));
   const ba::PositionPriors positions =
@@ -123,7 +122,7 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
                             : "keeping the input poses (with the closure stage's loops), "
                               "unrefined"));
   }
-  if (refines) refineFrom(block, index, input, steps, priors, settings, out);
+  if (refines) refineFrom(block, pointers, index, input, steps, priors, settings, out);
   FixedPlaneMap::Figures at_final = out.map.figures(out.poses);
   out.final_rms = at_final.rms;
   if (!(out.final_rms <= out.input_rms * kEqualMapMargin)) {

@@ -1,7 +1,11 @@
 #pragma once
-// The refinement's coarse, whole-sequence half: consecutive frames tied
-// into rigid groups, each group's scans merged, one plane BA places the
-// groups (docs/pyramid.md, "Long sequences").
+// The coarse half of the refinement, for sequences longer than one
+// refinement block (docs/pyramid.md, "Long sequences"): after the blocks,
+// consecutive frames are tied into rigid groups, each group's scans merged
+// into one cloud, and one plane BA over all groups (solved exactly: few
+// unknowns) places them. It sees what blocks of consecutive frames cannot:
+// planes shared by passes far apart in time (a second lap over the first)
+// and the sequence's long, weak bends.
 #include <cstddef>
 #include <vector>
 
@@ -11,10 +15,20 @@
 
 namespace hba::refine {
 
+// Frames per group for a sequence of `frames`: enough that there are at
+// most `max_groups` groups, and never fewer than `min_frames`.
 std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t min_frames);
 
-// `current` with each group moved rigidly; `current` itself when the groups'
-// map got blurrier (report.rejected) or there are fewer than three groups.
+// Moves the groups of `current` rigidly to fit one plane BA over all of
+// them; the relative poses inside a group are kept. `input` gives the
+// motion prior's reference (the odometry's steps between groups). Returns
+// `current` unchanged, with a warning, if the groups' map would get
+// blurrier (report.rejected), or if there are fewer than three groups.
+// Position priors stay out: a group of ten frames may hold one, and the
+// planes between groups of an open scene are too weak to stop each group
+// following its prior's noise (0.5 m steps between groups on a simulated
+// 5 km drive with priors of sigma 0.5 m); the final re-anchoring places the
+// groups' result instead.
 std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Pose>& input,
                                const std::vector<Pose>& current, const RefineSettings& settings,
                                GroupRefinementReport& report, StageNotes& notes);

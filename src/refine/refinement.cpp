@@ -182,6 +182,7 @@ RefineOutcome refineAndCheck(const io::ScanSource& scans, const std::vector<Pose
     // The next block overlaps this one by a quarter, so that no frame is
     // refined only at a block's edge.
     first = std::max(block.first + 1, block.end - (block.end - block.first) / 4);
+    if (first + 1 >= initial.size()) break;  // no block of one frame
   }
   out.refinement.blocks = sums.spans.size();
   out.consistency.final_rms = sums.final.rms();

@@ -72,6 +72,11 @@ TEST(ScanFile, XyzTextIsOneMoreFormat) {
   EXPECT_EQ(cc.points[1], Vec3(-1, -2, -3));
   EXPECT_EQ(storedPointCount(dir / "cc.xyz"), 2u);
 
+  // A Windows editor's byte order mark changes nothing.
+  test::writeText(dir / "bom.xyz",
+                  "\xEF\xBB\xBF"
+                  "1.5 2.5 3.5\n");
+  EXPECT_EQ(readScanWide(dir / "bom.xyz").points.at(0), Vec3(1.5, 2.5, 3.5));
   test::writeText(dir / "bad.xyz", "1 2 3\n4 5 x\n");
   test::expectErrorAbout(dir / "bad.xyz", "line 2", [&] { readScan(dir / "bad.xyz"); });
   test::writeText(dir / "ragged.xyz", "1 2 3 4\n4 5 6\n");

@@ -70,7 +70,7 @@ TEST(ScanMutations, NoiseNeverCrashes) {
   for (int trial = 0; trial < 60; ++trial) {
     std::string noise(static_cast<std::size_t>(trial * 37), '\0');
     for (char& c : noise) c = static_cast<char>(byte(rng));
-    for (const char* extension : {".pcd", ".ply", ".bin", ".las"}) {
+    for (const char* extension : {".pcd", ".ply", ".bin", ".las", ".xyz"}) {
       const fs::path path = dir / (std::to_string(trial) + extension);
       test::writeText(path, noise);
       expectReadOrCleanError(path);

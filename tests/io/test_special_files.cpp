@@ -67,7 +67,7 @@ const std::string kFifo = "is not a regular file (a FIFO)";
 
 TEST(SpecialFiles, EveryReaderRefusesAFifoWithoutWaitingOnIt) {
   TempDir dir;
-  const std::vector<std::string> names = {"000030.pcd", "scan.ply",  "scan.las",  "scan.bin",
+  const std::vector<std::string> names = {"000030.pcd", "scan.ply",  "scan.las",  "scan.bin",  "scan.xyz",
                                           "poses.txt",  "times.txt", "loops.txt", "priors.txt"};
   std::vector<fs::path> fifos;
   for (const std::string& name : names) {
@@ -75,7 +75,7 @@ TEST(SpecialFiles, EveryReaderRefusesAFifoWithoutWaitingOnIt) {
     fifos.push_back(dir / name);
   }
   const FifoRelease release(fifos);
-  for (const char* scan : {"000030.pcd", "scan.ply", "scan.las", "scan.bin"}) {
+  for (const char* scan : {"000030.pcd", "scan.ply", "scan.las", "scan.bin", "scan.xyz"}) {
     expectErrorMentioning([&] { io::readScan(dir / scan); }, {(dir / scan).string(), kFifo});
   }
   expectErrorMentioning([&] { io::readPcdHeader(dir / "000030.pcd"); }, {"000030.pcd", kFifo});

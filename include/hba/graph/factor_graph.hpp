@@ -26,7 +26,7 @@ class FactorGraph {
   std::size_t size() const { return models_.size(); }
   bool empty() const { return models_.empty(); }
   // Factors of the kind named ("relative", "loop closure", "pose prior",
-  // "position prior", "window shape": FactorModel::name()).
+  // "position prior", "height prior", "window shape": FactorModel::name()).
   std::size_t count(std::string_view kind) const;
 
   // For the solver; the models are immutable, so copies of a graph share them.

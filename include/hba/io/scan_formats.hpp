@@ -35,7 +35,7 @@ const std::vector<ScanFormat>& scanFormats();
 const ScanFormat* findScanFormat(const std::filesystem::path& path);
 // The same; throws hba::Error naming the file and the formats hba reads.
 const ScanFormat& scanFormatOf(const std::filesystem::path& path);
-// ".pcd, .bin, .ply or .las" (only those that keep doubles: for maps).
+// ".pcd, .bin, .ply, .las or .xyz" (only those that keep doubles: for maps).
 std::string scanFormatList(bool keeping_doubles = false);
 
 }  // namespace hba::io

@@ -37,7 +37,8 @@ struct HbaResult {
 // With `group` (the processes of an mpirun), each layer's windows are spread
 // over its members, which must all call this with the same input; each
 // reads only the scans of its windows there, and all get the same poses,
-// those of one process. The other stages run in every member.
+// those of one process. The closure stage's outcome is shared the same
+// way; the refinement and the anchoring run in the first member only.
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings, const ClosureInputs& closures = {},
                             const dist::Group& group = dist::singleProcess());
