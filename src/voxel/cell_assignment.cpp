@@ -4,9 +4,12 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "hba/voxel/voxel_key.hpp"
 
@@ -162,41 +165,90 @@ void forEachPoint(std::size_t points, const Body& body) {
   forEachPoint(0, points, points >= kParallelFrom, body);
 }
 
-// Numbers the cells of points 0 .. n-1 (their keys from keyOf(i)) in
-// first-hit order. Keys are taken a chunk at a time, just before they are
-// numbered: a refinement block's 20 M keys would take 160 MB held at once,
-// and a chunk's stay in the cache.
+// Numbers the cells of points [begin, end) in their first-hit order with
+// `table`, from 0: each point's number into cell_of_point, each new cell's
+// first point into `first`. Keys are taken a chunk at a time, just before
+// they are numbered, so that they stay in the cache.
 template <typename Key, typename KeyOfPoint>
-CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t points_per_cell) {
+void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, CellTable<Key>& table,
+                 std::vector<std::uint32_t>& cell_of_point, std::vector<std::uint32_t>& first) {
   constexpr std::size_t kLookahead = 16;                // points between a prefetch and its use
-  constexpr std::size_t kChunk = std::size_t{1} << 18;  // keys held at once
-  const bool parallel = n >= kParallelFrom;
-  CellTable<Key> table(n / std::max<std::size_t>(points_per_cell, 1));
-  CellAssignment out;
-  out.cell_of_point.resize(n);
+  constexpr std::size_t kChunk = std::size_t{1} << 16;  // keys held at once
   // A chunk's keys and the lookahead's beyond it (taken again with the next
   // chunk: a few keys a chunk).
-  std::vector<Key> keys(std::min(n, kChunk + kLookahead));
+  std::vector<Key> keys(std::min(end - begin, kChunk + kLookahead));
   Key previous{};
-  for (std::size_t begin = 0; begin < n; begin += kChunk) {
-    const std::size_t end = std::min(n, begin + kChunk);
-    const std::size_t known = std::min(n, end + kLookahead);
-    forEachPoint(begin, known, parallel, [&](std::size_t i) { keys[i - begin] = keyOf(i); });
-    for (std::size_t i = begin; i < end; ++i) {
-      const Key& key = keys[i - begin];
+  for (std::size_t from = begin; from < end; from += kChunk) {
+    const std::size_t to = std::min(end, from + kChunk);
+    const std::size_t known = std::min(end, to + kLookahead);
+    for (std::size_t i = from; i < known; ++i) keys[i - from] = keyOf(i);
+    for (std::size_t i = from; i < to; ++i) {
+      const Key& key = keys[i - from];
       // Scans come ring by ring: a point mostly shares the cell of the one
       // before it, which then needs no lookup.
-      if (i > 0 && key == previous) {
-        out.cell_of_point[i] = out.cell_of_point[i - 1];
+      if (i > begin && key == previous) {
+        cell_of_point[i] = cell_of_point[i - 1];
         continue;
       }
-      if (i + kLookahead < n) table.prefetch(keys[i + kLookahead - begin]);
-      const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+      if (i + kLookahead < end) table.prefetch(keys[i + kLookahead - from]);
+      const auto next = static_cast<std::uint32_t>(first.size());
       const std::uint32_t cell = table.find(key, next);
-      if (cell == next) out.first_point_of_cell.push_back(static_cast<std::uint32_t>(i));
-      out.cell_of_point[i] = cell;
+      if (cell == next) first.push_back(static_cast<std::uint32_t>(i));
+      cell_of_point[i] = cell;
       previous = key;
     }
+  }
+}
+
+// How many ranges of a cloud of `n` points are numbered side by side.
+std::size_t rangesFor(std::size_t n) {
+  if (n < kParallelFrom) return 1;
+  const auto threads = static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()));
+  return std::min<std::size_t>(threads, 64);
+}
+
+// Numbers the cells of points 0 .. n-1 (their keys from keyOf(i)) in
+// first-hit order. A large cloud (a refinement block of millions) is cut
+// into ranges numbered side by side, each from 0 in a table of its own;
+// then each later range's cells, in their first-hit order, take the
+// numbers of the same keys before them or the next free ones: the very
+// numbering of one pass in point order, for any number of ranges.
+template <typename Key, typename KeyOfPoint>
+CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t points_per_cell) {
+  const std::size_t per_cell = std::max<std::size_t>(points_per_cell, 1);
+  CellAssignment out;
+  out.cell_of_point.resize(n);
+  const std::size_t ranges = rangesFor(n);
+  std::vector<std::size_t> start(ranges + 1);
+  for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
+  std::vector<std::optional<CellTable<Key>>> tables(ranges);
+  std::vector<std::vector<std::uint32_t>> first(ranges);
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
+    tables[k].emplace((start[k + 1] - start[k]) / per_cell);
+    numberRange(start[k], start[k + 1], keyOf, *tables[k], out.cell_of_point, first[k]);
+  });
+  out.first_point_of_cell = std::move(first[0]);
+  CellTable<Key>& numbered = *tables[0];
+  std::vector<std::vector<std::uint32_t>> renumber(ranges);
+  for (std::size_t k = 1; k < ranges; ++k) {
+    tables[k].reset();
+    renumber[k].resize(first[k].size());
+    for (std::size_t c = 0; c < first[k].size(); ++c) {
+      const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
+      renumber[k][c] = numbered.find(keyOf(first[k][c]), next);
+      if (renumber[k][c] == next) out.first_point_of_cell.push_back(first[k][c]);
+    }
+  }
+  if (ranges > 1) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(start[1], n, 1 << 16),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::size_t k = static_cast<std::size_t>(
+                            std::upper_bound(start.begin(), start.end(), range.begin()) - start.begin() - 1);
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          while (i >= start[k + 1]) ++k;
+                          out.cell_of_point[i] = renumber[k][out.cell_of_point[i]];
+                        }
+                      });
   }
   return out;
 }
@@ -205,8 +257,7 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
 
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
   const KeyOf keyOf(size);
-  // Keys in parallel for large clouds; the numbering stays serial: cells
-  // are numbered in first-hit order.
+  // Large clouds are numbered in ranges side by side (numberCells).
   const CellBounds bounds = boundsOf(points, size);
   if (!bounds.packable) {
     return numberCells<VoxelKey>(
@@ -254,15 +305,38 @@ std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std
 }
 
 CellMembers membersOf(const CellAssignment& assignment) {
+  // A counting sort: each range counts its points per cell, the counts give
+  // every range its place within each cell (range by range, so ids ascend
+  // within a cell as in one pass), and the ranges fill their places side by
+  // side.
+  const std::size_t n = assignment.cell_of_point.size();
+  const std::size_t cells = assignment.cells();
+  const std::size_t ranges = rangesFor(n);
+  std::vector<std::size_t> start(ranges + 1);
+  for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
+  std::vector<std::vector<std::uint32_t>> fill(ranges, std::vector<std::uint32_t>(cells, 0));
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
+    for (std::size_t i = start[k]; i < start[k + 1]; ++i) ++fill[k][assignment.cell_of_point[i]];
+  });
   CellMembers out;
-  out.begin.assign(assignment.cells() + 1, 0);
-  for (std::uint32_t cell : assignment.cell_of_point) ++out.begin[cell + 1];
-  for (std::size_t c = 0; c < assignment.cells(); ++c) out.begin[c + 1] += out.begin[c];
-  std::vector<std::uint32_t> fill(out.begin.begin(), out.begin.end() - 1);
-  out.ids.resize(assignment.cell_of_point.size());
-  for (std::size_t i = 0; i < assignment.cell_of_point.size(); ++i) {
-    out.ids[fill[assignment.cell_of_point[i]]++] = static_cast<std::uint32_t>(i);
+  out.begin.assign(cells + 1, 0);
+  std::uint32_t offset = 0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    out.begin[c] = offset;
+    for (std::size_t k = 0; k < ranges; ++k) {
+      const std::uint32_t count = fill[k][c];
+      fill[k][c] = offset;
+      offset += count;
+    }
   }
+  out.begin[cells] = offset;
+  out.ids.resize(n);
+  tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
+    std::vector<std::uint32_t>& next = fill[k];
+    for (std::size_t i = start[k]; i < start[k + 1]; ++i) {
+      out.ids[next[assignment.cell_of_point[i]]++] = static_cast<std::uint32_t>(i);
+    }
+  });
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <limits>
@@ -90,6 +91,38 @@ TEST(CellAssignment, LargeCloudsNumberCellsInFirstHitOrder) {
         const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         expectSameAssignment(assignCells(points, size, 64), expected);
       }
+      // Cut into as many ranges as the arena has threads, numbered side by side.
+      for (const int threads : {3, 7}) {
+        tbb::task_arena arena(threads);
+        arena.execute([&] { expectSameAssignment(assignCells(points, size, 64), expected); });
+      }
+    }
+  }
+}
+
+// Members by cell, as one pass in point order would list them: each cell's
+// ids ascending, the cells in their numbers' order, for any range count.
+TEST(CellAssignment, MembersOfLargeCloudsAscendWithinEachCell) {
+  std::mt19937 rng(9);
+  std::vector<Vec3f> points;
+  for (int part = 0; part < 4; ++part) {
+    const std::vector<Vec3f> more = scanLikePoints(rng, Vec3f(-20.0f, 30.0f, 1.0f), 25.0f, 400000);
+    points.insert(points.end(), more.begin(), more.end());
+  }
+  const CellAssignment cells = assignCells(points, 0.5, 64);
+  std::vector<std::vector<std::uint32_t>> expected(cells.cells());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    expected[cells.cell_of_point[i]].push_back(static_cast<std::uint32_t>(i));
+  }
+  for (const int threads : {1, 2, 5}) {
+    tbb::task_arena arena(threads);
+    const CellMembers members = arena.execute([&] { return membersOf(cells); });
+    ASSERT_EQ(members.begin.size(), cells.cells() + 1);
+    ASSERT_EQ(members.ids.size(), points.size());
+    for (std::size_t c = 0; c < cells.cells(); ++c) {
+      const std::vector<std::uint32_t> got(members.ids.begin() + members.begin[c],
+                                           members.ids.begin() + members.begin[c + 1]);
+      ASSERT_EQ(got, expected[c]) << "cell " << c << ", " << threads << " threads";
     }
   }
 }
