@@ -219,6 +219,11 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
   CellAssignment out;
   out.cell_of_point.resize(n);
   const std::size_t ranges = rangesFor(n);
+  if (ranges == 1) {  // scans and windows: thousands of calls, no task to start
+    CellTable<Key> table(n / per_cell);
+    numberRange(0, n, keyOf, table, out.cell_of_point, out.first_point_of_cell);
+    return out;
+  }
   std::vector<std::size_t> start(ranges + 1);
   for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
   std::vector<std::optional<CellTable<Key>>> tables(ranges);
@@ -239,17 +244,15 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
       if (renumber[k][c] == next) out.first_point_of_cell.push_back(first[k][c]);
     }
   }
-  if (ranges > 1) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(start[1], n, 1 << 16),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::size_t k = static_cast<std::size_t>(
-                            std::upper_bound(start.begin(), start.end(), range.begin()) - start.begin() - 1);
-                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          while (i >= start[k + 1]) ++k;
-                          out.cell_of_point[i] = renumber[k][out.cell_of_point[i]];
-                        }
-                      });
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(start[1], n, 1 << 16),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::size_t k = static_cast<std::size_t>(
+                          std::upper_bound(start.begin(), start.end(), range.begin()) - start.begin() - 1);
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        while (i >= start[k + 1]) ++k;
+                        out.cell_of_point[i] = renumber[k][out.cell_of_point[i]];
+                      }
+                    });
   return out;
 }
 
