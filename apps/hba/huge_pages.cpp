@@ -16,6 +16,10 @@
 #include <cstdlib>
 #include <new>
 
+// Under AddressSanitizer the tool keeps the sanitizer's own operators, which
+// check that new pairs with delete and new[] with delete[].
+#if !defined(__SANITIZE_ADDRESS__)
+
 namespace {
 
 constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
@@ -46,7 +50,16 @@ void* allocate(std::size_t size) {
 
 }  // namespace
 
-// The default operator delete frees with std::free, which takes these blocks
-// as they are; the nothrow forms call these.
+// The nothrow forms call these. Every delete is replaced too, so that a
+// checker that watches malloc and free (valgrind) sees each block freed as
+// it was allocated; the aligned forms stay the library's (aligned_alloc and
+// free).
 void* operator new(std::size_t size) { return allocate(size); }
 void* operator new[](std::size_t size) { return allocate(size); }
+void operator delete(void* block) noexcept { std::free(block); }
+void operator delete[](void* block) noexcept { std::free(block); }
+void operator delete(void* block, std::size_t) noexcept { std::free(block); }
+void operator delete[](void* block, std::size_t) noexcept { std::free(block); }
+void operator delete(void* block, const std::nothrow_t&) noexcept { std::free(block); }
+void operator delete[](void* block, const std::nothrow_t&) noexcept { std::free(block); }
+#endif
