@@ -1,14 +1,13 @@
-// The tool's global operator new: large blocks ask the kernel for
+// The tool's global operator new and delete: large blocks ask the kernel for
 // transparent huge pages (2 MiB) before they are first touched.
 //
 // Why: a run fills hundreds of MB of fresh arrays at every association
 // (world positions, cell numbers, point ids), freed and allocated again
 // round after round. Each 4 KiB page of them costs a page fault, and on
-// virtual machines a fault is expensive: a third of the system time of a
-// 1000-frame run. Most kernels offer huge pages only on request (THP mode
-// "madvise"); with them a block faults once per 2 MiB. Blocks are still
-// malloc's: only a hint is added, so `free`, malloc_trim and the results
-// are unchanged. Lives in the executable (not the library), so that a
+// virtual machines a fault is expensive: the kernel took a quarter of the
+// CPU time of a 1000-frame run (docs/cli.md, "Memory"). Most kernels offer huge pages only on request (THP
+// mode "madvise"); with them a block faults once per 2 MiB. Blocks are still malloc's: only a hint is added,
+// so `free`, malloc_trim and the results are unchanged. Lives in the executable (not the library), so that a
 // program linking libhba keeps its own allocator.
 #include <sys/mman.h>
 
