@@ -207,6 +207,13 @@ std::size_t rangesFor(std::size_t n) {
   return std::min<std::size_t>(threads, 64);
 }
 
+// The first point of each of `ranges` equal ranges of `n` points, and n.
+std::vector<std::size_t> rangeStarts(std::size_t n, std::size_t ranges) {
+  std::vector<std::size_t> start(ranges + 1);
+  for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
+  return start;
+}
+
 // Numbers the cells of points 0 .. n-1 (their keys from keyOf(i)) in
 // first-hit order. A large cloud (a refinement block of millions) is cut
 // into ranges numbered side by side, each from 0 in a table of its own;
@@ -224,8 +231,7 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
     numberRange(0, n, keyOf, table, out.cell_of_point, out.first_point_of_cell);
     return out;
   }
-  std::vector<std::size_t> start(ranges + 1);
-  for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
+  const std::vector<std::size_t> start = rangeStarts(n, ranges);
   std::vector<std::optional<CellTable<Key>>> tables(ranges);
   std::vector<std::vector<std::uint32_t>> first(ranges);
   tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
@@ -315,8 +321,7 @@ CellMembers membersOf(const CellAssignment& assignment) {
   const std::size_t n = assignment.cell_of_point.size();
   const std::size_t cells = assignment.cells();
   const std::size_t ranges = rangesFor(n);
-  std::vector<std::size_t> start(ranges + 1);
-  for (std::size_t k = 0; k <= ranges; ++k) start[k] = n * k / ranges;
+  const std::vector<std::size_t> start = rangeStarts(n, ranges);
   std::vector<std::vector<std::uint32_t>> fill(ranges, std::vector<std::uint32_t>(cells, 0));
   tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
     for (std::size_t i = start[k]; i < start[k + 1]; ++i) ++fill[k][assignment.cell_of_point[i]];
