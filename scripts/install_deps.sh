@@ -15,6 +15,8 @@ packages=(
   clang-format universal-ctags
   # the tests' third-party writer of ROS 1 bags (not used by hba itself)
   python3-rosbag python3-roslz4 python3-sensor-msgs python3-nav-msgs python3-geometry-msgs python3-std-msgs python3-tf2-msgs
+  # the tests' real browser for the report page (headless, software WebGL; not used by hba itself)
+  chromium
 )
 case "${1:-}" in
   "") ;;

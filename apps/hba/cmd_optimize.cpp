@@ -127,11 +127,14 @@ void run(const Args& args) {
 
   const bool drawn = !args.no_render &&
                      writePicture(scans, result, settings.scan_voxel, dataset.trajectory().poses, gt, out);
+  const bool paged =
+      !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, dataset.trajectory().poses,
+                                              gt, report, pageTitle(dataset.root()), out);
   staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging->destination().string());
-  spdlog::info("wrote {}, report.json{}", fmt::format("{}", fmt::join(written, ", ")),
-               drawn ? ", before_after.png" : "");
+  spdlog::info("wrote {}, report.json{}{}", fmt::format("{}", fmt::join(written, ", ")),
+               drawn ? ", before_after.png" : "", paged ? ", report.html" : "");
 }
 
 }  // namespace
@@ -198,6 +201,8 @@ void registerOptimizeCommand(CLI::App& app) {
                     "Also write every_scan_poses_tum.txt: every scan of a recording, keyframe or not, its "
                     "pose corrected as the keyframes around it were");
   command->add_flag("--no-render", args->no_render, "Do not write before_after.png");
+  command->add_flag("--no-report-page", args->no_report_page,
+                    "Do not write report.html (the map in 3D in a browser; `hba view` writes it later)");
   command->add_flag("--no-memory-check", args->no_memory_check,
                     "Run even when the estimated peak memory exceeds what the machine has available "
                     "(docs/pyramid.md, \"Memory\")");

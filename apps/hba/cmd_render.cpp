@@ -26,14 +26,6 @@ struct RenderArgs {
   render::RenderSettings settings;
 };
 
-std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::string& path) {
-  std::vector<Pose> poses = io::readPoses(path).poses;
-  if (poses.size() != dataset.size()) {
-    failAt(path, std::to_string(poses.size()) + " poses for " + std::to_string(dataset.size()) + " scans");
-  }
-  return poses;
-}
-
 void run(RenderArgs& args) {
   if (std::filesystem::path(args.output).extension() != ".png")
     throw ValueError(args.output + ": the picture (-o) must be a .png file");

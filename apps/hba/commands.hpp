@@ -14,5 +14,6 @@ void registerMmeCommand(CLI::App& app);
 void registerMapCommand(CLI::App& app);
 void registerRenderCommand(CLI::App& app);
 void registerExtractCommand(CLI::App& app);
+void registerViewCommand(CLI::App& app);
 
 }  // namespace hba::cli

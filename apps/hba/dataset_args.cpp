@@ -8,6 +8,7 @@
 
 #include "enum_choice.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/pose_file.hpp"
 #include "number_checks.hpp"
 
 namespace hba::cli {
@@ -52,6 +53,14 @@ std::string readPose(const std::string& text, Pose& pose) {
 }
 
 }  // namespace
+
+std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::filesystem::path& path) {
+  std::vector<Pose> poses = io::readPoses(path).poses;
+  if (poses.size() != dataset.size()) {
+    failAt(path, std::to_string(poses.size()) + " poses for " + std::to_string(dataset.size()) + " scans");
+  }
+  return poses;
+}
 
 Pose parsePoseArgument(const std::string& text, const std::string& flag) {
   Pose pose;

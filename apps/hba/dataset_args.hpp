@@ -5,7 +5,9 @@
 // --scans-in-world, and a recording's --cloud-topic, --pose-topic,
 // --time-offset, keyframes, and --deskew for raw sweeps.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "hba/io/dataset.hpp"
 
@@ -30,6 +32,10 @@ struct DatasetArgs {
   // Discovers the dataset (overrides win). Throws hba::Error.
   io::Dataset open() const;
 };
+
+// The poses of a file that must hold one per scan of `dataset` (a
+// trajectory to compare, ground truth). Throws hba::Error naming the file.
+std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::filesystem::path& path);
 
 // "tx ty tz qx qy qz qw" or 12 numbers "r00 r01 r02 tx r10 ... tz" (spaces or
 // commas). Throws hba::Error naming `flag` if malformed or not a rotation.

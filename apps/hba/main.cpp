@@ -102,6 +102,7 @@ int run(int argc, char** argv) {
   hba::cli::registerMapCommand(app);
   hba::cli::registerRenderCommand(app);
   hba::cli::registerExtractCommand(app);
+  hba::cli::registerViewCommand(app);
 
   // Threads and log level must be set before any subcommand callback runs.
   std::unique_ptr<tbb::global_control> thread_limit;

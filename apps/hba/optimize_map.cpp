@@ -191,9 +191,12 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   writeReport(out, report);
   const bool drawn =
       !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);
+  const bool paged =
+      !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, placed, std::nullopt,
+                                              report, pageTitle(dataset.root()), out);
   staging.commit();
-  spdlog::info("done: {} (poses in the map's frame, report.json{})", staging.destination().string(),
-               drawn ? ", before_after.png" : "");
+  spdlog::info("done: {} (poses in the map's frame, report.json{}{})", staging.destination().string(),
+               drawn ? ", before_after.png" : "", paged ? ", report.html" : "");
 }
 
 }  // namespace hba::cli::optimize

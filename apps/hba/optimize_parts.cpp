@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 
+#include <chrono>
 #include <map>
 #include <optional>
 
@@ -18,6 +19,7 @@
 #include "hba/io/position_prior_file.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
+#include "hba/render/report_page.hpp"
 #include "json_text.hpp"
 #include "pyramid/convention_check.hpp"
 #include "pyramid/report_json.hpp"
@@ -33,7 +35,7 @@ double peakMemoryMiB() {
 }
 
 std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames) {
-  if (args.no_render) return std::nullopt;
+  if (args.no_render && args.no_report_page) return std::nullopt;
   fs::path path = args.ground_truth;
   if (path.empty() && regularFileIsPresent(dataset.root() / "gt.txt")) path = dataset.root() / "gt.txt";
   if (path.empty()) return std::nullopt;
@@ -68,6 +70,41 @@ bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result,
   } catch (const MemoryExceeded& e) {
     spdlog::warn("before_after.png not drawn: {}; `hba render --compare` draws it from the outputs",
                  e.what());
+    return false;
+  }
+  return true;
+}
+
+std::string pageTitle(const fs::path& folder) {
+  const fs::path path = fs::absolute(folder).lexically_normal();
+  return (path.has_filename() ? path.filename() : path.parent_path().filename()).string();
+}
+
+bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+                     const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
+                     const nlohmann::json& report, const std::string& title, const fs::path& out) {
+  spdlog::info("writing report.html");
+  const auto start = std::chrono::steady_clock::now();
+  render::ReportPageSettings settings;
+  const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
+  if (kept) settings.scans_voxel = scan_voxel;
+  settings.memory = MemoryBudget::ofAvailableMemory();
+  render::ReportPageInput input;
+  input.title = title;
+  input.before = before;
+  input.after = result.poses;
+  if (gt) input.ground_truth = gt->poses;
+  input.report = report;
+  input.report["peak_memory_mib"] = peakMemoryMiB();
+  if (regularFileIsPresent(out / "before_after.png")) input.picture = out / "before_after.png";
+  try {
+    const render::ReportPageFigures page =
+        render::writeReportPage(kept ? *result.scans : scans, input, out / "report.html", settings);
+    spdlog::info("report.html: {} points (voxel {:.2f} m), {:.1f} MB, in {:.1f} s", page.points, page.voxel,
+                 static_cast<double>(page.bytes) / 1e6,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  } catch (const MemoryExceeded& e) {
+    spdlog::warn("report.html not written: {}; `hba view` writes it from the outputs", e.what());
     return false;
   }
   return true;

@@ -31,6 +31,7 @@ struct Args {
   std::string priors;
   double prior_max_gap_s = 0.5;
   bool no_render = false;
+  bool no_report_page = false;
   bool no_convention_check = false;
   bool no_memory_check = false;
   bool force = false;
@@ -62,8 +63,8 @@ std::vector<std::string> writeEveryScanPoses(const std::filesystem::path& out, c
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
                           const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
 void writeReport(const std::filesystem::path& out, const nlohmann::json& report);
-// Ground truth for the picture: --gt, or the simulator's gt.txt beside the
-// data; none with --no-render or when it has not `frames` poses (a warning).
+// Ground truth for the picture and the page: --gt, or the simulator's gt.txt
+// beside the data; none with --no-render and --no-report-page, or when it has not `frames` poses (a warning).
 // Read before any work: a bad file must not cost a finished run.
 std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames);
 // before_after.png of `before` and `result.poses` (with `gt` when given).
@@ -74,6 +75,16 @@ std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& d
 bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
                   const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                   const std::filesystem::path& out);
+// report.html (docs/report_page.md): the map in 3D with the input and the
+// optimized poses, the run's `report` and the picture in `out`, if drawn. The
+// scans are read as for the picture. False, with a warning, when it would
+// not fit in the memory available: left out.
+// A page's title: the folder's name.
+std::string pageTitle(const std::filesystem::path& folder);
+bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+                     const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
+                     const nlohmann::json& report, const std::string& title,
+                     const std::filesystem::path& out);
 
 // What a session's alignment tried (places, pairs and their outcomes, times)
 // for report.json; each pair also logged at debug level, after `label`.

@@ -149,9 +149,12 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
       {"registered", alignment_report}};
   writeReport(out, report);
   const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
+  const bool paged = !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, initial, gt,
+                                                             report, pageTitle(datasets[0].root()), out);
   staging.commit();
-  spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{})", result.report.seconds_total,
-               staging.destination().string(), datasets.size(), drawn ? ", before_after.png" : "");
+  spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{}{})", result.report.seconds_total,
+               staging.destination().string(), datasets.size(), drawn ? ", before_after.png" : "",
+               paged ? ", report.html" : "");
 }
 
 }  // namespace hba::cli::optimize

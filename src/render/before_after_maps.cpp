@@ -1,7 +1,6 @@
 #include "before_after_maps.hpp"
 
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_pipeline.h>
 
 #include <algorithm>
 #include <atomic>
@@ -14,44 +13,10 @@
 #include "hba/eval/merged_map.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "picture_points.hpp"
+#include "scan_stream.hpp"
 
 namespace hba::render {
 namespace {
-
-constexpr std::size_t kChunk = 25;    // consecutive scans merged together first
-constexpr std::size_t kInFlight = 8;  // chunks read ahead of the merge: cores busy, little memory
-
-// Reads `indices` with `read` (anything per scan) in parallel, and hands
-// the results to `merge` one by one in index order while later scans are
-// still being read.
-template <typename Part>
-void streamScans(const std::vector<std::size_t>& indices, const std::function<Part(std::size_t)>& read,
-                 const std::function<void(std::size_t, Part&)>& merge, Progress& progress) {
-  struct Item {
-    std::size_t index = 0;
-    Part part;
-  };
-  std::size_t next = 0;
-  tbb::parallel_pipeline(
-      kInFlight, tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                                     [&](tbb::flow_control& control) -> std::size_t {
-                                                       if (next == indices.size()) {
-                                                         control.stop();
-                                                         return 0;
-                                                       }
-                                                       return indices[next++];
-                                                     }) &
-                     tbb::make_filter<std::size_t, std::shared_ptr<Item>>(
-                         tbb::filter_mode::parallel,
-                         [&](std::size_t i) {
-                           return std::make_shared<Item>(Item{i, read(i)});
-                         }) &
-                     tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order,
-                                                                   [&](const std::shared_ptr<Item>& item) {
-                                                                     merge(item->index, item->part);
-                                                                     progress.advance();
-                                                                   }));
-}
 
 // Points of `scan` moved by `pose`, relative to `corner` (float precision
 // near it), keeping those `keep` accepts.
@@ -87,17 +52,6 @@ void checkSizes(const io::ScanSource& scans, const std::array<const std::vector<
                   " poses were given");
     }
   }
-}
-
-// Scan `i` at `voxel`: downsampled here unless it came so already.
-PointCloud loadAt(const io::ScanSource& scans, std::size_t i, double voxel, double scans_voxel) {
-  return scans_voxel >= voxel ? scans.load(i) : voxel::downsample(scans.load(i), voxel);
-}
-
-std::vector<std::size_t> upTo(std::size_t n) {
-  std::vector<std::size_t> out(n);
-  for (std::size_t i = 0; i < n; ++i) out[i] = i;
-  return out;
 }
 
 }  // namespace

@@ -12,6 +12,22 @@
 
 namespace hba::render {
 
+// A voxel's key packed into 64 bits (21 bits an axis) for the voxel of edge
+// 1 / `inverse_voxel` holding `q`; kOutsidePackedRange more than 2^20
+// voxels from the origin in any axis (or not finite).
+inline constexpr std::uint64_t kOutsidePackedRange = ~std::uint64_t{0};
+inline std::uint64_t packedVoxelKey(const Vec3& q, double inverse_voxel) {
+  constexpr std::int64_t kHalfRange = std::int64_t{1} << 20;
+  std::uint64_t key = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    // Clamped for NaN and huge values, which then fall outside the range.
+    const std::int64_t cell = voxel::VoxelKey::cell(q(axis) * inverse_voxel);
+    if (!(cell > -kHalfRange && cell < kHalfRange)) return kOutsidePackedRange;
+    key |= static_cast<std::uint64_t>(cell + kHalfRange) << (21 * axis);
+  }
+  return key;
+}
+
 class PicturePoints {
  public:
   // Points are kept relative to `origin` (float precision near it); voxels

@@ -1,10 +1,10 @@
 // The entry points on a sequence of scans: merge the maps, then draw them.
 #include <tbb/parallel_invoke.h>
 
+#include "aligned_ground_truth.hpp"
 #include "before_after_maps.hpp"
 #include "core/release_memory.hpp"
 #include "hba/core/error.hpp"
-#include "hba/eval/alignment.hpp"
 #include "hba/eval/merged_map.hpp"
 #include "hba/render/map_picture.hpp"
 #include "map_change.hpp"
@@ -23,17 +23,6 @@ PointCloud mergedMap(const io::ScanSource& scans, const std::vector<Pose>& poses
   map.voxel = settings.voxel;
   map.budget = settings.budget;
   return eval::buildMergedMap(scans, poses, map);
-}
-
-// Ground truth moved onto `reference` when both pair up by index; as given otherwise.
-std::vector<Pose> alignedGroundTruth(const std::vector<Pose>& ground_truth,
-                                     const std::vector<Pose>& reference) {
-  if (ground_truth.size() != reference.size() || ground_truth.size() < 3) return ground_truth;
-  const eval::Similarity s = eval::alignTrajectory(reference, ground_truth, eval::Alignment::SE3);
-  std::vector<Pose> out;
-  out.reserve(ground_truth.size());
-  for (const Pose& p : ground_truth) out.push_back(s.apply(p));
-  return out;
 }
 
 }  // namespace

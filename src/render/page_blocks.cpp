@@ -1,0 +1,132 @@
+#include "page_blocks.hpp"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "map_change.hpp"
+
+namespace hba::render {
+namespace {
+
+template <typename T>
+void appendLittleEndian(Bytes& out, T value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  std::uint8_t raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  // x86 and ARM are little endian; a big-endian host reverses the bytes.
+  if constexpr (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__) std::reverse(raw, raw + sizeof(T));
+  out.insert(out.end(), raw, raw + sizeof(T));
+}
+
+// The map's points placed by `poses`, relative to the first pose.
+PointCloud placed(const PagePoints& points, const std::vector<Pose>& poses) {
+  PointCloud out;
+  out.origin = poses.empty() ? Vec3::Zero() : poses.front().t;
+  out.reserve(points.size(), false);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.add((poses[points.scan[i]] * points.local[i].cast<double>() - out.origin).cast<float>());
+  return out;
+}
+
+}  // namespace
+
+std::string base64(const Bytes& bytes) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 3 <= bytes.size(); i += 3) {
+    const std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8) | bytes[i + 2];
+    for (int shift : {18, 12, 6, 0}) out.push_back(kDigits[(v >> shift) & 63]);
+  }
+  const std::size_t rest = bytes.size() - i;
+  if (rest > 0) {
+    std::uint32_t v = std::uint32_t{bytes[i]} << 16;
+    if (rest == 2) v |= std::uint32_t{bytes[i + 1]} << 8;
+    out.push_back(kDigits[(v >> 18) & 63]);
+    out.push_back(kDigits[(v >> 12) & 63]);
+    out.push_back(rest == 2 ? kDigits[(v >> 6) & 63] : '=');
+    out.push_back('=');
+  }
+  return out;
+}
+
+QuantizedPoints quantizePoints(const PagePoints& points) {
+  float largest = 0.0f;
+  for (const Vec3f& p : points.local) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  QuantizedPoints out;
+  out.step = std::max(1e-4, static_cast<double>(largest) / 32767.0);
+  out.xyz.reserve(points.size() * 6);
+  for (const Vec3f& p : points.local) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double q = std::round(p(axis) / out.step);
+      appendLittleEndian(out.xyz, static_cast<std::int16_t>(std::clamp(q, -32767.0, 32767.0)));
+    }
+  }
+  return out;
+}
+
+Bytes pointsPerScan(const PagePoints& points, std::size_t frames) {
+  std::vector<std::uint32_t> counts(frames, 0);
+  for (const std::uint32_t scan : points.scan) ++counts.at(scan);
+  Bytes out;
+  out.reserve(frames * 4);
+  for (const std::uint32_t count : counts) appendLittleEndian(out, count);
+  return out;
+}
+
+Bytes intensityCodes(const std::vector<float>& intensity) {
+  if (intensity.empty()) return {};
+  std::vector<float> sorted = intensity;
+  const auto at = [&](double fraction) {
+    auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(fraction * static_cast<double>(sorted.size() - 1));
+    std::nth_element(sorted.begin(), nth, sorted.end());
+    return static_cast<double>(*nth);
+  };
+  const double low = at(0.01);
+  const double high = std::max(at(0.99), low + 1e-6);
+  Bytes out;
+  out.reserve(intensity.size());
+  for (const float v : intensity)
+    out.push_back(static_cast<std::uint8_t>(std::clamp(std::round((v - low) / (high - low) * 255.0), 0.0, 255.0)));
+  return out;
+}
+
+Bytes poseRows(const std::vector<Pose>& poses, const Vec3& origin) {
+  Bytes out;
+  out.reserve(poses.size() * 48);
+  for (const Pose& pose : poses) {
+    const Mat3 R = pose.R();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) appendLittleEndian(out, static_cast<float>(R(r, c)));
+    const Vec3 t = pose.t - origin;
+    for (int axis = 0; axis < 3; ++axis) appendLittleEndian(out, static_cast<float>(t(axis)));
+  }
+  return out;
+}
+
+Bytes thicknessChangeCodes(const PagePoints& points, const std::vector<Pose>& before,
+                           const std::vector<Pose>& after, double cell) {
+  std::vector<float> thick_before, thick_after;
+  tbb::parallel_invoke(
+      [&] {
+        const PointCloud map = placed(points, before);
+        thick_before = PlaneThickness(map, cell).perPoint(map);
+      },
+      [&] {
+        const PointCloud map = placed(points, after);
+        thick_after = PlaneThickness(map, cell).perPoint(map);
+      });
+  Bytes out(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (thick_before[i] < 0.0f || thick_after[i] < 0.0f) continue;
+    const double steps = std::round((thick_before[i] - thick_after[i]) * 1000.0 / kChangeStepMm);
+    out[i] = static_cast<std::uint8_t>(128.0 + std::clamp(steps, -127.0, 127.0));
+  }
+  return out;
+}
+
+}  // namespace hba::render

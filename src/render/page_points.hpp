@@ -1,0 +1,32 @@
+#pragma once
+// The points a report page shows (private to render): the merged map
+// thinned to a budget, one point per occupied world voxel (the first in
+// scan order), each kept in its own scan's frame with that scan's index so
+// that the page places it with any pose set (input, optimized).
+#include <cstdint>
+#include <vector>
+
+#include "hba/core/memory_budget.hpp"
+#include "hba/core/point_cloud.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/io/scan_source.hpp"
+
+namespace hba::render {
+
+struct PagePoints {
+  std::vector<std::uint32_t> scan;  // ascending
+  std::vector<Vec3f> local;         // in the scan's sensor frame
+  std::vector<float> intensity;     // empty when the scans have none
+  double voxel = 0.0;               // the world voxel (m) the map was thinned at
+  std::size_t size() const { return scan.size(); }
+};
+
+// At most `budget` points of the map of `scans` placed by `poses`. The voxel
+// starts at `start_voxel` and grows until the map fits; scans that come
+// downsampled at `scans_voxel` (m, 0: as recorded) are not downsampled
+// again at that voxel or finer. Throws MemoryExceeded once the process
+// outgrows `memory`, hba::Error on a size mismatch.
+PagePoints samplePagePoints(const io::ScanSource& scans, const std::vector<Pose>& poses, std::size_t budget,
+                            double start_voxel, double scans_voxel = 0.0, const MemoryBudget& memory = {});
+
+}  // namespace hba::render
