@@ -123,13 +123,13 @@ void run(const Args& args) {
                         {"passes", deskew_passes.size() + 1},
                         {"earlier_passes", deskew_passes}};
   }
-  writeReport(out, report);
+  report = writeReport(out, report);
 
   const bool drawn = !args.no_render &&
                      writePicture(scans, result, settings.scan_voxel, dataset.trajectory().poses, gt, out);
   const bool paged =
       !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, dataset.trajectory().poses,
-                                              gt, report, pageTitle(dataset.root()), out);
+                                              gt, report, folderName(dataset.root()), out);
   staging->commit();
   spdlog::info("done in {:.1f} s (peak memory {:.0f} MiB): {}", result.report.seconds_total, peakMemoryMiB(),
                staging->destination().string());

@@ -83,7 +83,8 @@ void run(ViewArgs& args) {
   }();
   input.before = dataset.trajectory().poses;
   if (from_output) {
-    if (!args.compare.empty()) throw Error("--compare is for a dataset; " + given.string() + " is an output folder");
+    if (!args.compare.empty())
+      throw Error("--compare is for a dataset; " + given.string() + " is an output folder");
     input.after = readPosesFor(dataset, given / "pose.json");
     if (regularFileIsPresent(given / "before_after.png")) input.picture = given / "before_after.png";
   } else {
@@ -91,7 +92,8 @@ void run(ViewArgs& args) {
   }
   fs::path output = args.output;
   if (output.empty()) {
-    if (!from_output) throw Error("-o page.html is needed for a dataset (hba view OUT writes OUT/report.html)");
+    if (!from_output)
+      throw Error("-o page.html is needed for a dataset (hba view OUT writes OUT/report.html)");
     output = given / "report.html";
   }
   if (output.extension() != ".html") throw Error(output.string() + ": the page (-o) must be an .html file");
@@ -101,9 +103,7 @@ void run(ViewArgs& args) {
   fs::path gt_file = args.gt;
   if (gt_file.empty() && regularFileIsPresent(dataset.root() / "gt.txt")) gt_file = dataset.root() / "gt.txt";
   if (!gt_file.empty()) input.ground_truth = readPosesFor(dataset, gt_file);
-  const fs::path named = from_output ? given : dataset.root();
-  const fs::path title = fs::absolute(named).lexically_normal();
-  input.title = (title.has_filename() ? title.filename() : title.parent_path().filename()).string();
+  input.title = folderName(dataset.root());
 
   const auto start = std::chrono::steady_clock::now();
   const io::DatasetScanSource scans(dataset);
@@ -126,7 +126,8 @@ void registerViewCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output,
                       "The page (.html); default OUT/report.html for an output folder");
   command->add_flag("--force", args->force, "Replace an existing file that is not an hba report page");
-  command->add_option("--compare", args->compare, "With a dataset: the optimized poses to show beside its own")
+  command
+      ->add_option("--compare", args->compare, "With a dataset: the optimized poses to show beside its own")
       ->check(inputFile());
   command->add_option("--gt", args->gt, "Ground-truth trajectory to draw (default: the dataset's gt.txt)")
       ->check(inputFile());

@@ -62,6 +62,11 @@ std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::filesystem
   return poses;
 }
 
+std::string folderName(const std::filesystem::path& folder) {
+  const std::filesystem::path path = std::filesystem::absolute(folder).lexically_normal();
+  return (path.has_filename() ? path.filename() : path.parent_path().filename()).string();
+}
+
 Pose parsePoseArgument(const std::string& text, const std::string& flag) {
   Pose pose;
   const std::string problem = readPose(text, pose);

@@ -37,6 +37,9 @@ struct DatasetArgs {
 // trajectory to compare, ground truth). Throws hba::Error naming the file.
 std::vector<Pose> readPosesFor(const io::Dataset& dataset, const std::filesystem::path& path);
 
+// A folder's own name ("hku1" for "data/hku1/"), to title a page with.
+std::string folderName(const std::filesystem::path& folder);
+
 // "tx ty tz qx qy qz qw" or 12 numbers "r00 r01 r02 tx r10 ... tz" (spaces or
 // commas). Throws hba::Error naming `flag` if malformed or not a rotation.
 Pose parsePoseArgument(const std::string& text, const std::string& flag);

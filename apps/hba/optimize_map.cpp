@@ -188,12 +188,12 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
                               {"plane_rms_before_m", refined.rms_before},
                               {"plane_rms_after_m", refined.rms_after}};
   report["map"] = map_report;
-  writeReport(out, report);
+  report = writeReport(out, report);
   const bool drawn =
       !args.no_render && writePicture(scans, result, settings.scan_voxel, placed, std::nullopt, out);
   const bool paged =
       !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, placed, std::nullopt,
-                                              report, pageTitle(dataset.root()), out);
+                                              report, folderName(dataset.root()), out);
   staging.commit();
   spdlog::info("done: {} (poses in the map's frame, report.json{}{})", staging.destination().string(),
                drawn ? ", before_after.png" : "", paged ? ", report.html" : "");

@@ -75,11 +75,6 @@ bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result,
   return true;
 }
 
-std::string pageTitle(const fs::path& folder) {
-  const fs::path path = fs::absolute(folder).lexically_normal();
-  return (path.has_filename() ? path.filename() : path.parent_path().filename()).string();
-}
-
 bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
                      const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                      const nlohmann::json& report, const std::string& title, const fs::path& out) {
@@ -95,7 +90,6 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
   input.after = result.poses;
   if (gt) input.ground_truth = gt->poses;
   input.report = report;
-  input.report["peak_memory_mib"] = peakMemoryMiB();
   if (regularFileIsPresent(out / "before_after.png")) input.picture = out / "before_after.png";
   try {
     const render::ReportPageFigures page =
@@ -252,11 +246,12 @@ nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& d
   return report;
 }
 
-void writeReport(const fs::path& out, const nlohmann::json& report) {
+nlohmann::json writeReport(const fs::path& out, const nlohmann::json& report) {
   nlohmann::json with_memory = report;
   with_memory["peak_memory_mib"] = peakMemoryMiB();
   writeFileAtomically(
       out / "report.json", [&](std::ostream& os) { os << jsonText(with_memory, 2) << '\n'; }, false);
+  return with_memory;
 }
 
 nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label) {

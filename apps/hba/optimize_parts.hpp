@@ -62,7 +62,8 @@ std::vector<std::string> writeEveryScanPoses(const std::filesystem::path& out, c
 // report.json's content for `dataset` (the caller may add to it), and writing it.
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
                           const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
-void writeReport(const std::filesystem::path& out, const nlohmann::json& report);
+// Returns what was written (with the peak memory so far).
+nlohmann::json writeReport(const std::filesystem::path& out, const nlohmann::json& report);
 // Ground truth for the picture and the page: --gt, or the simulator's gt.txt
 // beside the data; none with --no-render and --no-report-page, or when it has not `frames` poses (a warning).
 // Read before any work: a bad file must not cost a finished run.
@@ -79,8 +80,6 @@ bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result,
 // optimized poses, the run's `report` and the picture in `out`, if drawn. The
 // scans are read as for the picture. False, with a warning, when it would
 // not fit in the memory available: left out.
-// A page's title: the folder's name.
-std::string pageTitle(const std::filesystem::path& folder);
 bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
                      const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                      const nlohmann::json& report, const std::string& title,

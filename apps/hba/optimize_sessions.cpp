@@ -147,10 +147,10 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   report["alignment"] = {
       {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
       {"registered", alignment_report}};
-  writeReport(out, report);
+  report = writeReport(out, report);
   const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
   const bool paged = !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, initial, gt,
-                                                             report, pageTitle(datasets[0].root()), out);
+                                                             report, folderName(datasets[0].root()), out);
   staging.commit();
   spdlog::info("done in {:.1f} s: {} ({} session folders, report.json{}{})", result.report.seconds_total,
                staging.destination().string(), datasets.size(), drawn ? ", before_after.png" : "",

@@ -17,20 +17,23 @@ constexpr double kPlanarRatio = 0.15;       // lambda_min / lambda_mid below thi
 
 }  // namespace
 
-void CellMoments::add(const Vec3& world) {
+std::uint32_t CellMoments::add(const Vec3& world) {
   const voxel::VoxelKey key = voxel::VoxelKey::of(world, cell_);
   const Vec3 local =
       world -
       Vec3(static_cast<double>(key.x), static_cast<double>(key.y), static_cast<double>(key.z)) * cell_;
-  Moments& m = at(key);
+  std::uint32_t number = 0;
+  Moments& m = at(key, &number);
   m.count += 1.0;
   m.sum += local;
   m.outer += local * local.transpose();
+  return number;
 }
 
-CellMoments::Moments& CellMoments::at(const voxel::VoxelKey& key) {
+CellMoments::Moments& CellMoments::at(const voxel::VoxelKey& key, std::uint32_t* number) {
   bool inserted = false;
   const std::uint32_t i = index_.insert(key, inserted);
+  if (number) *number = i;
   if (inserted) {
     keys_.push_back(key);
     moments_.emplace_back();
@@ -55,19 +58,18 @@ PlaneThickness::PlaneThickness(const PointCloud& map, double cell)
         return moments;
       }()) {}
 
+float planeThicknessOf(const CellMoments::Moments& m) {
+  if (m.count < kMinPoints) return -1.0f;
+  const Vec3 mean = m.sum / m.count;
+  const Vec3 eigen =
+      Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / m.count - mean * mean.transpose(), Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  return eigen(0) < kPlanarRatio * eigen(1) ? static_cast<float>(std::sqrt(std::max(0.0, eigen(0)))) : -1.0f;
+}
+
 PlaneThickness::PlaneThickness(const CellMoments& moments) : cell_(moments.cell()) {
-  for (std::size_t i = 0; i < moments.size(); ++i) {
-    const CellMoments::Moments& m = moments.moments(i);
-    float value = -1.0f;
-    if (m.count >= kMinPoints) {
-      const Vec3 mean = m.sum / m.count;
-      const Vec3 eigen = Eigen::SelfAdjointEigenSolver<Mat3>(m.outer / m.count - mean * mean.transpose(),
-                                                             Eigen::EigenvaluesOnly)
-                             .eigenvalues();
-      if (eigen(0) < kPlanarRatio * eigen(1)) value = static_cast<float>(std::sqrt(std::max(0.0, eigen(0))));
-    }
-    voxels_.emplace(moments.key(i), value);
-  }
+  for (std::size_t i = 0; i < moments.size(); ++i)
+    voxels_.emplace(moments.key(i), planeThicknessOf(moments.moments(i)));
 }
 
 std::vector<float> PlaneThickness::perPoint(const PointCloud& map) const {

@@ -25,7 +25,8 @@ class CellMoments {
   };
   explicit CellMoments(double cell) : cell_(cell) {}
   double cell() const { return cell_; }
-  void add(const Vec3& world);
+  // Returns the number of the cell `world` fell in (its index below).
+  std::uint32_t add(const Vec3& world);
   void merge(const CellMoments& other);
   // Cells in the order first touched.
   std::size_t size() const { return keys_.size(); }
@@ -33,12 +34,16 @@ class CellMoments {
   const Moments& moments(std::size_t i) const { return moments_[i]; }
 
  private:
-  Moments& at(const voxel::VoxelKey& key);
+  Moments& at(const voxel::VoxelKey& key, std::uint32_t* number = nullptr);
   double cell_;
   voxel::VoxelIndex index_;
   std::vector<voxel::VoxelKey> keys_;
   std::vector<Moments> moments_;
 };
+
+// The thickness (m) of one cell's points where they form a plane (see
+// PlaneThickness), -1 otherwise.
+float planeThicknessOf(const CellMoments::Moments& m);
 
 // The thickness (m) of a map's planes, per `cell` voxel of the world grid:
 // the square root of the smallest eigenvalue of the covariance of the

@@ -21,13 +21,17 @@ void appendLittleEndian(Bytes& out, T value) {
   out.insert(out.end(), raw, raw + sizeof(T));
 }
 
-// The map's points placed by `poses`, relative to the first pose.
-PointCloud placed(const PagePoints& points, const std::vector<Pose>& poses) {
-  PointCloud out;
-  out.origin = poses.empty() ? Vec3::Zero() : poses.front().t;
-  out.reserve(points.size(), false);
+// The plane thickness of each point's cell with the map placed by `poses`
+// (-1 where the cell's points form no plane).
+std::vector<float> thicknessPerPoint(const PagePoints& points, const std::vector<Pose>& poses, double cell) {
+  CellMoments moments(cell);
+  std::vector<std::uint32_t> cell_of(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    out.add((poses[points.scan[i]] * points.local[i].cast<double>() - out.origin).cast<float>());
+    cell_of[i] = moments.add(poses[points.scan[i]] * points.local[i].cast<double>());
+  std::vector<float> per_cell(moments.size());
+  for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments.moments(c));
+  std::vector<float> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = per_cell[cell_of[i]];
   return out;
 }
 
@@ -39,7 +43,8 @@ std::string base64(const Bytes& bytes) {
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 3 <= bytes.size(); i += 3) {
-    const std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8) | bytes[i + 2];
+    const std::uint32_t v =
+        (std::uint32_t{bytes[i]} << 16) | (std::uint32_t{bytes[i + 1]} << 8) | bytes[i + 2];
     for (int shift : {18, 12, 6, 0}) out.push_back(kDigits[(v >> shift) & 63]);
   }
   const std::size_t rest = bytes.size() - i;
@@ -82,7 +87,8 @@ Bytes intensityCodes(const std::vector<float>& intensity) {
   if (intensity.empty()) return {};
   std::vector<float> sorted = intensity;
   const auto at = [&](double fraction) {
-    auto nth = sorted.begin() + static_cast<std::ptrdiff_t>(fraction * static_cast<double>(sorted.size() - 1));
+    auto nth =
+        sorted.begin() + static_cast<std::ptrdiff_t>(fraction * static_cast<double>(sorted.size() - 1));
     std::nth_element(sorted.begin(), nth, sorted.end());
     return static_cast<double>(*nth);
   };
@@ -91,7 +97,8 @@ Bytes intensityCodes(const std::vector<float>& intensity) {
   Bytes out;
   out.reserve(intensity.size());
   for (const float v : intensity)
-    out.push_back(static_cast<std::uint8_t>(std::clamp(std::round((v - low) / (high - low) * 255.0), 0.0, 255.0)));
+    out.push_back(
+        static_cast<std::uint8_t>(std::clamp(std::round((v - low) / (high - low) * 255.0), 0.0, 255.0)));
   return out;
 }
 
@@ -111,15 +118,8 @@ Bytes poseRows(const std::vector<Pose>& poses, const Vec3& origin) {
 Bytes thicknessChangeCodes(const PagePoints& points, const std::vector<Pose>& before,
                            const std::vector<Pose>& after, double cell) {
   std::vector<float> thick_before, thick_after;
-  tbb::parallel_invoke(
-      [&] {
-        const PointCloud map = placed(points, before);
-        thick_before = PlaneThickness(map, cell).perPoint(map);
-      },
-      [&] {
-        const PointCloud map = placed(points, after);
-        thick_after = PlaneThickness(map, cell).perPoint(map);
-      });
+  tbb::parallel_invoke([&] { thick_before = thicknessPerPoint(points, before, cell); },
+                       [&] { thick_after = thicknessPerPoint(points, after, cell); });
   Bytes out(points.size(), 0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (thick_before[i] < 0.0f || thick_after[i] < 0.0f) continue;

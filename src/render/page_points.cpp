@@ -1,5 +1,6 @@
 #include "page_points.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <string>
@@ -63,30 +64,40 @@ class FirstHits {
 };
 
 // One chunk's scans thinned on their own at the start voxel: the same
-// candidates whatever the timing of the threads.
-std::vector<Candidate> readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses, std::size_t chunk,
-                                 double voxel, double scans_voxel, const Vec3& origin) {
+// candidates whatever the timing of the threads. `expected`: room to make
+// at once (the last chunk's count; a guess).
+std::vector<Candidate> readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses,
+                                 std::size_t chunk, double voxel, double scans_voxel, const Vec3& origin,
+                                 std::size_t expected) {
   const std::size_t first = chunk * kChunk;
   const std::size_t end = std::min(scans.size(), first + kChunk);
   voxel::PackedVoxelSet seen;
+  seen.reserve(expected);
   std::vector<Candidate> kept;
+  kept.reserve(expected);
   const double inverse = 1.0 / voxel;
+  std::vector<std::uint64_t> keys;
+  std::vector<Vec3f> world;
   for (std::size_t i = first; i < end; ++i) {
     const PointCloud scan = loadAt(scans, i, voxel, scans_voxel);
     const Mat3 R = poses[i].R();
     const Vec3 t = poses[i].t - origin;
-    std::uint64_t last = kOutsidePackedRange;
+    keys.resize(scan.size());
+    world.resize(scan.size());
     for (std::size_t k = 0; k < scan.size(); ++k) {
-      const Vec3 p = scan.origin + scan.points[k].cast<double>();
-      const Vec3f world = (R * p + t).cast<float>();
-      // As the merge computes it: from the float position.
-      const std::uint64_t key = packedVoxelKey(world.cast<double>(), inverse);
+      world[k] = (R * (scan.origin + scan.points[k].cast<double>()) + t).cast<float>();
+      // As the merge computes it: from the float position (NaN falls outside).
+      keys[k] = packedVoxelKey(world[k].cast<double>(), inverse);
+    }
+    // Then the inserts, each prefetching the slot of a key a few points ahead.
+    constexpr std::size_t kLookahead = 16;
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      if (k + kLookahead < keys.size()) seen.prefetch(keys[k + kLookahead]);
       // Scans come ring by ring: a point in the voxel of the one before is not new.
-      if (key == kOutsidePackedRange || key == last || !p.allFinite()) continue;
-      last = key;
-      if (seen.insert(key))
-        kept.push_back({static_cast<std::uint32_t>(i), scan.hasIntensity() ? scan.intensity[k] : 0.0f,
-                        p.cast<float>(), world});
+      if (keys[k] == kOutsidePackedRange || (k > 0 && keys[k] == keys[k - 1]) || !seen.insert(keys[k]))
+        continue;
+      kept.push_back({static_cast<std::uint32_t>(i), scan.hasIntensity() ? scan.intensity[k] : 0.0f,
+                      (scan.origin + scan.points[k].cast<double>()).cast<float>(), world[k]});
     }
   }
   return kept;
@@ -105,14 +116,19 @@ PagePoints samplePagePoints(const io::ScanSource& scans, const std::vector<Pose>
   FirstHits map(start_voxel);
   bool intensity = false;
   const std::size_t chunks = (scans.size() + kChunk - 1) / kChunk;
+  std::atomic<std::size_t> chunk_points{0};
   const std::function<std::vector<Candidate>(std::size_t)> read = [&](std::size_t chunk) {
-    return readChunk(scans, poses, chunk, start_voxel, scans_voxel, origin);
+    std::vector<Candidate> part = readChunk(scans, poses, chunk, start_voxel, scans_voxel, origin,
+                                            chunk_points.load(std::memory_order_relaxed) * 5 / 4);
+    chunk_points.store(part.size(), std::memory_order_relaxed);
+    return part;
   };
   const std::function<void(std::size_t, std::vector<Candidate>&)> merge = [&](std::size_t chunk,
-                                                                             std::vector<Candidate>& part) {
+                                                                              std::vector<Candidate>& part) {
     for (const Candidate& c : part) intensity = intensity || c.intensity != 0.0f;
     map.add(part);
-    while (static_cast<double>(map.size()) > kSlack * static_cast<double>(budget)) map.coarsen(kCoarsenWhileReading);
+    while (static_cast<double>(map.size()) > kSlack * static_cast<double>(budget))
+      map.coarsen(kCoarsenWhileReading);
     if (memory.exceeded()) {
       throw memory.exceededBy("the page's map (" + std::to_string(map.size()) + " points after " +
                               std::to_string(std::min(scans.size(), (chunk + 1) * kChunk)) + " of " +

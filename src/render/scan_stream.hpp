@@ -43,9 +43,10 @@ void streamScans(const std::vector<std::size_t>& indices, const std::function<Pa
     progress.advance();
   };
   tbb::parallel_pipeline(
-      kInFlight, tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order, source) &
-                     tbb::make_filter<std::size_t, std::shared_ptr<Item>>(tbb::filter_mode::parallel, reader) &
-                     tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order, merger));
+      kInFlight,
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order, source) &
+          tbb::make_filter<std::size_t, std::shared_ptr<Item>>(tbb::filter_mode::parallel, reader) &
+          tbb::make_filter<std::shared_ptr<Item>, void>(tbb::filter_mode::serial_in_order, merger));
 }
 
 // Scan `i` at `voxel`: downsampled here unless it came so already.

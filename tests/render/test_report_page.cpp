@@ -43,7 +43,8 @@ io::MemoryScanSource randomScans(std::size_t n, std::size_t points, std::vector<
   std::vector<PointCloud> scans(n);
   poses.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t k = 0; k < points; ++k) scans[i].add(Vec3f(u(rng), u(rng), u(rng)), static_cast<float>(k % 200));
+    for (std::size_t k = 0; k < points; ++k)
+      scans[i].add(Vec3f(u(rng), u(rng), u(rng)), static_cast<float>(k % 200));
     poses.push_back(Pose(Quat(Eigen::AngleAxisd(0.1 * static_cast<double>(i), Vec3::UnitZ())),
                          Vec3(0.5 * static_cast<double>(i), 0.0, 0.0)));
   }
@@ -166,7 +167,8 @@ std::string blockText(const std::string& page, const std::string& id) {
 }
 
 std::size_t decodedSize(const std::string& b64) {
-  const std::size_t pad = b64.empty() ? 0 : static_cast<std::size_t>(std::count(b64.end() - 2, b64.end(), '='));
+  const std::size_t pad =
+      b64.empty() ? 0 : static_cast<std::size_t>(std::count(b64.end() - 2, b64.end(), '='));
   return b64.size() / 4 * 3 - pad;
 }
 
@@ -193,7 +195,8 @@ TEST(ReportPage, PageIsSelfContainedAndCarriesEveryBlock) {
 
   const std::string open = "<script type=\"application/json\" id=\"hba-data\">";
   const std::size_t start = page.find(open) + open.size();
-  const nlohmann::json data = nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
+  const nlohmann::json data =
+      nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
   EXPECT_EQ(data.at("frames"), gt.size());
   EXPECT_EQ(data.at("points"), figures.points);
   EXPECT_EQ(data.at("report").at("warnings").at(0), "a </script> inside a string");

@@ -19,9 +19,9 @@
 namespace hba::render {
 
 struct ReportPageInput {
-  std::string title;          // the page's heading (a dataset's name)
-  std::vector<Pose> before;   // the input poses, one per scan
-  std::vector<Pose> after;    // the optimized poses, one per scan
+  std::string title;               // the page's heading (a dataset's name)
+  std::vector<Pose> before;        // the input poses, one per scan
+  std::vector<Pose> after;         // the optimized poses, one per scan
   std::vector<Pose> ground_truth;  // empty, or one per scan (moved rigidly onto `after`)
   nlohmann::json report;           // report.json's content, or null
   std::filesystem::path picture;   // a PNG shown below the tables (before_after.png), or empty
