@@ -134,7 +134,7 @@ void registerViewCommand(CLI::App& app) {
   command
       ->add_option("--points", args->settings.point_budget,
                    "At most this many map points on the page (the map is thinned to fit)")
-      ->check(countIn(1000, 50e6))
+      ->check(countIn(1000, 8e6))
       ->capture_default_str();
   command->add_option("--voxel", args->settings.voxel, "The finest voxel the map is thinned at (m)")
       ->check(realIn(0.01, 10.0, "m"))

@@ -26,8 +26,10 @@ void appendLittleEndian(Bytes& out, T value) {
 std::vector<float> thicknessPerPoint(const PagePoints& points, const std::vector<Pose>& poses, double cell) {
   CellMoments moments(cell);
   std::vector<std::uint32_t> cell_of(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    cell_of[i] = moments.add(poses[points.scan[i]] * points.local[i].cast<double>());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const PagePoint& p = points.points[i];
+    cell_of[i] = moments.add(poses[p.scan] * p.local.cast<double>());
+  }
   std::vector<float> per_cell(moments.size());
   for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments.moments(c));
   std::vector<float> out(points.size());
@@ -59,15 +61,26 @@ std::string base64(const Bytes& bytes) {
   return out;
 }
 
+void writeBase64(std::ostream& os, const Bytes& bytes) {
+  constexpr std::size_t kPiece = 3 * 65536;  // a multiple of 3: no padding between pieces
+  Bytes piece;
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    const std::size_t end = std::min(bytes.size(), at + kPiece);
+    piece.assign(bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                 bytes.begin() + static_cast<std::ptrdiff_t>(end));
+    os << base64(piece);
+  }
+}
+
 QuantizedPoints quantizePoints(const PagePoints& points) {
   float largest = 0.0f;
-  for (const Vec3f& p : points.local) largest = std::max(largest, p.cwiseAbs().maxCoeff());
+  for (const PagePoint& p : points.points) largest = std::max(largest, p.local.cwiseAbs().maxCoeff());
   QuantizedPoints out;
   out.step = std::max(1e-4, static_cast<double>(largest) / 32767.0);
   out.xyz.reserve(points.size() * 6);
-  for (const Vec3f& p : points.local) {
+  for (const PagePoint& p : points.points) {
     for (int axis = 0; axis < 3; ++axis) {
-      const double q = std::round(p(axis) / out.step);
+      const double q = std::round(p.local(axis) / out.step);
       appendLittleEndian(out.xyz, static_cast<std::int16_t>(std::clamp(q, -32767.0, 32767.0)));
     }
   }
@@ -76,16 +89,17 @@ QuantizedPoints quantizePoints(const PagePoints& points) {
 
 Bytes pointsPerScan(const PagePoints& points, std::size_t frames) {
   std::vector<std::uint32_t> counts(frames, 0);
-  for (const std::uint32_t scan : points.scan) ++counts.at(scan);
+  for (const PagePoint& p : points.points) ++counts.at(p.scan);
   Bytes out;
   out.reserve(frames * 4);
   for (const std::uint32_t count : counts) appendLittleEndian(out, count);
   return out;
 }
 
-Bytes intensityCodes(const std::vector<float>& intensity) {
-  if (intensity.empty()) return {};
-  std::vector<float> sorted = intensity;
+Bytes intensityCodes(const PagePoints& points) {
+  if (!points.has_intensity) return {};
+  std::vector<float> sorted(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) sorted[i] = points.points[i].intensity;
   const auto at = [&](double fraction) {
     auto nth =
         sorted.begin() + static_cast<std::ptrdiff_t>(fraction * static_cast<double>(sorted.size() - 1));
@@ -95,10 +109,12 @@ Bytes intensityCodes(const std::vector<float>& intensity) {
   const double low = at(0.01);
   const double high = std::max(at(0.99), low + 1e-6);
   Bytes out;
-  out.reserve(intensity.size());
-  for (const float v : intensity)
+  out.reserve(points.size());
+  for (const PagePoint& p : points.points) {
+    const double v = p.intensity;
     out.push_back(
         static_cast<std::uint8_t>(std::clamp(std::round((v - low) / (high - low) * 255.0), 0.0, 255.0)));
+  }
   return out;
 }
 

@@ -13,12 +13,18 @@
 
 namespace hba::render {
 
+// 20 bytes a point: a 2 M point page holds 40 MB.
+struct PagePoint {
+  std::uint32_t scan = 0;
+  float intensity = 0.0f;       // 0 when the scans have none
+  Vec3f local = Vec3f::Zero();  // in the scan's sensor frame
+};
+
 struct PagePoints {
-  std::vector<std::uint32_t> scan;  // ascending
-  std::vector<Vec3f> local;         // in the scan's sensor frame
-  std::vector<float> intensity;     // empty when the scans have none
-  double voxel = 0.0;               // the world voxel (m) the map was thinned at
-  std::size_t size() const { return scan.size(); }
+  std::vector<PagePoint> points;  // scans ascending
+  bool has_intensity = false;     // some point has a non-zero intensity
+  double voxel = 0.0;             // the world voxel (m) the map was thinned at
+  std::size_t size() const { return points.size(); }
 };
 
 // At most `budget` points of the map of `scans` placed by `poses`. The voxel

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <sstream>
 
@@ -74,11 +75,54 @@ struct Block {
   Bytes bytes;
 };
 
-// The template with each {{NAME}} replaced once, in one pass: text put in
-// is never searched again.
-std::string fillTemplate(const std::string& page,
-                         const std::vector<std::pair<std::string, std::string>>& values) {
-  std::string out;
+// The page's data: the map thinned to the budget, encoded (the points
+// themselves are freed on return), and what the script reads first.
+struct PageData {
+  std::vector<Block> blocks;
+  nlohmann::json header;
+  std::size_t points = 0;
+  double voxel = 0.0;
+};
+
+PageData encodeData(const io::ScanSource& scans, const ReportPageInput& input,
+                    const ReportPageSettings& settings) {
+  const PagePoints points = samplePagePoints(scans, input.after, settings.point_budget, settings.voxel,
+                                             settings.scans_voxel, settings.memory);
+  const Vec3 origin = input.after.empty() ? Vec3::Zero() : input.after.front().t;
+  const double cell = std::max(1.0, 4.0 * points.voxel);
+  QuantizedPoints xyz = quantizePoints(points);
+  PageData out;
+  out.points = points.size();
+  out.voxel = points.voxel;
+  out.blocks = {{"xyz", std::move(xyz.xyz)},
+                {"per-scan", pointsPerScan(points, scans.size())},
+                {"change", thicknessChangeCodes(points, input.before, input.after, cell)},
+                {"pose-input", poseRows(input.before, origin)},
+                {"pose-optimized", poseRows(input.after, origin)}};
+  if (points.has_intensity) out.blocks.push_back({"intensity", intensityCodes(points)});
+  if (!input.ground_truth.empty())
+    out.blocks.push_back(
+        {"pose-ground-truth", poseRows(alignedGroundTruth(input.ground_truth, input.after), origin)});
+  out.header = {{"title", input.title},
+                {"frames", scans.size()},
+                {"points", points.size()},
+                {"voxel_m", points.voxel},
+                {"step_m", xyz.step},
+                {"origin", {origin.x(), origin.y(), origin.z()}},
+                {"thickness_cell_m", cell},
+                {"change_step_mm", kChangeStepMm},
+                {"has_intensity", points.has_intensity},
+                {"has_ground_truth", !input.ground_truth.empty()},
+                {"report", input.report}};
+  return out;
+}
+
+using Writer = std::function<void(std::ostream&)>;
+
+// The template with each {{NAME}} written by its writer, in one pass: what
+// is put in is never searched; the page is streamed, not held whole.
+void writeTemplate(std::ostream& os, const std::string& page,
+                   const std::vector<std::pair<std::string, Writer>>& values) {
   std::size_t at = 0;
   while (true) {
     const std::size_t open = page.find("{{", at);
@@ -86,18 +130,17 @@ std::string fillTemplate(const std::string& page,
     const std::size_t close = page.find("}}", open);
     if (close == std::string::npos) break;
     const std::string name = page.substr(open + 2, close - open - 2);
-    out.append(page, at, open - at);
+    os.write(page.data() + at, static_cast<std::streamsize>(open - at));
     bool found = false;
-    for (const auto& [key, value] : values) {
+    for (const auto& [key, write] : values) {
       if (key != name) continue;
-      out += value;
+      write(os);
       found = true;
     }
-    if (!found) out.append(page, open, close + 2 - open);
+    if (!found) os.write(page.data() + open, static_cast<std::streamsize>(close + 2 - open));
     at = close + 2;
   }
-  out.append(page, at, std::string::npos);
-  return out;
+  os << page.substr(at);
 }
 
 }  // namespace
@@ -115,55 +158,37 @@ ReportPageFigures writeReportPage(const io::ScanSource& scans, const ReportPageI
     return std::chrono::duration<double>(Clock::now() - since).count();
   };
   const Clock::time_point start = Clock::now();
-  const PagePoints points = samplePagePoints(scans, input.after, settings.point_budget, settings.voxel,
-                                             settings.scans_voxel, settings.memory);
-  const double sampled = seconds(start);
-  const Vec3 origin = input.after.empty() ? Vec3::Zero() : input.after.front().t;
-  const double cell = std::max(1.0, 4.0 * points.voxel);
-  const QuantizedPoints xyz = quantizePoints(points);
-  std::vector<Block> blocks = {{"xyz", xyz.xyz},
-                               {"per-scan", pointsPerScan(points, frames)},
-                               {"change", thicknessChangeCodes(points, input.before, input.after, cell)},
-                               {"pose-input", poseRows(input.before, origin)},
-                               {"pose-optimized", poseRows(input.after, origin)}};
-  if (!points.intensity.empty()) blocks.push_back({"intensity", intensityCodes(points.intensity)});
-  if (!input.ground_truth.empty())
-    blocks.push_back(
-        {"pose-ground-truth", poseRows(alignedGroundTruth(input.ground_truth, input.after), origin)});
-
-  const nlohmann::json data = {{"title", input.title},
-                               {"frames", frames},
-                               {"points", points.size()},
-                               {"voxel_m", points.voxel},
-                               {"step_m", xyz.step},
-                               {"origin", {origin.x(), origin.y(), origin.z()}},
-                               {"thickness_cell_m", cell},
-                               {"change_step_mm", kChangeStepMm},
-                               {"has_intensity", !points.intensity.empty()},
-                               {"has_ground_truth", !input.ground_truth.empty()},
-                               {"report", input.report}};
-  std::string block_text;
-  for (const Block& b : blocks)
-    block_text += "<script type=\"application/octet-stream\" id=\"hba-" + b.id + "\">" + base64(b.bytes) +
-                  "</script>\n";
-  const std::string picture_text =
-      picture.empty() ? std::string()
-                      : "<img alt=\"before and after, seen from above\" src=\"data:image/png;base64," +
-                            base64(picture) + "\">";
-  const std::string page = fillTemplate(kReportPageTemplate, {{"TITLE", escapeHtml(input.title)},
-                                                              {"STYLE", kReportPageStyle},
-                                                              {"DATA", scriptJson(data)},
-                                                              {"BLOCKS", block_text},
-                                                              {"PICTURE", picture_text},
-                                                              {"SCRIPT", kReportPageScript}});
+  const PageData data = encodeData(scans, input, settings);
   const double encoded = seconds(start);
-  writeFileAtomically(html, [&](std::ostream& os) { os << page; });
-  spdlog::debug("report page: map thinned in {:.2f} s, encoded in {:.2f} s, written in {:.2f} s", sampled,
-                encoded - sampled, seconds(start) - encoded);
+  const auto text = [](const std::string& value) { return [value](std::ostream& os) { os << value; }; };
+  const Writer blocks = [&](std::ostream& os) {
+    for (const Block& b : data.blocks) {
+      os << "<script type=\"application/octet-stream\" id=\"hba-" << b.id << "\">";
+      writeBase64(os, b.bytes);
+      os << "</script>\n";
+    }
+  };
+  const Writer image = [&](std::ostream& os) {
+    if (picture.empty()) return;
+    os << "<img alt=\"before and after, seen from above\" src=\"data:image/png;base64,";
+    writeBase64(os, picture);
+    os << "\">";
+  };
+  writeFileAtomically(html, [&](std::ostream& os) {
+    writeTemplate(os, kReportPageTemplate,
+                  {{"TITLE", text(escapeHtml(input.title))},
+                   {"STYLE", text(kReportPageStyle)},
+                   {"DATA", text(scriptJson(data.header))},
+                   {"BLOCKS", blocks},
+                   {"PICTURE", image},
+                   {"SCRIPT", text(kReportPageScript)}});
+  });
+  spdlog::debug("report page: map thinned and encoded in {:.2f} s, written in {:.2f} s", encoded,
+                seconds(start) - encoded);
   ReportPageFigures figures;
-  figures.points = points.size();
-  figures.voxel = points.voxel;
-  figures.bytes = page.size();
+  figures.points = data.points;
+  figures.voxel = data.voxel;
+  figures.bytes = static_cast<std::size_t>(std::filesystem::file_size(html));
   return figures;
 }
 

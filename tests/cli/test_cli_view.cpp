@@ -14,7 +14,9 @@ namespace fs = std::filesystem;
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 std::string hba() { return quoted(test::cliPath()); }
-bool isPage(const fs::path& file) { return test::readText(file).rfind("<!DOCTYPE html>\n<!-- hba report page", 0) == 0; }
+bool isPage(const fs::path& file) {
+  return test::readText(file).rfind("<!DOCTYPE html>\n<!-- hba report page", 0) == 0;
+}
 
 class View : public testing::Test {
  protected:
@@ -62,7 +64,8 @@ TEST_F(View, AFileHbaDidNotWriteIsReplacedOnlyWithForce) {
   fs::create_directories(*dir / "mine");
   const fs::path mine = *dir / "mine" / "page.html";
   test::writeText(mine, "<html>my notes</html>");
-  const std::string base = quoted(*dir / "sim") + " --compare " + quoted(*dir / "out" / "pose.json") + " -o " + quoted(mine);
+  const std::string base =
+      quoted(*dir / "sim") + " --compare " + quoted(*dir / "out" / "pose.json") + " -o " + quoted(mine);
   const test::CommandResult refused = view(base);
   EXPECT_NE(refused.exit_code, 0);
   EXPECT_NE(refused.output.find("--force"), std::string::npos) << refused.output;
@@ -81,8 +84,8 @@ TEST_F(View, BadInputIsRefusedByName) {
   EXPECT_NE(png.exit_code, 0);
   EXPECT_NE(png.output.find("must be an .html file"), std::string::npos) << png.output;
   test::writeText(*dir / "short.txt", "0 0 0 0 0 0 1\n0 0 0 0 0 0 1\n0 0 0 0 0 0 1\n");
-  const test::CommandResult short_poses =
-      view(quoted(*dir / "sim") + " --compare " + quoted(*dir / "short.txt") + " -o " + quoted(*dir / "p.html"));
+  const test::CommandResult short_poses = view(quoted(*dir / "sim") + " --compare " +
+                                               quoted(*dir / "short.txt") + " -o " + quoted(*dir / "p.html"));
   EXPECT_NE(short_poses.exit_code, 0);
   EXPECT_NE(short_poses.output.find("short.txt"), std::string::npos) << short_poses.output;
   EXPECT_NE(short_poses.output.find("3 poses for 60 scans"), std::string::npos) << short_poses.output;

@@ -152,7 +152,9 @@ def main():
         # The trajectories alone leave most of the canvas empty: the map is not drawn there.
         checks["canvas empty without the map (share)"] = (1.0 - drawn(shots["trajectories"]) / area, 0.9)
 
-        dom = chromium(browser, page, "map=input", ["--dump-dom"])
+        # A click at the canvas's centre names the scan of the point drawn there.
+        dom = chromium(browser, page, "map=input&pick=%d,%d" % ((WIDTH - 440) // 2, HEIGHT // 2), ["--dump-dom"])
+        picked = re.search(r'<div id="picked">scan (\d+) \(of (\d+)\)</div>', dom.stdout)
         status_text = re.search(r'<pre id="hba-status"[^>]*>(.*?)</pre>', dom.stdout, re.S)
         assert status_text, "the page wrote no status:\n" + dom.stderr[-3000:]
         status = json.loads(status_text.group(1).replace("&quot;", '"').replace("&amp;", "&"))
@@ -167,6 +169,11 @@ def main():
         if not status["drawn"] or status["map"] != "input" or status["points"] < 1000:
             print("FAILED: the page did not draw the input map")
             failed = True
+        if not picked or int(picked.group(1)) >= int(picked.group(2)):
+            print("FAILED: a click on the map named no scan")
+            failed = True
+        else:
+            print("a click at the centre: scan %s of %s" % picked.groups())
         if errors:
             print("FAILED: errors in the page's console:\n  " + "\n  ".join(errors))
             failed = True

@@ -39,6 +39,19 @@ TEST(PackedVoxelSet, TheEmptyMarkIsAKeyLikeAnother) {
   EXPECT_EQ(set.size(), 3u);
 }
 
+TEST(PackedVoxelSet, ClearedItForgetsEveryKeyAndServesAgain) {
+  PackedVoxelSet set;
+  const std::uint64_t mark = ~std::uint64_t{0};
+  for (std::uint64_t k = 0; k < 3000; ++k) set.insert(k * 977);
+  set.insert(mark);
+  set.clear();
+  EXPECT_EQ(set.size(), 0u);
+  EXPECT_TRUE(set.insert(mark));
+  for (std::uint64_t k = 0; k < 3000; ++k) ASSERT_TRUE(set.insert(k * 977)) << k;
+  EXPECT_FALSE(set.insert(977));
+  EXPECT_EQ(set.size(), 3001u);
+}
+
 TEST(PackedVoxelIndex, NumbersKeysInFirstSeenOrder) {
   PackedVoxelIndex index;
   std::unordered_map<std::uint64_t, std::uint32_t> reference;

@@ -138,6 +138,13 @@ class PackedVoxelSet {
     while (10 * keys > 7 * slots_.size()) grow();
   }
 
+  // Forgets every key and keeps the table (no fresh memory to fault in).
+  void clear() {
+    std::fill(slots_.begin(), slots_.end(), kEmpty);
+    stored_ = count_ = 0;
+    has_empty_key_ = false;
+  }
+
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 

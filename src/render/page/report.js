@@ -376,6 +376,13 @@ function nearestScan(x, y) {
   return best < 0 ? null : scanOf[best];
 }
 
+// The scan of the point drawn nearest to (x, y) in CSS pixels of the canvas, marked and named.
+function pick(x, y) {
+  picked = nearestScan(x, y);
+  document.getElementById('picked').textContent = picked === null ? '' : 'scan ' + picked + ' (of ' + frames + ')';
+  requestDraw();
+}
+
 function setupMouse() {
   let drag = null;
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
@@ -383,9 +390,7 @@ function setupMouse() {
   window.addEventListener('mouseup', (e) => {
     if (drag && !drag.moved && e.target === canvas) {
       const r = canvas.getBoundingClientRect();
-      picked = nearestScan(e.clientX - r.left, e.clientY - r.top);
-      document.getElementById('picked').textContent = picked === null ? '' : 'scan ' + picked + ' (of ' + frames + ')';
-      requestDraw();
+      pick(e.clientX - r.left, e.clientY - r.top);
     }
     drag = null;
   });
@@ -427,6 +432,7 @@ function setupControls() {
 }
 
 // Settings from the address: #map=input|optimized|both&color=...&view=top|side|free&layers=map,trajectory,...
+// and pick=X,Y (a click at canvas pixel X, Y).
 function applyAddress() {
   const params = new URLSearchParams(location.hash.slice(1));
   if (params.has('map')) {
@@ -443,6 +449,10 @@ function applyAddress() {
   }
   if (params.has('size')) state.pointSize = Number(params.get('size'));
   setView(params.get('view') || camera.view);
+  if (params.has('pick')) {
+    const [x, y] = params.get('pick').split(',').map(Number);
+    pick(x, y);
+  }
 }
 
 // ---- tables ----
