@@ -25,3 +25,4 @@ echo "before: $("$hba" -q mme "$out/sequence" | tail -n 1)"
 echo "after:  $("$hba" -q mme "$out/sequence" --poses "$out/result/pose.json" | tail -n 1)"
 echo
 echo "Picture: $out/result/before_after.png   Report: $out/result/report.json"
+echo "The map in 3D, before and after (open in a browser): $out/result/report.html"

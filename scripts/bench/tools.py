@@ -32,9 +32,17 @@ class Tools:
     def simulate(self, flags, output):
         self._run(self.simulate_argv(flags, output))
 
+    def writes_report_page(self):
+        """Whether this build writes report.html by default (it then has --no-report-page)."""
+        if not hasattr(self, "_page_flag"):
+            stdout, _ = process.run([self.hba, "optimize", "--help"])
+            self._page_flag = "--no-report-page" in stdout
+        return self._page_flag
+
     def optimize(self, dataset, pose_args, output, render=False):
-        """Returns (Usage of the optimize process, its report.json)."""
-        picture = [] if render else ["--no-render"]
+        """Returns (Usage of the optimize process, its report.json). Without `render`, neither the
+        picture nor the report page: the optimization alone, comparable with builds before either."""
+        picture = [] if render else ["--no-render"] + (["--no-report-page"] if self.writes_report_page() else [])
         _, usage = self._run(self._hba("optimize", dataset, *pose_args, "-o", output, *picture, "--force"))
         with open(output / "report.json", encoding="utf-8") as report:
             return usage, json.load(report)

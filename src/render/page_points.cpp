@@ -1,8 +1,10 @@
 #include "page_points.hpp"
 
-#include <atomic>
+#include <tbb/enumerable_thread_specific.h>
+
 #include <cmath>
 #include <functional>
+#include <mutex>
 #include <string>
 
 #include "hba/core/error.hpp"
@@ -18,7 +20,6 @@ constexpr double kSlack = 1.25;
 constexpr double kCoarsenWhileReading = 1.25;  // voxel growth each time
 constexpr double kCoarsenToFit = 1.1;
 constexpr std::size_t kLookahead = 16;  // keys prefetched ahead of their insert
-constexpr std::size_t kPageChunk = 100;
 
 // Candidates of a chunk of scans, with their positions placed (relative to
 // the map's origin) for the merge to key them at its voxel.
@@ -41,8 +42,9 @@ void insertNew(voxel::PackedVoxelSet& seen, const std::vector<std::uint64_t>& ke
   }
 }
 
-std::vector<std::uint64_t>& keysOf(const std::vector<Vec3f>& world, double voxel) {
-  thread_local std::vector<std::uint64_t> keys;
+// The packed keys of `world` at `voxel`, into `keys`.
+const std::vector<std::uint64_t>& keysOf(const std::vector<Vec3f>& world, double voxel,
+                                         std::vector<std::uint64_t>& keys) {
   keys.resize(world.size());
   const double inverse = 1.0 / voxel;
   // NaN falls outside the packed range.
@@ -57,8 +59,11 @@ class FirstHits {
   FirstHits(double voxel, std::size_t room) : voxel_(voxel) { kept_.reserve(room); }
   double voxel() const { return voxel_; }
   std::size_t size() const { return kept_.size(); }
+  // Room for `points` in the set at once: regrowing it touches fresh memory twice over.
+  void reserve(std::size_t points) { index_.reserve(points); }
   void add(const Chunk& chunk) {
-    insertNew(index_, keysOf(chunk.world, voxel_), [&](std::size_t i) { kept_.push_back(chunk.points[i]); });
+    insertNew(index_, keysOf(chunk.world, voxel_, keys_),
+              [&](std::size_t i) { kept_.push_back(chunk.points[i]); });
   }
   // Thinned again at a coarser voxel, in place: the kept points stay in
   // scan order, so each coarse voxel keeps its first point again. The set's
@@ -66,21 +71,23 @@ class FirstHits {
   void coarsen(double factor, const std::vector<Pose>& poses, const Vec3& origin) {
     voxel_ *= factor;
     index_.clear();
-    const double inverse = 1.0 / voxel_;
+    std::vector<Vec3f> world(kept_.size());
     std::uint32_t scan = ~0u;  // the points come scan by scan: one rotation matrix a scan
     Mat3 R = Mat3::Identity();
     Vec3 t = Vec3::Zero();
-    std::size_t kept = 0;
-    for (const PagePoint& p : kept_) {
+    for (std::size_t i = 0; i < kept_.size(); ++i) {
+      const PagePoint& p = kept_[i];
       if (p.scan != scan) {
         scan = p.scan;
         R = poses[scan].R();
         t = poses[scan].t - origin;
       }
-      const Vec3f world = (R * p.local.cast<double>() + t).cast<float>();
-      const std::uint64_t key = packedVoxelKey(world.cast<double>(), inverse);
-      if (key != kOutsidePackedRange && index_.insert(key)) kept_[kept++] = p;
+      world[i] = (R * p.local.cast<double>() + t).cast<float>();
     }
+    // Kept points move down over those dropped (insertNew goes in order).
+    std::size_t kept = 0;
+    std::vector<std::uint64_t> keys;
+    insertNew(index_, keysOf(world, voxel_, keys), [&](std::size_t i) { kept_[kept++] = kept_[i]; });
     kept_.resize(kept);
   }
   std::vector<PagePoint>& kept() { return kept_; }
@@ -89,22 +96,49 @@ class FirstHits {
   double voxel_;
   voxel::PackedVoxelSet index_;
   std::vector<PagePoint> kept_;
+  std::vector<std::uint64_t> keys_;  // a chunk's, reused
 };
 
-// One chunk's scans thinned on their own at the start voxel: the same
-// candidates whatever the timing of the threads. `expected`: room to make
-// at once (the last chunk's count; a guess).
-Chunk readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses, std::size_t chunk, double voxel,
-                double scans_voxel, const Vec3& origin, std::size_t expected) {
-  const std::size_t first = chunk * kPageChunk;
-  const std::size_t end = std::min(scans.size(), first + kPageChunk);
-  // One set a thread, emptied for each chunk: its table is not faulted in again.
-  thread_local voxel::PackedVoxelSet seen;
-  seen.clear();
-  Chunk out;
-  out.points.reserve(expected);
-  out.world.reserve(expected);
+// Chunks' buffers handed back after their merge and filled again by a later
+// chunk: fresh memory costs a page fault every 4 KiB, dear on virtual machines.
+class ChunkPool {
+ public:
+  Chunk take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (free_.empty()) return {};
+    Chunk chunk = std::move(free_.back());
+    free_.pop_back();
+    chunk.points.clear();
+    chunk.world.clear();
+    return chunk;
+  }
+  void give(Chunk&& chunk) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(chunk));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<Chunk> free_;
+};
+
+// A reading thread's working memory, kept from chunk to chunk (its table
+// is emptied, not faulted in again) and freed with the call.
+struct Scratch {
+  voxel::PackedVoxelSet seen;
+  std::vector<std::uint64_t> keys;
   std::vector<Vec3f> world;
+};
+
+// One chunk's scans thinned on their own at the start voxel, into `out`:
+// the same candidates whatever the timing of the threads.
+void readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses, std::size_t chunk, double voxel,
+               double scans_voxel, const Vec3& origin, Scratch& scratch, Chunk& out) {
+  const std::size_t first = chunk * kChunk;
+  const std::size_t end = std::min(scans.size(), first + kChunk);
+  voxel::PackedVoxelSet& seen = scratch.seen;
+  std::vector<Vec3f>& world = scratch.world;
+  seen.clear();
   for (std::size_t i = first; i < end; ++i) {
     const PointCloud scan = loadAt(scans, i, voxel, scans_voxel);
     const Mat3 R = poses[i].R();
@@ -112,13 +146,12 @@ Chunk readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses, std
     world.resize(scan.size());
     for (std::size_t k = 0; k < scan.size(); ++k)
       world[k] = (R * (scan.origin + scan.points[k].cast<double>()) + t).cast<float>();
-    insertNew(seen, keysOf(world, voxel), [&](std::size_t k) {
+    insertNew(seen, keysOf(world, voxel, scratch.keys), [&](std::size_t k) {
       out.points.push_back({static_cast<std::uint32_t>(i), scan.hasIntensity() ? scan.intensity[k] : 0.0f,
                             (scan.origin + scan.points[k].cast<double>()).cast<float>()});
       out.world.push_back(world[k]);
     });
   }
-  return out;
 }
 
 }  // namespace
@@ -132,29 +165,32 @@ PagePoints samplePagePoints(const io::ScanSource& scans, const std::vector<Pose>
   if (budget == 0 || !(start_voxel > 0.0)) throw Error("the page's point budget and voxel must be positive");
   const Vec3 origin = poses.empty() ? Vec3::Zero() : poses.front().t;
   // Room for the most the map holds: pages never touched are not memory.
-  FirstHits map(start_voxel, static_cast<std::size_t>(kSlack * static_cast<double>(budget)) + 1);
+  const auto most = static_cast<std::size_t>(kSlack * static_cast<double>(budget)) + 1;
+  FirstHits map(start_voxel, most);
   bool intensity = false;
-  const std::size_t chunks = (scans.size() + kPageChunk - 1) / kPageChunk;
-  std::atomic<std::size_t> chunk_points{0};
+  const std::size_t chunks = (scans.size() + kChunk - 1) / kChunk;
+  ChunkPool pool;
+  tbb::enumerable_thread_specific<Scratch> scratch;
   const std::function<Chunk(std::size_t)> read = [&](std::size_t chunk) {
-    Chunk part = readChunk(scans, poses, chunk, start_voxel, scans_voxel, origin,
-                           chunk_points.load(std::memory_order_relaxed) * 5 / 4);
-    chunk_points.store(part.points.size(), std::memory_order_relaxed);
+    Chunk part = pool.take();
+    readChunk(scans, poses, chunk, start_voxel, scans_voxel, origin, scratch.local(), part);
     return part;
   };
   const std::function<void(std::size_t, Chunk&)> merge = [&](std::size_t chunk, Chunk& part) {
     for (const PagePoint& p : part.points) intensity = intensity || p.intensity != 0.0f;
+    // As many points as the first chunk's in each chunk would be the most the map can hold.
+    if (chunk == 0) map.reserve(std::min(most, part.points.size() * chunks));
     map.add(part);
+    pool.give(std::move(part));
     while (static_cast<double>(map.size()) > kSlack * static_cast<double>(budget))
       map.coarsen(kCoarsenWhileReading, poses, origin);
     if (memory.exceeded()) {
       throw memory.exceededBy("the page's map (" + std::to_string(map.size()) + " points after " +
-                              std::to_string(std::min(scans.size(), (chunk + 1) * kPageChunk)) + " of " +
+                              std::to_string(std::min(scans.size(), (chunk + 1) * kChunk)) + " of " +
                               std::to_string(scans.size()) + " scans)");
     }
   };
-  Progress progress("reading the scans for the report page", chunks,
-                    "chunks of " + std::to_string(kPageChunk));
+  Progress progress("reading the scans for the report page", chunks, "chunks of " + std::to_string(kChunk));
   streamScans(upTo(chunks), read, merge, progress);
   while (map.size() > budget) map.coarsen(kCoarsenToFit, poses, origin);
 

@@ -78,8 +78,8 @@ def canvas_pixels(rows):
 
 
 def chromium(browser, page, fragment, args):
-    command = [browser, "--headless", "--no-sandbox", "--disable-gpu", "--use-angle=swiftshader",
-               "--enable-unsafe-swiftshader", "--window-size=%d,%d" % (WIDTH, HEIGHT),
+    command = [browser, "--headless", "--no-sandbox", "--disable-dev-shm-usage", "--disable-gpu",
+               "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--window-size=%d,%d" % (WIDTH, HEIGHT),
                "--virtual-time-budget=8000", "--enable-logging=stderr", "--v=0"] + args
     command.append("file://" + os.path.abspath(page) + "#" + fragment)
     done = subprocess.run(command, capture_output=True, text=True, timeout=240)
