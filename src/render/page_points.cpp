@@ -2,6 +2,7 @@
 
 #include <tbb/enumerable_thread_specific.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <mutex>
@@ -14,12 +15,11 @@
 namespace hba::render {
 namespace {
 
-// The map is thinned while it is read once it holds more than kSlack times
-// the budget, and to the budget at the end.
+// The map is coarsened while it is read once it holds more than kSlack
+// times the budget, and thinned to the budget at the end.
 constexpr double kSlack = 1.25;
 constexpr double kCoarsenWhileReading = 1.25;  // voxel growth each time
-constexpr double kCoarsenToFit = 1.1;
-constexpr std::size_t kLookahead = 16;  // keys prefetched ahead of their insert
+constexpr std::size_t kLookahead = 16;         // keys prefetched ahead of their insert
 
 // Candidates of a chunk of scans, with their positions placed (relative to
 // the map's origin) for the merge to key them at its voxel.
@@ -88,6 +88,21 @@ class FirstHits {
     std::size_t kept = 0;
     std::vector<std::uint64_t> keys;
     insertNew(index_, keysOf(world, voxel_, keys), [&](std::size_t i) { kept_[kept++] = kept_[i]; });
+    kept_.resize(kept);
+  }
+  // Exactly `budget` points kept (when there are more), an even share
+  // everywhere: those whose index hashes lowest. In place and without a set,
+  // where coarsening the voxel once more would cost as much as the merge.
+  void thinTo(std::size_t budget) {
+    if (kept_.size() <= budget) return;
+    std::vector<std::uint64_t> ranks(kept_.size());
+    for (std::size_t i = 0; i < ranks.size(); ++i) ranks[i] = voxel::PackedKeyHash{}(i);
+    std::vector<std::uint64_t> sorted = ranks;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(budget - 1), sorted.end());
+    const std::uint64_t highest = sorted[budget - 1];
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < kept_.size() && kept < budget; ++i)
+      if (ranks[i] <= highest) kept_[kept++] = kept_[i];
     kept_.resize(kept);
   }
   std::vector<PagePoint>& kept() { return kept_; }
@@ -192,11 +207,14 @@ PagePoints samplePagePoints(const io::ScanSource& scans, const std::vector<Pose>
   };
   Progress progress("reading the scans for the report page", chunks, "chunks of " + std::to_string(kChunk));
   streamScans(upTo(chunks), read, merge, progress);
-  while (map.size() > budget) map.coarsen(kCoarsenToFit, poses, origin);
+  const std::size_t thinned_from = map.size();
+  map.thinTo(budget);
 
   PagePoints out;
   out.voxel = map.voxel();
   out.has_intensity = intensity;
+  out.kept_share =
+      static_cast<double>(map.size()) / static_cast<double>(std::max<std::size_t>(1, thinned_from));
   out.points = std::move(map.kept());
   return out;
 }

@@ -24,13 +24,15 @@ struct PagePoints {
   std::vector<PagePoint> points;  // scans ascending
   bool has_intensity = false;     // some point has a non-zero intensity
   double voxel = 0.0;             // the world voxel (m) the map was thinned at
+  double kept_share = 1.0;        // of the points one a voxel, the share kept to fit the budget
   std::size_t size() const { return points.size(); }
 };
 
-// At most `budget` points of the map of `scans` placed by `poses`. The voxel
-// starts at `start_voxel` and grows until the map fits; scans that come
-// downsampled at `scans_voxel` (m, 0: as recorded) are not downsampled
-// again at that voxel or finer. Throws MemoryExceeded once the process
+// At most `budget` points of the map of `scans` placed by `poses`: one per
+// world voxel (the first in scan order), the voxel starting at `start_voxel`
+// and growing while the map outgrows the budget by a quarter, then an even
+// share of them kept. Scans that come downsampled at `scans_voxel` (m, 0:
+// as recorded) are not downsampled again at that voxel or finer. Throws MemoryExceeded once the process
 // outgrows `memory`, hba::Error on a size mismatch.
 PagePoints samplePagePoints(const io::ScanSource& scans, const std::vector<Pose>& poses, std::size_t budget,
                             double start_voxel, double scans_voxel = 0.0, const MemoryBudget& memory = {});

@@ -72,6 +72,11 @@ TEST(ReportPage, MapIsThinnedToTheBudgetInScanOrder) {
     if (budget < 300000) {
       EXPECT_GT(p.voxel, 0.1) << "coarser to fit";
     }
+    // Thinned to fit: exactly the budget, the share kept said.
+    if (p.kept_share < 1.0) {
+      EXPECT_EQ(p.size(), budget);
+    }
+    EXPECT_GT(p.kept_share, 0.5);
   }
 }
 

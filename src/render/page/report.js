@@ -33,7 +33,11 @@ function loadPoses(id) {
   const bytes = bytesOf(id);
   return bytes ? new Float32Array(bytes.buffer) : null;
 }
-const poses = { input: loadPoses('pose-input'), optimized: loadPoses('pose-optimized'), truth: loadPoses('pose-ground-truth') };
+const poses = {
+  input: loadPoses('pose-input'),
+  optimized: loadPoses('pose-optimized'),
+  truth: loadPoses('pose-ground-truth'),
+};
 const xyz = new Int16Array(bytesOf('xyz').buffer);
 const perScan = new Uint32Array(bytesOf('per-scan').buffer);
 const change = bytesOf('change');
@@ -73,7 +77,9 @@ const tracks = {
 
 // ---- colours ----
 
-const RAINBOW = [[48, 18, 59], [65, 105, 225], [32, 200, 210], [110, 230, 90], [240, 205, 40], [235, 90, 25], [140, 10, 10]];
+const RAINBOW = [
+  [48, 18, 59], [65, 105, 225], [32, 200, 210], [110, 230, 90], [240, 205, 40], [235, 90, 25], [140, 10, 10],
+];
 function rainbow(t) {
   t = Math.min(1, Math.max(0, t)) * (RAINBOW.length - 1);
   const i = Math.min(RAINBOW.length - 2, Math.floor(t));
@@ -115,7 +121,8 @@ function colorsFor(mode) {
     for (let i = 0; i < heights.length; ++i) heights[i] = z[3 * Math.min(pointCount - 1, i * stride) + 2];
     const low = quantile(heights, 0.02), high = Math.max(low + 1e-3, quantile(heights, 0.98));
     for (let i = 0; i < pointCount; ++i) set(i, rainbow((z[3 * i + 2] - low) / (high - low)));
-    legend = { low: 'z ' + (low + data.origin[2]).toFixed(1) + ' m', high: (high + data.origin[2]).toFixed(1) + ' m', scale: rainbow };
+    const metres = (z) => (z + data.origin[2]).toFixed(1) + ' m';
+    legend = { low: 'z ' + metres(low), high: metres(high), scale: rainbow };
   }
   return { colors: out, legend };
 }
@@ -158,7 +165,9 @@ const mat4 = {
     const norm = (a) => { const l = Math.hypot(...a) || 1; return a.map((v) => v / l); };
     const z = norm(sub(eye, target)), x = norm(cross(up, z)), y = cross(z, x);
     const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    return new Float32Array([x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(x, eye), -dot(y, eye), -dot(z, eye), 1]);
+    return new Float32Array([
+      x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(x, eye), -dot(y, eye), -dot(z, eye), 1,
+    ]);
   },
 };
 
@@ -199,7 +208,10 @@ function viewProjection(aspect) {
 
 const canvas = document.getElementById('map');
 const gl = canvas.getContext('webgl', { preserveDrawingBuffer: true, antialias: true });
-const state = { map: 'optimized', color: 'height', pointSize: 2, layers: { map: true, trajectory: true, links: true, regions: false } };
+const state = {
+  map: 'optimized', color: 'height', pointSize: 2,
+  layers: { map: true, trajectory: true, links: true, regions: false },
+};
 let program = null, buffers = null;
 
 function compile(type, source) {
@@ -218,10 +230,19 @@ function setupGl() {
     'precision mediump float; varying vec3 v_color; void main() { gl_FragColor = vec4(v_color, 1.0); }'));
   gl.linkProgram(program);
   if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(program));
-  const buffer = (array) => { const b = gl.createBuffer(); gl.bindBuffer(gl.ARRAY_BUFFER, b); gl.bufferData(gl.ARRAY_BUFFER, array, gl.STATIC_DRAW); return b; };
+  const buffer = (array) => {
+    const b = gl.createBuffer();
+    gl.bindBuffer(gl.ARRAY_BUFFER, b);
+    gl.bufferData(gl.ARRAY_BUFFER, array, gl.STATIC_DRAW);
+    return b;
+  };
   buffers = {
     input: buffer(placed.input), optimized: buffer(placed.optimized), colors: gl.createBuffer(),
-    track: { input: buffer(tracks.input), optimized: buffer(tracks.optimized), truth: tracks.truth ? buffer(tracks.truth) : null },
+    track: {
+      input: buffer(tracks.input),
+      optimized: buffer(tracks.optimized),
+      truth: tracks.truth ? buffer(tracks.truth) : null,
+    },
     links: { input: buffer(linkLines(tracks.input)), optimized: buffer(linkLines(tracks.optimized)) },
     regions: buffer(regionBoxes()),
   };
@@ -257,6 +278,8 @@ function regionList() {
     return { ...r, end: later.length ? Math.min(...later) : frames };
   });
 }
+// A box's 12 edges between its corners, numbered by bits (x, y, z).
+const BOX_EDGES = [[0, 1], [2, 3], [4, 5], [6, 7], [0, 2], [1, 3], [4, 6], [5, 7], [0, 4], [1, 5], [2, 6], [3, 7]];
 function regionBoxes() {
   const out = [];
   for (const r of regionList()) {
@@ -266,8 +289,7 @@ function regionBoxes() {
     const ratio = r.final_rms_m / r.input_rms_m;
     const color = ratio < 0.95 ? [0.3, 0.9, 0.5] : ratio > 1.05 ? [1.0, 0.35, 0.3] : [0.9, 0.9, 0.4];
     const corner = (i) => [i & 1 ? hi[0] : lo[0], i & 2 ? hi[1] : lo[1], i & 4 ? hi[2] : lo[2]];
-    for (const [a, c] of [[0, 1], [2, 3], [4, 5], [6, 7], [0, 2], [1, 3], [4, 6], [5, 7], [0, 4], [1, 5], [2, 6], [3, 7]])
-      out.push(...corner(a), ...color, ...corner(c), ...color);
+    for (const [a, c] of BOX_EDGES) out.push(...corner(a), ...color, ...corner(c), ...color);
   }
   return new Float32Array(out);
 }
@@ -341,8 +363,9 @@ function draw() {
     gl.viewport(k * width, 0, width, h);
     drawScene(which, viewProjection(width / h));
   });
-  document.getElementById('label-left').textContent = panels.length === 2 ? 'input poses' : (state.map === 'input' ? 'input poses' : 'optimized poses');
-  document.getElementById('label-right').textContent = panels.length === 2 ? 'optimized poses' : '';
+  const label = (which) => which + ' poses';
+  document.getElementById('label-left').textContent = label(panels[0]);
+  document.getElementById('label-right').textContent = panels.length === 2 ? label(panels[1]) : '';
   status.drawn = true;
   status.map = state.map;
   showStatus();
@@ -386,7 +409,9 @@ function pick(x, y) {
 function setupMouse() {
   let drag = null;
   canvas.addEventListener('contextmenu', (e) => e.preventDefault());
-  canvas.addEventListener('mousedown', (e) => { drag = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey, moved: false }; });
+  canvas.addEventListener('mousedown', (e) => {
+    drag = { x: e.clientX, y: e.clientY, pan: e.button === 2 || e.shiftKey, moved: false };
+  });
   window.addEventListener('mouseup', (e) => {
     if (drag && !drag.moved && e.target === canvas) {
       const r = canvas.getBoundingClientRect();
@@ -412,20 +437,29 @@ function setupMouse() {
     }
     requestDraw();
   });
-  canvas.addEventListener('wheel', (e) => { e.preventDefault(); camera.distance *= Math.exp(e.deltaY * 0.001); requestDraw(); }, { passive: false });
+  canvas.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    camera.distance *= Math.exp(e.deltaY * 0.001);
+    requestDraw();
+  }, { passive: false });
 }
 
 function setupControls() {
   for (const input of document.querySelectorAll('input[name=map]'))
     input.addEventListener('change', () => { state.map = input.value; requestDraw(); });
-  document.getElementById('color').addEventListener('change', (e) => { state.color = e.target.value; recolor(); requestDraw(); });
+  document.getElementById('color').addEventListener('change', (e) => {
+    state.color = e.target.value;
+    recolor();
+    requestDraw();
+  });
   const size = document.getElementById('point-size');
   const sizeText = () => { document.getElementById('point-size-text').textContent = size.value + ' px'; };
   size.addEventListener('input', () => { state.pointSize = Number(size.value); sizeText(); requestDraw(); });
   sizeText();
   for (const box of document.querySelectorAll('input[data-layer]'))
     box.addEventListener('change', () => { state.layers[box.dataset.layer] = box.checked; requestDraw(); });
-  for (const v of ['top', 'side', 'free']) document.getElementById('view-' + v).addEventListener('click', () => setView(v));
+  for (const v of ['top', 'side', 'free'])
+    document.getElementById('view-' + v).addEventListener('click', () => setView(v));
   document.getElementById('view-reset').addEventListener('click', () => { fitWhole(); requestDraw(); });
   window.addEventListener('resize', requestDraw);
   if (!intensity) document.querySelector('#color option[value=intensity]').disabled = true;
@@ -489,12 +523,14 @@ function flatten(object, prefix, out) {
 
 function buildTables() {
   const c = report.consistency || {};
+  const update = report.largest_update;
   table('Summary', null, [
     ['scans', fmt(frames)],
-    ['points on this page', fmt(pointCount) + ' (voxel ' + fmt(data.voxel_m, 2) + ' m)'],
+    ['points on this page', fmt(pointCount) + ' (one per ' + fmt(data.voxel_m, 2) + ' m voxel' +
+      (data.kept_share < 1 ? ', ' + Math.round(100 * data.kept_share) + ' % of them' : '') + ')'],
     ['run time', report.seconds ? fmt(report.seconds.total, 1) + ' s' : ''],
     ['peak memory', report.peak_memory_mib ? fmt(report.peak_memory_mib, 0) + ' MiB' : ''],
-    ['largest pose update', report.largest_update ? fmt(report.largest_update.translation_m) + ' m, ' + fmt(report.largest_update.rotation_deg) + ' deg' : ''],
+    ['largest pose update', update ? fmt(update.translation_m) + ' m, ' + fmt(update.rotation_deg) + ' deg' : ''],
     ['hba', report.hba ? report.hba.version + ' (' + report.hba.revision + ')' : ''],
   ].filter((r) => r[1] !== ''));
   table('Consistency (plane RMS on the input\u2019s planes, lower is crisper)', ['poses', 'RMS (m)', 'note'], [
@@ -504,7 +540,8 @@ function buildTables() {
   ].filter((r) => r[1] !== ''));
   const warnings = report.warnings || [];
   if (warnings.length) table('Warnings', null, warnings.map((w) => [fmt(w)]));
-  table('Time per stage (s)', ['stage', 'seconds'], Object.entries(report.seconds || {}).map(([k, v]) => [k, fmt(v, 2)]));
+  table('Time per stage (s)', ['stage', 'seconds'],
+    Object.entries(report.seconds || {}).map(([k, v]) => [k, fmt(v, 2)]));
   table('Layers', ['layer', 'windows', 'frames', 'planes', 'RMS before (m)', 'after (m)', 's'],
     (report.layer_reports || []).map((l) => [l.global ? 'global' : l.layer, l.windows, l.frames, l.planes,
       fmt(l.plane_rms_before_m, 4), fmt(l.plane_rms_after_m, 4), fmt(l.seconds, 2)].map((v) => fmt(v))));
