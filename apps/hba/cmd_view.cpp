@@ -107,9 +107,9 @@ void run(ViewArgs& args) {
 
   const auto start = std::chrono::steady_clock::now();
   const io::DatasetScanSource scans(dataset);
-  args.settings.memory = MemoryBudget::ofAvailableMemory();
+  args.settings.memory = MemoryBudget::ofAvailableMemoryAsHeld();
   const render::ReportPageFigures page = render::writeReportPage(scans, input, output, args.settings);
-  spdlog::info("wrote {}: {} points (voxel {:.2f} m), {:.1f} MB, in {:.1f} s", output.string(), page.points,
+  spdlog::info("wrote {}: {} points (voxel {:.2f} m), {:.1f} MB, in {:.2f} s", output.string(), page.points,
                page.voxel, static_cast<double>(page.bytes) / 1e6,
                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }

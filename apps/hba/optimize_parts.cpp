@@ -83,7 +83,7 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
   render::ReportPageSettings settings;
   const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
   if (kept) settings.scans_voxel = scan_voxel;
-  settings.memory = MemoryBudget::ofAvailableMemory();
+  settings.memory = MemoryBudget::ofAvailableMemoryAsHeld();
   render::ReportPageInput input;
   input.title = title;
   input.before = before;
@@ -94,7 +94,7 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
   try {
     const render::ReportPageFigures page =
         render::writeReportPage(kept ? *result.scans : scans, input, out / "report.html", settings);
-    spdlog::info("report.html: {} points (voxel {:.2f} m), {:.1f} MB, in {:.1f} s", page.points, page.voxel,
+    spdlog::info("report.html: {} points (voxel {:.2f} m), {:.1f} MB, in {:.2f} s", page.points, page.voxel,
                  static_cast<double>(page.bytes) / 1e6,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   } catch (const MemoryExceeded& e) {

@@ -24,6 +24,10 @@ MemoryBudget MemoryBudget::ofAvailableMemory() {
   // Growth is measured from what the process really holds, not from pages
   // it freed and the allocator kept (which its next allocations reuse).
   releaseFreedMemory();
+  return ofAvailableMemoryAsHeld();
+}
+
+MemoryBudget MemoryBudget::ofAvailableMemoryAsHeld() {
   const std::optional<AvailableMemory> available = availableMemory();
   if (!available) return {};
   return MemoryBudget(available->bytes / 10 * 9, available->source);

@@ -32,6 +32,16 @@ TEST(MemoryBudget, WithoutALimitIsNeverExceeded) {
   EXPECT_EQ(grown.back(), 1);
 }
 
+TEST(MemoryBudget, OfTheMemoryAvailableEitherWayIsLimitedAndRoomy) {
+  if (!std::filesystem::exists("/proc/meminfo")) GTEST_SKIP() << "no /proc/meminfo";
+  for (const MemoryBudget& budget :
+       {MemoryBudget::ofAvailableMemory(), MemoryBudget::ofAvailableMemoryAsHeld()}) {
+    EXPECT_TRUE(budget.limited());
+    EXPECT_FALSE(budget.exceeded(kMiB));                 // a machine that runs tests has a MiB free
+    EXPECT_TRUE(budget.exceeded(std::size_t{1} << 60));  // and not an exabyte
+  }
+}
+
 TEST(MemoryBudget, ResidentBytesAreKnownOnLinux) {
   if (!std::filesystem::exists("/proc/self/statm")) GTEST_SKIP() << "no /proc/self/statm";
   EXPECT_GT(residentBytes(), 0u);

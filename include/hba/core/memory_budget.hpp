@@ -29,6 +29,11 @@ class MemoryBudget {
   // handed back the pages it freed (releaseFreedMemory); no limit where
   // that is unknown.
   static MemoryBudget ofAvailableMemory();
+  // The same without handing freed pages back first: for a short stage
+  // after a long one, which reuses the pages the long one freed (handed
+  // back, each costs a page fault when touched again: a tenth of a second
+  // for the report page of a one-second run).
+  static MemoryBudget ofAvailableMemoryAsHeld();
 
   bool limited() const { return bytes_.has_value(); }
   // Whether the process has grown beyond the budget, or would with
