@@ -4,7 +4,7 @@
 // the input/optimized toggle swaps a buffer and nothing is recomputed.
 'use strict';
 
-const status = { errors: [], drawn: false, points: 0, frames: 0, map: '' };
+const status = { errors: [], drawn: false, points: 0, frames: 0, map: '', ms: {} };
 window.addEventListener('error', (e) => { status.errors.push(String(e.message)); showStatus(); });
 const consoleError = console.error.bind(console);
 console.error = (...args) => { status.errors.push(args.map(String).join(' ')); showStatus(); consoleError(...args); };
@@ -25,6 +25,9 @@ function bytesOf(id) {
   return out;
 }
 
+// Milliseconds from the script's start to each step (in the status, for tests and benchmarks).
+const started = performance.now();
+const lap = (step) => { status.ms[step] = Math.round(performance.now() - started); };
 const data = JSON.parse(document.getElementById('hba-data').textContent);
 const report = data.report || {};
 const frames = data.frames;
@@ -62,7 +65,9 @@ function placePoints(rows) {
   }
   return out;
 }
+lap('decoded');
 const placed = { input: placePoints(poses.input), optimized: placePoints(poses.optimized) };
+lap('placed');
 
 function positionsOf(rows) {
   const out = new Float32Array(frames * 3);
@@ -180,11 +185,24 @@ function bounds(points) {
 }
 
 const camera = { target: [0, 0, 0], yaw: -Math.PI / 2, pitch: Math.PI / 2 - 1e-3, distance: 100, view: 'top' };
+// The view on the map's bulk: the 2nd to 98th percentile of its points in
+// each axis (a few far returns, a tree 30 m up, would leave it a speck).
 function fitWhole() {
-  const b = bounds(pointCount ? placed.optimized : tracks.optimized);
-  camera.target = [0, 1, 2].map((a) => (b.lo[a] + b.hi[a]) / 2);
-  const span = Math.max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], 1);
-  camera.distance = 1.1 * span / (2 * Math.tan(Math.PI / 8));
+  const points = pointCount ? placed.optimized : tracks.optimized;
+  const n = points.length / 3;
+  const stride = Math.max(1, Math.floor(n / 100000));
+  const range = (axis) => {
+    const values = [];
+    for (let i = 0; i < n; i += stride) values.push(points[3 * i + axis]);
+    return [quantile(values, 0.02), quantile(values, 0.98)];
+  };
+  const [x, y, z] = [range(0), range(1), range(2)];
+  camera.target = [(x[0] + x[1]) / 2, (y[0] + y[1]) / 2, (z[0] + z[1]) / 2];
+  const span = Math.max(x[1] - x[0], y[1] - y[0], 1);
+  // The span across a panel's narrower side (side by side, panels are half as wide).
+  const panels = state.map === 'both' ? 2 : 1;
+  const aspect = canvas.clientWidth / panels / Math.max(1, canvas.clientHeight);
+  camera.distance = 1.2 * span / (2 * Math.tan(Math.PI / 8)) / Math.min(1, aspect);
 }
 function setView(view) {
   camera.view = view;
@@ -481,7 +499,11 @@ function applyAddress() {
       state.layers[box.dataset.layer] = box.checked;
     }
   }
-  if (params.has('size')) state.pointSize = Number(params.get('size'));
+  if (params.has('size')) {
+    state.pointSize = Number(params.get('size'));
+    document.getElementById('point-size').value = state.pointSize;
+    document.getElementById('point-size-text').textContent = state.pointSize + ' px';
+  }
   setView(params.get('view') || camera.view);
   if (params.has('pick')) {
     const [x, y] = params.get('pick').split(',').map(Number);
@@ -563,12 +585,15 @@ if (!gl) {
   console.warn('hba report: no WebGL');
 } else {
   setupGl();
-  fitWhole();
   setupControls();
   setupMouse();
   applyAddress();
+  fitWhole();
   window.addEventListener('hashchange', () => { applyAddress(); recolor(); requestDraw(); });
   recolor();
+  lap('ready');
   draw();
+  gl.finish();
+  lap('drawn');
 }
 showStatus();
