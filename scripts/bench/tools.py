@@ -2,6 +2,7 @@
 import json
 import re
 import shlex
+import subprocess
 
 import process
 
@@ -35,8 +36,10 @@ class Tools:
     def writes_report_page(self):
         """Whether this build writes report.html by default (it then has --no-report-page)."""
         if not hasattr(self, "_page_flag"):
-            stdout, _ = process.run([self.hba, "optimize", "--help"])
-            self._page_flag = "--no-report-page" in stdout
+            # Whatever the exit code (a wrapper may differ): the help text tells.
+            help_text = subprocess.run([self.hba, "optimize", "--help"], capture_output=True, text=True,
+                                       check=False, stdin=subprocess.DEVNULL)
+            self._page_flag = "--no-report-page" in help_text.stdout + help_text.stderr
         return self._page_flag
 
     def optimize(self, dataset, pose_args, output, render=False):

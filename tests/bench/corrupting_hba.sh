@@ -15,6 +15,7 @@ for argument in "$@"; do
   previous="$argument"
 done
 "$is_optimize" || exit 0
+[ -n "$output" ] || exit 0  # `optimize --help`: nothing written
 
 # pose.json lines: tx ty tz qw qx qy qz. Fixed seed: the same damage every run.
 awk 'BEGIN { srand(7) }

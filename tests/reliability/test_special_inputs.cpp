@@ -86,14 +86,17 @@ TEST_F(SpecialInputs, SymbolicLinkLoopsAreCalledSo) {
 }
 
 // A ground-truth file that cannot be read fails the run before its work, not
-// after it (the picture, which draws it, comes last).
+// after it (the picture and the report page, which draw it, come last).
+// Without either, it is not read.
 TEST_F(SpecialInputs, ABadGroundTruthFailsBeforeTheWork) {
   ASSERT_EQ(::mkfifo((data() / "gt.txt").c_str(), 0600), 0);
   const test::CommandResult run = hba("optimize " + quoted(data()) + " -o " + quoted(out()));
   EXPECT_EQ(run.exit_code, 1) << run.output;
   EXPECT_NE(run.output.find("gt.txt: is not a regular file (a FIFO)"), std::string::npos) << run.output;
   EXPECT_EQ(run.output.find("layer"), std::string::npos) << run.output;  // no optimization ran
-  EXPECT_EQ(hba("optimize " + quoted(data()) + " -o " + quoted(out()) + " --no-render").exit_code, 0);
+  EXPECT_EQ(
+      hba("optimize " + quoted(data()) + " -o " + quoted(out()) + " --no-render --no-report-page").exit_code,
+      0);
 }
 
 // A byte that is not UTF-8 in the dataset's path: nlohmann's dump() threw at
