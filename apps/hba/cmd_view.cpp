@@ -5,13 +5,13 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.hpp"
 #include "core/input_file.hpp"
 #include "dataset_args.hpp"
+#include "earlier_output.hpp"
 #include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
@@ -31,42 +31,22 @@ struct ViewArgs {
   render::ReportPageSettings settings;
 };
 
-bool isOutputFolder(const fs::path& dir) {
-  return regularFileIsPresent(dir / "report.json") && regularFileIsPresent(dir / "pose.json");
-}
-
-nlohmann::json readReport(const fs::path& file) {
-  std::ifstream in(file);
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(file.string() + ": not a readable report (" + e.what() + ")");
-  }
-}
-
-std::string textAt(const nlohmann::json& report, const fs::path& file, const char* key) {
-  const auto input = report.find("input");
-  if (input == report.end() || !input->contains(key) || !(*input)[key].is_string())
-    throw Error(file.string() + ": has no input." + key + " (not written by hba optimize?)");
-  return (*input)[key].get<std::string>();
-}
-
 // The dataset an output folder was made from, as its report names it; the
 // dataset flags given (topics, --extrinsic) apply to it.
 DatasetArgs datasetOf(const ViewArgs& args, const fs::path& out, const nlohmann::json& report) {
-  const fs::path file = out / "report.json";
   if (report.contains("sessions") || report.contains("map")) {
     throw Error(out.string() +
                 ": a run of several sessions or against a map; its report.html is written by hba optimize "
                 "(hba view reads single runs)");
   }
   DatasetArgs data = args.data;
-  data.dir = textAt(report, file, "dataset");
-  data.poses = textAt(report, file, "poses");
-  if (data.format.empty()) data.format = textAt(report, file, "pose_format");
-  if (textAt(report, file, "pose_frame") != "sensor" && data.extrinsic.empty() && data.calibration.empty()) {
-    throw Error(file.string() + ": the run's poses were of the " + textAt(report, file, "pose_frame") +
-                " frame: give the --extrinsic or --calib it had");
+  data.dir = outputInput(report, out, "dataset");
+  data.poses = outputInput(report, out, "poses");
+  if (data.format.empty()) data.format = outputInput(report, out, "pose_format");
+  const std::string frame = outputInput(report, out, "pose_frame");
+  if (frame != "sensor" && data.extrinsic.empty() && data.calibration.empty()) {
+    failAt(out / "report.json",
+           "the run's poses were of the " + frame + " frame: give the --extrinsic or --calib it had");
   }
   if (report["input"].value("scans_in_world", false)) data.scans_in_world = true;
   return data;
@@ -74,11 +54,11 @@ DatasetArgs datasetOf(const ViewArgs& args, const fs::path& out, const nlohmann:
 
 void run(ViewArgs& args) {
   const fs::path given = args.data.dir;
-  const bool from_output = isOutputFolder(given);
+  const bool from_output = isOptimizeOutput(given);
   render::ReportPageInput input;
   io::Dataset dataset = [&] {
     if (!from_output) return args.data.open();
-    input.report = readReport(given / "report.json");
+    input.report = readOutputReport(given);
     return datasetOf(args, given, input.report).open();
   }();
   input.before = dataset.trajectory().poses;

@@ -7,6 +7,7 @@
 
 #include "core/input_file.hpp"
 #include "core/staging_folder.hpp"
+#include "earlier_output.hpp"
 #include "hba/ba/map_refinement.hpp"
 #include "hba/closure/map_alignment.hpp"
 #include "hba/core/error.hpp"
@@ -48,22 +49,20 @@ FixedMap datasetMap(io::Dataset dataset, std::string name) {
 
 // An earlier `hba optimize` output: its input's scans at its optimized poses.
 FixedMap readEarlierOutput(const fs::path& folder) {
-  if (!fs::exists(folder / "report.json") || !fs::exists(folder / "pose.json")) {
+  if (!isOptimizeOutput(folder)) {
     failAt(folder,
            "is a folder but not an hba optimize output (no report.json and pose.json): give a map file "
            "(" +
                io::scanFormatList(true) + ") or --fixed DATASET");
   }
-  const nlohmann::json report = nlohmann::json::parse(readTextFile(folder / "report.json"), nullptr, false);
-  if (report.is_discarded() || !report.contains("input") || !report["input"].contains("dataset")) {
-    failAt(folder / "report.json", "does not name the run's input dataset");
-  }
+  const nlohmann::json report = readOutputReport(folder);
+  const std::string dataset = outputInput(report, folder, "dataset");
   if (report["input"].value("scans_in_world", false)) {
     failAt(folder,
            "was made from scans saved in the world frame: write its map with hba map and give that file");
   }
   DatasetArgs input;
-  input.dir = report["input"]["dataset"].get<std::string>();
+  input.dir = dataset;
   input.poses = (folder / "pose.json").string();
   input.format = "hba";
   return datasetMap(input.open(), folder.string() + " (" + input.dir + " at its optimized poses)");

@@ -53,20 +53,32 @@ void announceReplacement(const StagingFolder& staging) {
                staging.destination().string(), staging.replaces());
 }
 
+namespace {
+
+// The scans as the optimization kept them (parsed and downsampled once, at
+// `scan_voxel`) when that is at least as fine as `voxel`, with
+// `scans_voxel` set to it; `scans` otherwise.
+const io::ScanSource& scansFor(double voxel, const io::ScanSource& scans, const pyramid::HbaResult& result,
+                               double scan_voxel, double& scans_voxel) {
+  if (!result.scans || result.scans->size() != scans.size() || scan_voxel > voxel) return scans;
+  scans_voxel = scan_voxel;
+  return *result.scans;
+}
+
+}  // namespace
+
 bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
                   const std::vector<Pose>& before, const std::optional<Trajectory>& gt, const fs::path& out) {
   const std::vector<Pose>& optimized = result.poses;
   const fs::path png = out / "before_after.png";
   spdlog::info("drawing before_after.png");
   render::RenderSettings settings;
-  const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
-  if (kept) settings.scans_voxel = scan_voxel;
+  const io::ScanSource& source = scansFor(settings.voxel, scans, result, scan_voxel, settings.scans_voxel);
   // The picture is the last step: one that cannot fit is left out, and
   // the poses and report are kept.
   settings.budget = MemoryBudget::ofAvailableMemory();
   try {
-    render::writeBeforeAfter(kept ? *result.scans : scans, before, optimized, gt ? &gt->poses : nullptr, png,
-                             settings);
+    render::writeBeforeAfter(source, before, optimized, gt ? &gt->poses : nullptr, png, settings);
   } catch (const MemoryExceeded& e) {
     spdlog::warn("before_after.png not drawn: {}; `hba render --compare` draws it from the outputs",
                  e.what());
@@ -81,8 +93,7 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
   spdlog::info("writing report.html");
   const auto start = std::chrono::steady_clock::now();
   render::ReportPageSettings settings;
-  const bool kept = result.scans && result.scans->size() == scans.size() && scan_voxel <= settings.voxel;
-  if (kept) settings.scans_voxel = scan_voxel;
+  const io::ScanSource& source = scansFor(settings.voxel, scans, result, scan_voxel, settings.scans_voxel);
   settings.memory = MemoryBudget::ofAvailableMemoryAsHeld();
   render::ReportPageInput input;
   input.title = title;
@@ -93,7 +104,7 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
   if (regularFileIsPresent(out / "before_after.png")) input.picture = out / "before_after.png";
   try {
     const render::ReportPageFigures page =
-        render::writeReportPage(kept ? *result.scans : scans, input, out / "report.html", settings);
+        render::writeReportPage(source, input, out / "report.html", settings);
     spdlog::info("report.html: {} points (voxel {:.2f} m), {:.1f} MB, in {:.2f} s", page.points, page.voxel,
                  static_cast<double>(page.bytes) / 1e6,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -40,6 +40,12 @@ CellMoments::Moments& CellMoments::at(const voxel::VoxelKey& key, std::uint32_t*
   return moments_[i];
 }
 
+void CellMoments::reserve(std::size_t cells) {
+  index_.reserve(cells);
+  keys_.reserve(cells);
+  moments_.reserve(cells);
+}
+
 void CellMoments::merge(const CellMoments& other) {
   for (std::size_t i = 0; i < other.size(); ++i) {
     const Moments& theirs = other.moments(i);

@@ -28,6 +28,8 @@ class CellMoments {
   // Returns the number of the cell `world` fell in (its index below).
   std::uint32_t add(const Vec3& world);
   void merge(const CellMoments& other);
+  // Room for `cells` cells without regrowing (a guess is fine).
+  void reserve(std::size_t cells);
   // Cells in the order first touched.
   std::size_t size() const { return keys_.size(); }
   const voxel::VoxelKey& key(std::size_t i) const { return keys_[i]; }

@@ -6,14 +6,10 @@
 #include <cmath>
 #include <cstring>
 
-#include "hba/voxel/voxel_index.hpp"
 #include "map_change.hpp"
-#include "picture_points.hpp"
 
 namespace hba::render {
 namespace {
-
-constexpr std::uint32_t kNoCell = ~0u;
 
 template <typename T>
 void appendLittleEndian(Bytes& out, T value) {
@@ -26,47 +22,17 @@ void appendLittleEndian(Bytes& out, T value) {
 }
 
 // The plane thickness of each point's cell with the map placed by `poses`
-// (-1 where the cell's points form no plane). Cells are numbered by packed
-// keys relative to a corner of the grid near the first pose (16-byte slots,
-// room made at once: the table is not regrown).
+// (-1 where the cell's points form no plane).
 std::vector<float> thicknessPerPoint(const PagePoints& points, const std::vector<Pose>& poses, double cell) {
-  const Vec3 corner =
-      poses.empty() ? Vec3::Zero() : Vec3((poses.front().t / cell).array().floor().matrix() * cell);
-  voxel::PackedVoxelIndex index;
-  index.reserve(points.size() / 8 + 1024);
-  std::vector<CellMoments::Moments> moments;
-  moments.reserve(points.size() / 8 + 1024);
-  std::vector<std::uint32_t> cell_of(points.size(), kNoCell);
-  const double inverse = 1.0 / cell;
-  std::uint32_t scan = ~0u;  // the points come scan by scan: one rotation matrix a scan
-  Mat3 R = Mat3::Identity();
-  Vec3 t = Vec3::Zero();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const PagePoint& p = points.points[i];
-    if (p.scan != scan) {
-      scan = p.scan;
-      R = poses[scan].R();
-      t = poses[scan].t - corner;
-    }
-    const Vec3 q = R * p.local.cast<double>() + t;
-    const std::uint64_t key = packedVoxelKey(q, inverse);
-    if (key == kOutsidePackedRange) continue;
-    bool inserted = false;
-    const std::uint32_t number = index.insert(key, inserted);
-    if (inserted) moments.emplace_back();
-    // Relative to the cell's own corner: precise far from the world origin.
-    const Vec3 local = q - (q * inverse).array().floor().matrix() * cell;
-    CellMoments::Moments& m = moments[number];
-    m.count += 1.0;
-    m.sum += local;
-    m.outer += local * local.transpose();
-    cell_of[i] = number;
-  }
+  CellMoments moments(cell);
+  moments.reserve(points.size() / 8);  // planes in 1 m cells at 0.1 m: tens of points a cell
+  std::vector<std::uint32_t> cell_of(points.size());
+  forEachPlaced(points.points, poses, Vec3::Zero(),
+                [&](std::size_t i, const Vec3& world) { cell_of[i] = moments.add(world); });
   std::vector<float> per_cell(moments.size());
-  for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments[c]);
-  std::vector<float> out(points.size(), -1.0f);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (cell_of[i] != kNoCell) out[i] = per_cell[cell_of[i]];
+  for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments.moments(c));
+  std::vector<float> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = per_cell[cell_of[i]];
   return out;
 }
 

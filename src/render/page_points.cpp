@@ -72,18 +72,7 @@ class FirstHits {
     voxel_ *= factor;
     index_.clear();
     std::vector<Vec3f> world(kept_.size());
-    std::uint32_t scan = ~0u;  // the points come scan by scan: one rotation matrix a scan
-    Mat3 R = Mat3::Identity();
-    Vec3 t = Vec3::Zero();
-    for (std::size_t i = 0; i < kept_.size(); ++i) {
-      const PagePoint& p = kept_[i];
-      if (p.scan != scan) {
-        scan = p.scan;
-        R = poses[scan].R();
-        t = poses[scan].t - origin;
-      }
-      world[i] = (R * p.local.cast<double>() + t).cast<float>();
-    }
+    forEachPlaced(kept_, poses, origin, [&](std::size_t i, const Vec3& q) { world[i] = q.cast<float>(); });
     // Kept points move down over those dropped (insertNew goes in order).
     std::size_t kept = 0;
     std::vector<std::uint64_t> keys;

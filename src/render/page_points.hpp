@@ -28,6 +28,24 @@ struct PagePoints {
   std::size_t size() const { return points.size(); }
 };
 
+// Calls `visit(i, world)` for each of `points` placed by `poses` (world in
+// double, less `origin`), converting one pose to a matrix a scan.
+template <typename Visit>
+void forEachPlaced(const std::vector<PagePoint>& points, const std::vector<Pose>& poses, const Vec3& origin,
+                   Visit&& visit) {
+  std::uint32_t scan = ~0u;
+  Mat3 R = Mat3::Identity();
+  Vec3 t = Vec3::Zero();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (points[i].scan != scan) {
+      scan = points[i].scan;
+      R = poses[scan].R();
+      t = poses[scan].t - origin;
+    }
+    visit(i, Vec3(R * points[i].local.cast<double>() + t));
+  }
+}
+
 // At most `budget` points of the map of `scans` placed by `poses`: one per
 // world voxel (the first in scan order), the voxel starting at `start_voxel`
 // and growing while the map outgrows the budget by a quarter, then an even

@@ -1,0 +1,21 @@
+#pragma once
+// An earlier `hba optimize` output folder read back (`hba view OUT`, and
+// `hba optimize --map OUT`): the run's report.json and what it names.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace hba::cli {
+
+// Whether `folder` holds an output's report.json and pose.json.
+bool isOptimizeOutput(const std::filesystem::path& folder);
+
+// The report of an optimize output. Throws hba::Error naming `folder`
+// when it is not one, and report.json when it cannot be parsed.
+nlohmann::json readOutputReport(const std::filesystem::path& folder);
+
+// A text field of the report's `input` section ("dataset", "poses",
+// "pose_frame"). Throws hba::Error naming report.json when it is missing.
+std::string outputInput(const nlohmann::json& report, const std::filesystem::path& folder, const char* key);
+
+}  // namespace hba::cli
