@@ -10,7 +10,8 @@ bool isOptimizeOutput(const std::filesystem::path& folder) {
 }
 
 nlohmann::json readOutputReport(const std::filesystem::path& folder) {
-  if (!isOptimizeOutput(folder)) failAt(folder, "is not an hba optimize output (no report.json and pose.json)");
+  if (!isOptimizeOutput(folder))
+    failAt(folder, "is not an hba optimize output (no report.json and pose.json)");
   const nlohmann::json report = nlohmann::json::parse(readTextFile(folder / "report.json"), nullptr, false);
   if (report.is_discarded()) failAt(folder / "report.json", "is not readable JSON");
   return report;

@@ -6,10 +6,14 @@
 #include <cmath>
 #include <cstring>
 
+#include "hba/voxel/voxel_index.hpp"
 #include "map_change.hpp"
+#include "picture_points.hpp"
 
 namespace hba::render {
 namespace {
+
+constexpr std::uint32_t kNoCell = ~0u;
 
 template <typename T>
 void appendLittleEndian(Bytes& out, T value) {
@@ -22,17 +26,37 @@ void appendLittleEndian(Bytes& out, T value) {
 }
 
 // The plane thickness of each point's cell with the map placed by `poses`
-// (-1 where the cell's points form no plane).
+// (-1 where the cell's points form no plane). As CellMoments, but numbered
+// by packed keys relative to a grid corner near the first pose: 16-byte
+// slots against 32 and no key list, which took a quarter more time and
+// 27 MiB more on nclt's 2 M points.
 std::vector<float> thicknessPerPoint(const PagePoints& points, const std::vector<Pose>& poses, double cell) {
-  CellMoments moments(cell);
-  moments.reserve(points.size() / 8);  // planes in 1 m cells at 0.1 m: tens of points a cell
-  std::vector<std::uint32_t> cell_of(points.size());
-  forEachPlaced(points.points, poses, Vec3::Zero(),
-                [&](std::size_t i, const Vec3& world) { cell_of[i] = moments.add(world); });
+  const Vec3 corner =
+      poses.empty() ? Vec3::Zero() : Vec3((poses.front().t / cell).array().floor().matrix() * cell);
+  voxel::PackedVoxelIndex index;
+  index.reserve(points.size() / 8);  // planes in 1 m cells at 0.1 m: tens of points a cell
+  std::vector<CellMoments::Moments> moments;
+  moments.reserve(points.size() / 8);
+  std::vector<std::uint32_t> cell_of(points.size(), kNoCell);
+  const double inverse = 1.0 / cell;
+  forEachPlaced(points.points, poses, corner, [&](std::size_t i, const Vec3& q) {
+    const std::uint64_t key = packedVoxelKey(q, inverse);
+    if (key == kOutsidePackedRange) return;
+    bool inserted = false;
+    cell_of[i] = index.insert(key, inserted);
+    if (inserted) moments.emplace_back();
+    // Relative to the cell's own corner: precise far from the world origin.
+    const Vec3 local = q - (q * inverse).array().floor().matrix() * cell;
+    CellMoments::Moments& m = moments[cell_of[i]];
+    m.count += 1.0;
+    m.sum += local;
+    m.outer += local * local.transpose();
+  });
   std::vector<float> per_cell(moments.size());
-  for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments.moments(c));
-  std::vector<float> out(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) out[i] = per_cell[cell_of[i]];
+  for (std::size_t c = 0; c < moments.size(); ++c) per_cell[c] = planeThicknessOf(moments[c]);
+  std::vector<float> out(points.size(), -1.0f);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (cell_of[i] != kNoCell) out[i] = per_cell[cell_of[i]];
   return out;
 }
 
