@@ -20,7 +20,7 @@ import machine
 import report_md
 from measure import MME_MAX_FRAMES, SCAN_VOXEL_M
 from process import CommandFailed
-from scenarios import HKU1, NCLT, SPARSE_TWIN, DataStore, scenario_set
+from scenarios import add_data_arguments, HKU1, NCLT, SPARSE_TWIN, DataStore, scenario_set
 from tools import Tools
 
 REPO = Path(__file__).resolve().parents[2]
@@ -40,10 +40,7 @@ def parse_args(argv):
     parser.add_argument("--runs", type=int, default=3, help="optimize runs per build and scenario")
     parser.add_argument("--render", action="store_true",
                         help="also time one default run (with before_after.png) per build")
-    parser.add_argument("--data-dir", type=Path,
-                        default=Path(os.environ.get("HBA_BENCH_DATA", "/work/hba-bench-data")))
-    parser.add_argument("--hku1", type=Path, default=REPO.parent / "shared/data/hku1")
-    parser.add_argument("--nclt", type=Path, default=REPO.parent / "shared/data/nclt")
+    add_data_arguments(parser, REPO)
     parser.add_argument("--output", type=Path, default=REPO / "bench/results/compare.md")
     parser.add_argument("--jobs", type=int, default=2)
     args = parser.parse_args(argv)

@@ -10,7 +10,6 @@ of the run's time (issue #41).
 import argparse
 import datetime
 import json
-import os
 import re
 import shutil
 import statistics
@@ -20,7 +19,7 @@ from pathlib import Path
 import machine
 import process
 import report_md
-from scenarios import HKU1, NCLT, DataStore, simulated
+from scenarios import add_data_arguments, HKU1, NCLT, DataStore, simulated
 from tools import Tools
 
 REPO = Path(__file__).resolve().parents[2]
@@ -32,10 +31,7 @@ def parse_args(argv):
     parser.add_argument("--hba", type=Path, default=REPO / "build/bin/hba")
     parser.add_argument("--runs", type=int, default=3)
     parser.add_argument("--only", default="sim-hdl32-1000-drift,hku1,nclt")
-    parser.add_argument("--data-dir", type=Path,
-                        default=Path(os.environ.get("HBA_BENCH_DATA", "/work/hba-bench-data")))
-    parser.add_argument("--hku1", type=Path, default=REPO.parent / "shared/data/hku1")
-    parser.add_argument("--nclt", type=Path, default=REPO.parent / "shared/data/nclt")
+    add_data_arguments(parser, REPO)
     parser.add_argument("--output", type=Path, default=REPO / "bench/results/report_page.md")
     parser.add_argument("--jobs", type=int, default=2)
     return parser.parse_args(argv)

@@ -6,6 +6,7 @@ reused while its flags are unchanged and simulated again otherwise. The
 loop-closed variant reuses the drift variant's scans and only simulates its
 initial poses (`simulate --poses-only --loop-closed`).
 """
+import os
 import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -15,6 +16,15 @@ SEED = 1
 FULL_HDL32_FRAMES = (1000, 5000, 20000)
 QUICK_HDL32_FRAMES = (100, 200)
 HKU1_FRAMES = 314
+
+
+def add_data_arguments(parser, repo):
+    """--data-dir (where simulated datasets are cached), --hku1 and --nclt (the real sequences beside
+    the repository)."""
+    parser.add_argument("--data-dir", type=Path,
+                        default=Path(os.environ.get("HBA_BENCH_DATA", "/work/hba-bench-data")))
+    parser.add_argument("--hku1", type=Path, default=repo.parent / "shared/data/hku1")
+    parser.add_argument("--nclt", type=Path, default=repo.parent / "shared/data/nclt")
 
 
 @dataclass(frozen=True)
