@@ -7,10 +7,9 @@
 #include <chrono>
 #include <fstream>
 #include <functional>
-#include <iterator>
-#include <sstream>
 
 #include "aligned_ground_truth.hpp"
+#include "core/input_file.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "page_assets.hpp"
@@ -29,10 +28,12 @@ void checkCount(const std::vector<Pose>& poses, std::size_t scans, const char* w
   }
 }
 
+// The picture's bytes (InputFile names the file on any failure).
 Bytes readBytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string() + ": cannot be read for the report page");
-  return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  InputFile file(path);
+  Bytes bytes(static_cast<std::size_t>(file.size()));
+  bytes.resize(file.read(reinterpret_cast<char*>(bytes.data()), bytes.size()));
+  return bytes;
 }
 
 std::string escapeHtml(const std::string& text) {
