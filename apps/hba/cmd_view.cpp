@@ -80,9 +80,18 @@ void run(ViewArgs& args) {
   refuseOutputInsideInput(output, dataset);
   // A page hba wrote is written again; any other file only with --force.
   const auto claim = claimOutputFile(output, args.force || render::isReportPage(output));
-  fs::path gt_file = args.gt;
-  if (gt_file.empty() && regularFileIsPresent(dataset.root() / "gt.txt")) gt_file = dataset.root() / "gt.txt";
-  if (!gt_file.empty()) input.ground_truth = readPosesFor(dataset, gt_file);
+  if (!args.gt.empty()) {
+    input.ground_truth = readPosesFor(dataset, args.gt);  // asked for: a wrong length is an error
+  } else if (regularFileIsPresent(dataset.root() / "gt.txt")) {
+    // As hba optimize: a gt.txt beside the data that does not pair up is not drawn, with a word.
+    std::vector<Pose> gt = io::readPoses(dataset.root() / "gt.txt").poses;
+    if (gt.size() == dataset.size()) {
+      input.ground_truth = std::move(gt);
+    } else {
+      spdlog::warn("{}: {} poses for {} scans; not drawn", (dataset.root() / "gt.txt").string(), gt.size(),
+                   dataset.size());
+    }
+  }
   input.title = folderName(dataset.root());
 
   const auto start = std::chrono::steady_clock::now();

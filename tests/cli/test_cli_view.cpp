@@ -90,6 +90,18 @@ TEST_F(View, BadInputIsRefusedByName) {
   EXPECT_NE(short_poses.output.find("short.txt"), std::string::npos) << short_poses.output;
   EXPECT_NE(short_poses.output.find("3 poses for 60 scans"), std::string::npos) << short_poses.output;
   EXPECT_FALSE(fs::exists(*dir / "p.html"));
+  // Asked for with --gt, a ground truth of the wrong length is refused too.
+  const test::CommandResult short_gt =
+      view(quoted(*dir / "sim") + " --gt " + quoted(*dir / "short.txt") + " -o " + quoted(*dir / "p.html"));
+  EXPECT_NE(short_gt.exit_code, 0);
+  EXPECT_NE(short_gt.output.find("3 poses for 60 scans"), std::string::npos) << short_gt.output;
+  // A gt.txt beside the data that does not pair up is left out with a warning, as by hba optimize.
+  fs::copy(*dir / "sim", *dir / "sim-bad-gt", fs::copy_options::recursive);
+  fs::copy_file(*dir / "short.txt", *dir / "sim-bad-gt" / "gt.txt", fs::copy_options::overwrite_existing);
+  const test::CommandResult beside =
+      view(quoted(*dir / "sim-bad-gt") + " -o " + quoted(*dir / "bad-gt.html"));
+  EXPECT_EQ(beside.exit_code, 0) << beside.output;
+  EXPECT_NE(beside.output.find("not drawn"), std::string::npos) << beside.output;
   // Never into the input.
   const test::CommandResult inside = view(quoted(*dir / "sim") + " -o " + quoted(*dir / "sim" / "page.html"));
   EXPECT_NE(inside.exit_code, 0);
