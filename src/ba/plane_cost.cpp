@@ -99,10 +99,28 @@ FrameTransforms::FrameTransforms(const std::vector<Pose>& poses) {
   }
 }
 
+// The cost needs the world scatter only: one pass, no per-frame terms kept.
+// The centroids' spread is summed about the first one and moved to their
+// mean at the end (a plane is metres wide: nothing is lost to cancellation
+// against its thinnest direction's share).
 Mat3 planeScatter(const PlaneObservation& plane, const FrameTransforms& frames) {
-  WorldPlane& world = threadWorldPlane();
-  toWorld(plane, frames, world);
-  return world.scatter;
+  Mat3 scatter = Mat3::Zero();
+  Vec3 reference = Vec3::Zero();
+  Vec3 weighted = Vec3::Zero();
+  double n = 0.0;
+  for (std::size_t a = 0; a < plane.clusters.size(); ++a) {
+    const FrameCluster& fc = plane.clusters[a];
+    const Mat3& R = frames.R[fc.frame];
+    const Vec3 centroid = R * fc.mean() + frames.t[fc.frame];
+    if (a == 0) reference = centroid;
+    const Vec3 offset = centroid - reference;
+    const double count = fc.count();
+    scatter += R * fc.scatter() * R.transpose() + count * offset * offset.transpose();
+    weighted += count * offset;
+    n += count;
+  }
+  if (n > 0.0) scatter -= weighted * weighted.transpose() / n;
+  return 0.5 * (scatter + scatter.transpose());
 }
 
 double planeCost(const PlaneObservation& plane, const FrameTransforms& frames) {

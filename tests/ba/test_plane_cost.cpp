@@ -237,6 +237,26 @@ TEST(PlaneCost, EqualsSumOfSquaredDistancesToBestPlane) {
   }
 }
 
+// The cost sums the frames' centroids about the first one in one pass: a
+// thin plane seen by many frames far from the origin keeps its thickness.
+TEST(PlaneCost, OnePassKeepsAThinPlaneFarFromTheOrigin) {
+  std::mt19937 rng(17);
+  std::vector<Pose> poses = randomPoses(rng, 20, 6.0);
+  std::vector<std::uint32_t> frames(poses.size());
+  for (std::uint32_t f = 0; f < frames.size(); ++f) frames[f] = f;
+  const auto plane = randomPlane(rng, poses, frames, 30, 0.001);
+  for (Pose& pose : poses) pose.t += Vec3(2500.0, -1800.0, 40.0);
+  std::vector<Vec3> world;
+  for (std::size_t a = 0; a < plane.sensor_points.size(); ++a) {
+    for (const Vec3& p : plane.sensor_points[a]) world.push_back(poses[a] * p);
+  }
+  const double brute = bruteForceSumSquaredDistance(world);
+  EXPECT_NEAR(planeCost(plane.observation, FrameTransforms(poses)), brute, 1e-6 * brute);
+  // The same as the linearization's, which takes the offsets about their mean.
+  const PlaneLinearization lin = linearizePlane(plane.observation, FrameTransforms(poses));
+  EXPECT_NEAR(planeCost(plane.observation, FrameTransforms(poses)), lin.cost, 1e-9 * lin.cost);
+}
+
 TEST(PlaneCost, ClusterFormEqualsPointwiseEvaluation) {
   std::mt19937 rng(31);
   const std::vector<Pose> poses = randomPoses(rng, 4, 5.0);
