@@ -15,5 +15,9 @@ mkdir -p "$cache"
       { echo "SKIP: npm could not install the MCAP writer"; cat "$cache/npm.log"; exit 77; }
   fi
 ) 9> "$cache/.lock"
-cp "$here/write_mcap.mjs" "$cache/"
+# Put in place by a rename: tests run side by side, and a plain cp would
+# truncate the script under another test's node while it reads it.
+staged=$(mktemp "$cache/.write_mcap.XXXXXX")
+cp "$here/write_mcap.mjs" "$staged"
+mv -f "$staged" "$cache/write_mcap.mjs"
 node "$cache/write_mcap.mjs" "$@"
