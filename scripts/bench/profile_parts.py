@@ -8,11 +8,12 @@ prints a Markdown table of CPU seconds and shares; --output writes it with
 the raw per-function figures beside it (.json). Run it on two builds to say
 where a change moved the time (issue #40's "before/after profile").
 
-  python3 scripts/bench/profile_parts.py --hba build/bin/hba DATASET [-- OPTIMIZE FLAGS]
+  python3 scripts/bench/profile_parts.py --hba build/bin/hba DATASET [--flags "--no-refine ..."]
 """
 import argparse
 import json
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -50,7 +51,7 @@ def parse_args(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--hba", type=Path, required=True, help="the build's hba")
     parser.add_argument("dataset", type=Path)
-    parser.add_argument("optimize_flags", nargs="*", help="more flags for hba optimize (after --)")
+    parser.add_argument("--flags", default="", help="more flags for hba optimize, in one string")
     parser.add_argument("--frequency", type=int, default=499, help="samples a second a thread")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--label", default=None, help="the build's name in the table (default: the path)")
@@ -76,7 +77,7 @@ def sample(args, folder):
     data = folder / "perf.data"
     command = ["perf", "record", "-q", "-F", str(args.frequency), "-o", str(data), "--",
                str(args.hba), "optimize", str(args.dataset), "-o", str(folder / "out"), "--force",
-               "--no-render", *page_flag(args.hba), "-j", str(args.jobs), *args.optimize_flags]
+               "--no-render", *page_flag(args.hba), "-j", str(args.jobs), *shlex.split(args.flags)]
     run = subprocess.run(command, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"profile_parts: the sampled run failed ({run.returncode}):\n{run.stderr[-2000:]}")
