@@ -20,6 +20,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from tools import Tools
+
 # (part, pattern on "dso symbol"), first match wins: the plane extraction's
 # names come before TBB's, whose task names carry the lambda's function.
 PARTS = [
@@ -67,17 +69,13 @@ def part_of(dso, symbol):
     return "other"
 
 
-def page_flag(hba):
-    """--no-report-page where the build has it: the timings of other builds leave it out too."""
-    help_text = subprocess.run([str(hba), "optimize", "--help"], capture_output=True, text=True).stdout
-    return ["--no-report-page"] if "--no-report-page" in help_text else []
-
-
 def sample(args, folder):
     data = folder / "perf.data"
+    # Without the report page where the build has one, as the other timings.
+    page_flag = ["--no-report-page"] if Tools(args.hba, "", args.jobs).writes_report_page() else []
     command = ["perf", "record", "-q", "-F", str(args.frequency), "-o", str(data), "--",
                str(args.hba), "optimize", str(args.dataset), "-o", str(folder / "out"), "--force",
-               "--no-render", *page_flag(args.hba), "-j", str(args.jobs), *shlex.split(args.flags)]
+               "--no-render", *page_flag, "-j", str(args.jobs), *shlex.split(args.flags)]
     run = subprocess.run(command, capture_output=True, text=True)
     if run.returncode != 0:
         sys.exit(f"profile_parts: the sampled run failed ({run.returncode}):\n{run.stderr[-2000:]}")
