@@ -132,29 +132,46 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
   }
 }
 
-// Row blocks in parallel, each written by one thread.
-Eigen::MatrixXd FactoredSystem::dense() const {
-  const Eigen::Index n = 6 * static_cast<Eigen::Index>(frames_);
+// Columns of frames in parallel, each written by one thread and summed in
+// a fixed order (the frame's observations in plane order): the same bits
+// for any thread count. Observations of a plane ascend by frame, so the
+// blocks above the diagonal of column i come from the plane's observations
+// up to frame i's own: half the products of the whole matrix.
+Eigen::MatrixXd FactoredSystem::upperTriangle(std::size_t first) const {
+  first = std::min(first, frames_);
+  // The prior's off-diagonal blocks, by the later frame of their pair.
+  std::vector<std::vector<const PriorBlock*>> priors_at(frames_);
+  for (const PriorBlock& block : prior_) priors_at[std::max(block.a, block.b)].push_back(&block);
+  const auto n = static_cast<Eigen::Index>(6 * (frames_ - first));
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
-  tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
-    const auto row = static_cast<Eigen::Index>(6 * i);
-    H.block<6, 6>(row, row) += diagonal_[i];
+  auto at = [&](std::size_t row_frame, std::size_t column_frame) {
+    return H.block<6, 6>(static_cast<Eigen::Index>(6 * (row_frame - first)),
+                         static_cast<Eigen::Index>(6 * (column_frame - first)));
+  };
+  tbb::parallel_for(first, frames_, [&](std::size_t i) {
+    at(i, i) += diagonal_[i];
     for (std::uint32_t u = index_.frame_begin[i]; u < index_.frame_begin[i + 1]; ++u) {
       const std::uint32_t k = index_.uses[u];
       const std::uint32_t p = index_.plane_of[k];
-      const Eigen::Matrix<float, 6, 3> left = z(k).transpose() * weights_[p].asDiagonal();
-      for (std::uint32_t l = index_.plane_begin[p]; l < index_.plane_begin[p + 1]; ++l) {
-        const auto col = static_cast<Eigen::Index>(6 * index_.frame_of[l]);
-        H.block<6, 6>(row, col) += (left * z(l)).cast<double>();
+      const Eigen::Matrix<float, 3, 6> weighted = weights_[p].asDiagonal() * z(k);
+      for (std::uint32_t l = index_.plane_begin[p]; l <= k; ++l) {
+        const std::uint32_t j = index_.frame_of[l];
+        if (j >= first) at(j, i) += (z(l).transpose() * weighted).cast<double>();
       }
     }
+    for (const PriorBlock* block : priors_at[i]) {
+      const std::size_t j = std::min(block->a, block->b);
+      if (j < first || j == i) continue;
+      // H(a, b) is `ab`: H(j, i) is it or its transpose.
+      at(j, i) += block->a == j ? block->ab : Mat6(block->ab.transpose());
+    }
   });
-  for (const PriorBlock& block : prior_) {
-    H.block<6, 6>(6 * static_cast<Eigen::Index>(block.a), 6 * static_cast<Eigen::Index>(block.b)) += block.ab;
-    H.block<6, 6>(6 * static_cast<Eigen::Index>(block.b), 6 * static_cast<Eigen::Index>(block.a)) +=
-        block.ab.transpose();
-  }
   return H;
+}
+
+Eigen::MatrixXd FactoredSystem::dense() const {
+  const Eigen::MatrixXd upper = upperTriangle();
+  return upper.selfadjointView<Eigen::Upper>();
 }
 
 // blockdiag(D) x + sum over planes Z^T W Z x: planes are cut into fixed

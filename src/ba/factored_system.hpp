@@ -41,7 +41,11 @@ class FactoredSystem {
   FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior, const PositionPriors& positions,
                  const ObservationIndex& index, const std::vector<Pose>& poses);
 
-  // H itself (6K x 6K).
+  // H over frames [first, K) (first = 1 leaves the held frame 0 out), its
+  // upper triangle only (the diagonal blocks whole, the rest below zero):
+  // what a Cholesky factorization reads, for half the products.
+  Eigen::MatrixXd upperTriangle(std::size_t first = 0) const;
+  // H itself (6K x 6K), from upperTriangle(): for tests.
   Eigen::MatrixXd dense() const;
 
   double cost() const { return cost_; }

@@ -24,15 +24,16 @@ Eigen::VectorXd dampingScale(const FactoredSystem& system) {
 }
 
 // Solves (H + mu D) x = -g for every frame (but frame 0 when it is held)
-// by factoring it; zero if the damped matrix is not positive definite.
-Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& H, const Eigen::VectorXd& gradient,
-                                 const Eigen::VectorXd& scale, double mu, bool hold_first) {
-  const Eigen::Index n = H.rows() - (hold_first ? 6 : 0);
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(H.rows());
+// by factoring it, from H's upper triangle over those frames; zero if the
+// damped matrix is not positive definite.
+Eigen::VectorXd solveDampedDense(const Eigen::MatrixXd& upper, const Eigen::VectorXd& gradient,
+                                 const Eigen::VectorXd& scale, double mu) {
+  const Eigen::Index n = upper.rows();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(gradient.size());
   if (n <= 0) return x;
-  Eigen::MatrixXd A = H.bottomRightCorner(n, n);
+  Eigen::MatrixXd A = upper;
   A.diagonal() += mu * scale.tail(n);
-  const Eigen::LLT<Eigen::MatrixXd> llt(A);
+  const Eigen::LLT<Eigen::MatrixXd, Eigen::Upper> llt(A);
   if (llt.info() == Eigen::Success) x.tail(n) = llt.solve(-gradient.tail(n));
   return x;
 }
@@ -142,11 +143,11 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
   double nu = 2.0;
   std::unique_ptr<FactoredSystem> system;
   const bool dense = poses.size() <= settings.dense_max_frames;
-  Eigen::MatrixXd H;  // of `system`, when dense
+  Eigen::MatrixXd upper;  // of `system`, when dense
   while (poses.size() > 1 && summary.iterations < settings.max_iterations && cost > 0.0) {
     if (!system) {
       system = std::make_unique<FactoredSystem>(problem, prior, positions, index, poses);
-      if (dense) H = system->dense();
+      if (dense) upper = system->upperTriangle(settings.hold_first ? 1 : 0);
     }
     Eigen::VectorXd g = system->gradient();
     if (settings.hold_first) g.head<6>().setZero();
@@ -154,7 +155,7 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
     ++summary.iterations;
 
     const Eigen::VectorXd scale = dampingScale(*system);
-    Eigen::VectorXd step = dense ? solveDampedDense(H, g, scale, mu, settings.hold_first)
+    Eigen::VectorXd step = dense ? solveDampedDense(upper, g, scale, mu)
                                  : solveDamped(*system, scale, mu, settings, summary.cg_products);
     double largest = 0.0;  // of the step, relative to the caps
     for (std::size_t i = 0; i < poses.size(); ++i) {

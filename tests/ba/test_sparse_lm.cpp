@@ -69,6 +69,30 @@ TEST(FactoredSystem, ProductIsTheFormedMatrixTimesX) {
   }
 }
 
+// The formed upper triangle over the free frames is H (itself checked
+// against the factored products above) without the held frame's rows and
+// columns, zero below the diagonal blocks (the Cholesky factorization reads
+// the upper half; the products below are not taken).
+TEST(FactoredSystem, UpperTriangleLeavesTheHeldFrameOut) {
+  const Chain c = chain(40, 600, 6, 3);
+  const MotionPrior prior = neighbourPrior(c.start, {}, MotionPriorSettings{});
+  const ObservationIndex index(c.problem, c.start.size());
+  const FactoredSystem system(c.problem, prior, {}, index, c.start);
+  const Eigen::MatrixXd H = system.dense();
+  const Eigen::MatrixXd upper = system.upperTriangle(1);
+  const Eigen::Index n = H.rows() - 6;
+  ASSERT_EQ(upper.rows(), n);
+  ASSERT_EQ(upper.cols(), n);
+  const Eigen::MatrixXd expected = H.bottomRightCorner(n, n);
+  EXPECT_LT((Eigen::MatrixXd(upper.triangularView<Eigen::Upper>()) -
+             Eigen::MatrixXd(expected.triangularView<Eigen::Upper>()))
+                .norm(),
+            1e-12 * H.norm());
+  for (Eigen::Index b = 6; b < n; b += 6) {
+    EXPECT_EQ(upper.block(b, 0, n - b, b).norm(), 0.0) << "below the diagonal block at " << b;
+  }
+}
+
 // The summary counts the products H x the conjugate gradients take: none
 // when the system is formed and factored, at most the cap per step
 // otherwise. On a 300-frame chain whose start bends smoothly away from the
