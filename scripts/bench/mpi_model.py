@@ -8,9 +8,9 @@ ranges, so ceil(W / K) windows' time, plus the exchange after it. Each
 window's summary goes to every process; a keyframe goes only to the process
 whose next-layer windows read it: those across the edge of its range (as
 many as the two-process run sent), all of them to the one process that runs
-the top layer's window. What is not
-spread (the closure stage, the refinement, reading, the pose graph) runs in
-the first process, as measured, per frame. The model is checked against the
+the top layer's window. The closure stage's verifications are spread evenly
+(its seconds / K). What is not spread (the refinement, reading, the pose
+graph) runs in the first process, as measured, per frame. The model is checked against the
 two-process run, then extrapolated to N scans: layer l has about
 N / stride^(l-1) frames, its windows cost what they cost in the measured
 run's layer (deeper layers as its deepest local one), the rest grows with N.
@@ -110,18 +110,22 @@ def main():
     args = parser.parse_args()
     one = json.load(open(args.one))
     many = json.load(open(args.many)) if args.many else None
-    window, stride = one["settings"]["window"], one["settings"]["stride"]
+    # The window and stride used (report.json's "windows"; the settings' stride 0 means automatic).
+    used = one.get("windows", one["settings"])
+    window, stride = used["window"], used["stride"]
     layers = measured_layers(one, many)
     layer_seconds = sum(l["seconds"] for l in one["layer_reports"])
-    rest = one["seconds"]["total"] - layer_seconds
+    closures = one.get("closure", {}).get("seconds", 0.0)
+    rest = one["seconds"]["total"] - layer_seconds - closures
     n1 = one["frames"]
     print(f"measured, one process: {one['seconds']['total']:.1f} s for {n1} frames; layers {layer_seconds:.1f} s, "
-          f"the rest {rest:.1f} s ({1e3 * rest / n1:.1f} ms a frame, in the first process)")
+          f"closures {closures:.1f} s (spread), the rest {rest:.1f} s ({1e3 * rest / n1:.1f} ms a frame, "
+          f"in the first process)")
     if many:
         k = many["processes"]
         times, _ = model(layers, k, args.bandwidth)
         measured = many["seconds"]["total"]
-        modelled = sum(times) + rest
+        modelled = sum(times) + closures / k + rest
         print(f"check, {k} processes: modelled {modelled:.1f} s, measured {measured:.1f} s "
               f"({modelled / measured:.2f}); layers modelled " + ", ".join(f"{t:.2f}" for t in times)
               + " s, measured " + ", ".join(f"{l['seconds']:.2f}" for l in many["layer_reports"]) + " s")
@@ -132,17 +136,19 @@ def main():
               + ", keyframes crossing " + ", ".join(f"{l['crossing']:.1f}" for l in layers))
     big = extrapolate(layers, args.frames, window, stride)
     rest_big = rest / n1 * args.frames
+    closures_big = closures / n1 * args.frames
     print(f"\nN = {args.frames} frames: {len(big)} layers, windows " + ", ".join(str(l["windows"]) for l in big))
-    print("| processes | layers (s) | the rest (s) | total (h) | speed-up | a process sends (GB) | "
+    print("| processes | layers (s) | closures (s) | the rest (s) | total (h) | speed-up | a process sends (GB) | "
           "the busiest receives (GB) |")
-    print("|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|")
     base = None
     for k in [int(x) for x in args.processes.split(",")]:
         times, received = model(big, k, args.bandwidth)
-        total = sum(times) + rest_big
+        total = sum(times) + closures_big / k + rest_big
         base = base or total
         sent = sum(layer_sent(l, k, i + 2 == len(big)) for i, l in enumerate(big))
-        print(f"| {k} | {sum(times):.0f} | {rest_big:.0f} | {total / 3600:.2f} | {base / total:.2f}x | "
+        print(f"| {k} | {sum(times):.0f} | {closures_big / k:.0f} | {rest_big:.0f} | {total / 3600:.2f} | "
+              f"{base / total:.2f}x | "
               f"{sent / 1e9:.2f} | {sum(received) / 1e9:.1f} |")
 
 

@@ -10,6 +10,7 @@
 #include "hba/closure/loop_check.hpp"
 #include "hba/closure/revisits.hpp"
 #include "hba/closure/sessions.hpp"
+#include "shared_outcomes.hpp"
 
 namespace hba::pyramid {
 namespace {
@@ -104,12 +105,14 @@ std::vector<Candidate> gatherCandidates(const std::vector<Pose>& initial, const 
 }
 
 // Each candidate verified by the plane BA. The verifications are
-// independent: their order of finishing changes nothing.
+// independent: their order of finishing changes nothing, nor which member
+// of the group ran them (member r takes the candidates k with k % size ==
+// r: neighbours along the path, alike in cost, go to different members).
 std::vector<closure::LoopCheck> verifyCandidates(const io::ScanSource& clouds,
                                                  const std::vector<Pose>& initial,
                                                  std::vector<Candidate>& candidates,
                                                  const std::vector<std::size_t>& session_starts,
-                                                 const HbaSettings& settings) {
+                                                 const HbaSettings& settings, const dist::Group& group) {
   if (!session_starts.empty()) {
     const std::vector<std::size_t> session_of = closure::sessionOfFrames(initial.size(), session_starts);
     for (Candidate& c : candidates) {
@@ -119,13 +122,18 @@ std::vector<closure::LoopCheck> verifyCandidates(const io::ScanSource& clouds,
     }
   }
   std::vector<closure::LoopCheck> checks(candidates.size());
-  tbb::parallel_for(std::size_t{0}, candidates.size(), [&](std::size_t i) {
+  const auto members = static_cast<std::size_t>(group.size());
+  const auto mine = static_cast<std::size_t>(group.rank());
+  const std::size_t own = candidates.size() > mine ? (candidates.size() - mine + members - 1) / members : 0;
+  tbb::parallel_for(std::size_t{0}, own, [&](std::size_t j) {
+    const std::size_t i = mine + j * members;
     closure::LoopCheckSettings check;
     check.search_radius_m = candidates[i].search_radius_m;
     check.search_yaw_deg = candidates[i].search_yaw_deg;
     check.information = settings.information;
     checks[i] = closure::verifyLoop(clouds, initial, candidates[i].pair, check, candidates[i].ends);
   });
+  if (members > 1) shareLoopChecks(group, checks);
   return checks;
 }
 
@@ -195,7 +203,8 @@ void logClosures(const ClosureReport& report, std::size_t candidates, std::size_
 }  // namespace
 
 ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
-                               const ClosureInputs& closures, const HbaSettings& settings) {
+                               const ClosureInputs& closures, const HbaSettings& settings,
+                               const dist::Group& group) {
   const auto start = Clock::now();
   ClosureOutcome out;
   out.start = initial;
@@ -208,7 +217,9 @@ ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<P
   if (candidates.empty() && closures.priors.empty() && closures.session_starts.empty()) return out;
   report.ran = true;
   const std::vector<closure::LoopCheck> checks =
-      verifyCandidates(clouds, initial, candidates, closures.session_starts, settings);
+      verifyCandidates(clouds, initial, candidates, closures.session_starts, settings, group);
+  // The pose graph and the report in the first member (shareClosures sends its outcome).
+  if (!group.root()) return out;
   closeVerified(initial, closures, candidates, checks, settings, out);
   report.seconds = secondsSince(start);
   logClosures(report, candidates.size(), searched);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
+#include "hba/dist/group.hpp"
 #include "hba/graph/factors.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
@@ -22,7 +23,12 @@ struct ClosureOutcome {
 
 // `clouds` as the layer-1 windows load them; `initial` the input poses (and
 // `closures` its frames' loops and priors, in the same coordinates).
+// Every member of `group` calls it (a collective): the candidates'
+// verifications are spread over the members; the pose graph that closes
+// them runs in the first, whose outcome is the only whole one (the others
+// get it from shareClosures).
 ClosureOutcome runClosureStage(const io::ScanSource& clouds, const std::vector<Pose>& initial,
-                               const ClosureInputs& closures, const HbaSettings& settings);
+                               const ClosureInputs& closures, const HbaSettings& settings,
+                               const dist::Group& group = dist::singleProcess());
 
 }  // namespace hba::pyramid

@@ -9,6 +9,7 @@
 
 #include "closure_stage.hpp"
 #include "dist/bytes.hpp"
+#include "hba/closure/loop_check.hpp"
 #include "hba/core/error.hpp"
 #include "hba/dist/group.hpp"
 #include "hba/graph/factors.hpp"
@@ -72,5 +73,10 @@ std::vector<Pose> posesFromRoot(const dist::Group& group, const std::vector<Pose
 // The first member's closure outcome (start, loops, priors; its report stays
 // there), in every member.
 void shareClosures(const dist::Group& group, ClosureOutcome& closed);
+
+// The loop checks of every member, in every member: member r verified the
+// candidates k with k % size == r and holds their checks at k in `checks`
+// (one entry a candidate); the others' arrive at theirs.
+void shareLoopChecks(const dist::Group& group, std::vector<closure::LoopCheck>& checks);
 
 }  // namespace hba::pyramid

@@ -14,9 +14,9 @@
 namespace hba::pyramid {
 
 void closeLoops(Run& run) {
-  // In the first process, its outcome sent to the others.
-  run.closed = run.group.root() ? runClosureStage(run.scans.source(), run.input, run.closures, run.settings)
-                                : ClosureOutcome{};
+  // The verifications spread over the processes; the first one's outcome
+  // sent to the others.
+  run.closed = runClosureStage(run.scans.source(), run.input, run.closures, run.settings, run.group);
   if (run.group.size() > 1) shareClosures(run.group, run.closed);
   run.report.closure = run.closed.report;
   // Priors may put the start far from the input (UTM coordinates): the
