@@ -38,7 +38,7 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                   const LmSettings& settings, const MotionPrior& prior,
-                                  std::optional<double> start_plane_cost) {
+                                  std::optional<double> start_plane_cost, Linearization* at_result) {
   auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
   LmSummary summary;
   // Costs are compared through cost() only, so rounding differences between
@@ -70,6 +70,12 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
     const Eigen::LLT<Eigen::MatrixXd> cholesky(damped);
     Eigen::VectorXd step = -cholesky.solve(g);
     const double predicted = -(g.dot(step) + 0.5 * step.dot(H * step));
+    // Settled: the step promises less than a step that would end the
+    // solve once taken. Declined, so the linearization stays current.
+    if (cholesky.info() == Eigen::Success && isFinite(step) && predicted > 0.0 &&
+        predicted <= settings.relative_cost_tolerance * cost) {
+      break;
+    }
 
     bool accepted = false;
     if (cholesky.info() == Eigen::Success && isFinite(step) && predicted > 0.0) {
@@ -98,6 +104,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
     }
   }
   summary.final_cost = cost;
+  if (at_result != nullptr) *at_result = stale ? Linearization{} : std::move(lin);
   return summary;
 }
 

@@ -59,6 +59,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   // the finest voxel, found with the first round's (the same points placed
   // once), or the first round's own when it is at the finest voxel already.
   std::shared_ptr<const Association> last, fixed;
+  Linearization last_lin;      // the last round's solver's, at its poses, when it has it
   bool last_at_input = false;  // `last` was found at the input poses
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
@@ -86,7 +87,8 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
     const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
     const auto associated = Clock::now();
     // The association found its planes at these poses: their cost is known.
-    const LmSummary summary = solveLevenbergMarquardt(last->problem, result.poses, lm, prior, last->cost());
+    const LmSummary summary =
+        solveLevenbergMarquardt(last->problem, result.poses, lm, prior, last->cost(), &last_lin);
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
@@ -123,8 +125,14 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   const std::vector<double> final_costs =
       result.trusted ? last->problem.planeCosts(result.poses) : initial_costs;
   result.final_cost = PlaneProblem::total(final_costs);
-  Linearization final_lin = last->problem.linearize(result.poses);
-  prior.addTo(final_lin, result.poses);
+  // The last round's solver linearized there already when it declined its last step.
+  Linearization final_lin;
+  if (result.trusted && last_lin.gradient.size() > 0) {
+    final_lin = std::move(last_lin);
+  } else {
+    final_lin = last->problem.linearize(result.poses);
+    prior.addTo(final_lin, result.poses);
+  }
   result.hessian = std::move(final_lin.hessian);
   result.last_association_initial_cost = PlaneProblem::total(initial_costs);
   result.num_planes = last->problem.numPlanes();

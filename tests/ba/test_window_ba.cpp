@@ -165,6 +165,46 @@ TEST(LevenbergMarquardt, AKnownStartCostGivesTheSameSteps) {
   }
 }
 
+// A solve stops once the next step promises at most the tolerance's share
+// of the cost, without taking it; the linearization it stepped from is
+// then the one at the poses returned, to the bit, and handed out. Started
+// from what it returned, it takes no step at all.
+TEST(LevenbergMarquardt, HandsOutItsLinearizationWhenItDeclinesASettledStep) {
+  const auto window = noisyWindow(8);
+  const BaSettings settings = syntheticSettings();
+  const Association association =
+      associate(window.scanPointers(), window.initial, settings.planes, settings.reject_ratio);
+  const MotionPrior prior = neighbourPrior(window.initial, {}, settings.motion_prior);
+  const LmSettings lm{50, 1e-4};
+  std::vector<Pose> poses = window.initial;
+  Linearization at_result;
+  const LmSummary first =
+      solveLevenbergMarquardt(association.problem, poses, lm, prior, std::nullopt, &at_result);
+  ASSERT_GT(first.accepted_steps, 0);
+  ASSERT_LT(first.iterations, lm.max_iterations);
+
+  std::vector<Pose> again = poses;
+  Linearization at_again;
+  const LmSummary second =
+      solveLevenbergMarquardt(association.problem, again, lm, prior, std::nullopt, &at_again);
+  EXPECT_EQ(second.accepted_steps, 0);
+  EXPECT_EQ(second.iterations, 1);
+  EXPECT_EQ(second.final_cost, second.initial_cost);
+  for (std::size_t i = 0; i < poses.size(); ++i) EXPECT_EQ(again[i].t, poses[i].t);
+  ASSERT_GT(at_again.gradient.size(), 0);
+  Linearization expected = association.problem.linearize(again);
+  prior.addTo(expected, again);
+  EXPECT_EQ(at_again.cost, expected.cost);
+  EXPECT_EQ(at_again.gradient, expected.gradient);
+  EXPECT_EQ(at_again.hessian, expected.hessian);
+  // The first solve's, where it has one, is at its poses too; empty when its
+  // last step was taken.
+  if (at_result.gradient.size() > 0) {
+    EXPECT_EQ(at_result.gradient, expected.gradient);
+    EXPECT_EQ(at_result.hessian, expected.hessian);
+  }
+}
+
 TEST(WindowBa, IdenticalResultsWithOneAndTwoThreads) {
   SyntheticWindowSpec spec;
   spec.noise_sigma = 0.01;

@@ -23,8 +23,8 @@ struct LmSummary {
   int iterations = 0;
   int accepted_steps = 0;
   int cg_products = 0;  // products H x of the conjugate gradients (sparse solver)
-  // No linearization is returned: the caller linearizes once at the poses it
-  // finally keeps, instead of the solver after every round.
+  // The solver linearizes only where it steps from; the caller linearizes
+  // at the poses it finally keeps (or takes the solver's, at_result below).
 };
 
 // Applies the update of window_ba.hpp: R <- Exp(dphi) R, t <- t + dt, with
@@ -33,9 +33,14 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 
 // Optimizes `poses` in place, on the plane cost plus `prior` (may be empty).
 // `start_plane_cost`: problem.cost(poses), when the caller has it already
-// (Association::cost() of an association found at `poses`).
+// (Association::cost() of an association found at `poses`). It stops when
+// an accepted step gained, or the next one promises (by the quadratic
+// model), at most relative_cost_tolerance of the cost. `at_result`: where
+// given, the linearization (prior added) at the returned poses when the
+// solver has it (its last step was declined or not tried), else empty.
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                   const LmSettings& settings, const MotionPrior& prior = {},
-                                  std::optional<double> start_plane_cost = std::nullopt);
+                                  std::optional<double> start_plane_cost = std::nullopt,
+                                  Linearization* at_result = nullptr);
 
 }  // namespace hba::ba
