@@ -38,7 +38,7 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                   const LmSettings& settings, const MotionPrior& prior,
-                                  std::optional<double> start_plane_cost, Linearization* at_result) {
+                                  std::optional<double> start_plane_cost, Linearization* settled) {
   auto objective = [&](const std::vector<Pose>& at) { return problem.cost(at) + prior.cost(at); };
   LmSummary summary;
   // Costs are compared through cost() only, so rounding differences between
@@ -50,6 +50,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
   const Eigen::Index free = 6 * static_cast<Eigen::Index>(poses.size()) - 6;  // frame 0 fixed
   double mu = settings.initial_damping;
   double nu = 2.0;
+  bool settled_step = false;  // the last step taken gained at most the tolerance
 
   while (free > 0 && summary.iterations < settings.max_iterations && cost > 0.0) {
     if (stale) {
@@ -70,12 +71,6 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
     const Eigen::LLT<Eigen::MatrixXd> cholesky(damped);
     Eigen::VectorXd step = -cholesky.solve(g);
     const double predicted = -(g.dot(step) + 0.5 * step.dot(H * step));
-    // Settled: the step promises less than a step that would end the
-    // solve once taken. Declined, so the linearization stays current.
-    if (cholesky.info() == Eigen::Success && isFinite(step) && predicted > 0.0 &&
-        predicted <= settings.relative_cost_tolerance * cost) {
-      break;
-    }
 
     bool accepted = false;
     if (cholesky.info() == Eigen::Success && isFinite(step) && predicted > 0.0) {
@@ -94,7 +89,10 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
         stale = true;
         ++summary.accepted_steps;
         accepted = true;
-        if (gain <= settings.relative_cost_tolerance * previous) break;  // settled
+        if (gain <= settings.relative_cost_tolerance * previous) {  // settled
+          settled_step = true;
+          break;
+        }
       }
     }
     if (!accepted) {
@@ -104,7 +102,7 @@ LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>
     }
   }
   summary.final_cost = cost;
-  if (at_result != nullptr) *at_result = stale ? Linearization{} : std::move(lin);
+  if (settled != nullptr) *settled = stale && !settled_step ? Linearization{} : std::move(lin);
   return summary;
 }
 

@@ -59,7 +59,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   // the finest voxel, found with the first round's (the same points placed
   // once), or the first round's own when it is at the finest voxel already.
   std::shared_ptr<const Association> last, fixed;
-  Linearization last_lin;      // the last round's solver's, at its poses, when it has it
+  Linearization last_lin;      // where the last round's solver settled, when it did
   bool last_at_input = false;  // `last` was found at the input poses
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
@@ -125,7 +125,9 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   const std::vector<double> final_costs =
       result.trusted ? last->problem.planeCosts(result.poses) : initial_costs;
   result.final_cost = PlaneProblem::total(final_costs);
-  // The last round's solver linearized there already when it declined its last step.
+  // The Hessian where the last round's solver settled: at the result, or
+  // one step before it that gained at most the tolerance (the step is
+  // taken; its Hessian is not made again for so small a move).
   Linearization final_lin;
   if (result.trusted && last_lin.gradient.size() > 0) {
     final_lin = std::move(last_lin);

@@ -24,7 +24,7 @@ struct LmSummary {
   int accepted_steps = 0;
   int cg_products = 0;  // products H x of the conjugate gradients (sparse solver)
   // The solver linearizes only where it steps from; the caller linearizes
-  // at the poses it finally keeps (or takes the solver's, at_result below).
+  // at the poses it finally keeps (or takes the solver's: `settled` below).
 };
 
 // Applies the update of window_ba.hpp: R <- Exp(dphi) R, t <- t + dt, with
@@ -33,14 +33,15 @@ std::vector<Pose> applyUpdate(const std::vector<Pose>& poses, const Eigen::Vecto
 
 // Optimizes `poses` in place, on the plane cost plus `prior` (may be empty).
 // `start_plane_cost`: problem.cost(poses), when the caller has it already
-// (Association::cost() of an association found at `poses`). It stops when
-// an accepted step gained, or the next one promises (by the quadratic
-// model), at most relative_cost_tolerance of the cost. `at_result`: where
-// given, the linearization (prior added) at the returned poses when the
-// solver has it (its last step was declined or not tried), else empty.
+// (Association::cost() of an association found at `poses`). `settled`:
+// where given, the linearization (prior added) the solver last stepped
+// from, when the solve settled: at the returned poses (its last step was
+// declined), or one step before them when that step gained at most
+// relative_cost_tolerance of the cost (and ended the solve). Empty when the
+// solve ended otherwise (the iteration cap after a larger step).
 LmSummary solveLevenbergMarquardt(const PlaneProblem& problem, std::vector<Pose>& poses,
                                   const LmSettings& settings, const MotionPrior& prior = {},
                                   std::optional<double> start_plane_cost = std::nullopt,
-                                  Linearization* at_result = nullptr);
+                                  Linearization* settled = nullptr);
 
 }  // namespace hba::ba
