@@ -51,20 +51,31 @@ Chain chain(int frames, int planes, int reach, std::uint32_t seed) {
   return c;
 }
 
+// A 40-frame chain's factored system at its start, with the motion prior.
+// Its members refer to one another: built in place, never copied.
+struct ChainSystem {
+  Chain c = chain(40, 600, 6, 3);
+  MotionPrior prior = neighbourPrior(c.start, {}, MotionPriorSettings{});
+  ObservationIndex index{c.problem, c.start.size()};
+  FactoredSystem system{c.problem, prior, {}, index, c.start};
+
+  ChainSystem() = default;
+  ChainSystem(const ChainSystem&) = delete;
+  ChainSystem& operator=(const ChainSystem&) = delete;
+};
+
 // H x from the factored planes equals the formed H times x, and H is
 // symmetric (the stored Z are single precision: float rounding).
 TEST(FactoredSystem, ProductIsTheFormedMatrixTimesX) {
-  const Chain c = chain(40, 600, 6, 3);
-  const MotionPrior prior = neighbourPrior(c.start, {}, MotionPriorSettings{});
-  const ObservationIndex index(c.problem, c.start.size());
-  const FactoredSystem system(c.problem, prior, {}, index, c.start);
+  const ChainSystem formed;
+  const FactoredSystem& system = formed.system;
   const Eigen::MatrixXd H = system.dense();
   EXPECT_LT((H - H.transpose()).norm(), 1e-6 * H.norm());
   for (int trial = 0; trial < 3; ++trial) {
     const Eigen::VectorXd x = Eigen::VectorXd::Random(H.rows());
     EXPECT_LT((system.multiply(x) - H * x).norm(), 1e-5 * (H * x).norm());
   }
-  for (std::size_t i = 0; i < c.start.size(); ++i) {
+  for (std::size_t i = 0; i < formed.c.start.size(); ++i) {
     EXPECT_LT((system.block(i) - H.block<6, 6>(6 * i, 6 * i)).norm(), 1e-5 * H.norm()) << "frame " << i;
   }
 }
@@ -74,10 +85,8 @@ TEST(FactoredSystem, ProductIsTheFormedMatrixTimesX) {
 // columns, zero below the diagonal blocks (the Cholesky factorization reads
 // the upper half; the products below are not taken).
 TEST(FactoredSystem, UpperTriangleLeavesTheHeldFrameOut) {
-  const Chain c = chain(40, 600, 6, 3);
-  const MotionPrior prior = neighbourPrior(c.start, {}, MotionPriorSettings{});
-  const ObservationIndex index(c.problem, c.start.size());
-  const FactoredSystem system(c.problem, prior, {}, index, c.start);
+  const ChainSystem formed;
+  const FactoredSystem& system = formed.system;
   const Eigen::MatrixXd H = system.dense();
   const Eigen::MatrixXd upper = system.upperTriangle(1);
   const Eigen::Index n = H.rows() - 6;

@@ -142,14 +142,21 @@ TEST(Association, KeepsEachKeptPlanesCostAtItsPoses) {
   EXPECT_NE(association.cost(), problem.cost(window.truth));
 }
 
+// A noisy window's planes at its input poses, and its motion prior: what
+// its first round's solver is given.
+struct WindowProblem {
+  test::SyntheticWindow window = noisyWindow(8);
+  BaSettings settings = syntheticSettings();
+  Association association =
+      associate(window.scanPointers(), window.initial, settings.planes, settings.reject_ratio);
+  MotionPrior prior = neighbourPrior(window.initial, {}, settings.motion_prior);
+};
+
 // Given the cost at the start, the solver takes the same steps as when it
 // evaluates that cost itself.
 TEST(LevenbergMarquardt, AKnownStartCostGivesTheSameSteps) {
-  const auto window = noisyWindow(8);
-  const BaSettings settings = syntheticSettings();
-  const Association association =
-      associate(window.scanPointers(), window.initial, settings.planes, settings.reject_ratio);
-  const MotionPrior prior = neighbourPrior(window.initial, {}, settings.motion_prior);
+  const WindowProblem w;
+  const auto& [window, settings, association, prior] = w;
   std::vector<Pose> evaluated = window.initial;
   std::vector<Pose> given = window.initial;
   const LmSettings lm{settings.max_iterations, settings.relative_cost_tolerance};
@@ -169,11 +176,8 @@ TEST(LevenbergMarquardt, AKnownStartCostGivesTheSameSteps) {
 // of the cost) hands out the linearization that step started from, bit for
 // bit the one made there afresh; asking for it changes no step.
 TEST(LevenbergMarquardt, HandsOutTheLinearizationWhereItSettled) {
-  const auto window = noisyWindow(8);
-  const BaSettings settings = syntheticSettings();
-  const Association association =
-      associate(window.scanPointers(), window.initial, settings.planes, settings.reject_ratio);
-  const MotionPrior prior = neighbourPrior(window.initial, {}, settings.motion_prior);
+  const WindowProblem w;
+  const auto& [window, settings, association, prior] = w;
   const LmSettings lm{50, 1e-4};
   std::vector<Pose> poses = window.initial;
   Linearization settled;
