@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <unordered_map>
+
+#include "voxel/cell_table.hpp"
 
 namespace hba::closure {
 namespace {
@@ -42,25 +43,30 @@ std::optional<long> stableCell(double v, double cell) {
 long cellIndex(double v, double cell) { return static_cast<long>(std::floor(v / cell)); }
 
 std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, double height) {
-  std::unordered_map<std::int64_t, ColumnStats> columns;
+  // Columns numbered as first met, each summing its points in point order.
+  voxel::CellTable<std::uint64_t> numbers(cloud.size() / 16);
+  std::vector<ColumnStats> columns;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Vec3 p = cloud.world(i);
     const long ix = cellIndex(p.x(), cell);
     const long iy = cellIndex(p.y(), cell);
-    auto [it, fresh] = columns.try_emplace(cellKey(ix, iy));
-    ColumnStats& c = it->second;
-    if (fresh) {
-      c.ix = ix;
-      c.iy = iy;
-      c.z_min = c.z_max = p.z();
+    const auto next = static_cast<std::uint32_t>(columns.size());
+    const std::uint32_t number = numbers.find(static_cast<std::uint64_t>(cellKey(ix, iy)), next);
+    if (number == next) {
+      ColumnStats fresh;
+      fresh.ix = ix;
+      fresh.iy = iy;
+      fresh.z_min = fresh.z_max = p.z();
+      columns.push_back(fresh);
     }
+    ColumnStats& c = columns[number];
     c.z_min = std::min(c.z_min, p.z());
     c.z_max = std::max(c.z_max, p.z());
     c.sum += p;
     ++c.count;
   }
   std::vector<ColumnStats> kept;
-  for (const auto& [key, c] : columns) {
+  for (const ColumnStats& c : columns) {
     if (c.z_max - c.z_min >= height) kept.push_back(c);
   }
   std::sort(kept.begin(), kept.end(), [](const ColumnStats& a, const ColumnStats& b) {
@@ -104,12 +110,17 @@ std::vector<std::uint32_t> countHits(const OccupancyGrid& grid, const std::vecto
   std::vector<std::uint32_t> hits(xs.size() * ny, 0);
   const std::optional<std::vector<long>> cx = wholeCells(xs, grid.cell());
   const std::optional<std::vector<long>> cy = wholeCells(ys, grid.cell());
+  // A point shifted as a point: its cells along each axis, taken once.
+  std::vector<long> shifted_x(xs.size()), shifted_y(ny);
   for (const Vec2& p : points) {
     const std::optional<long> ix = cx && cy ? stableCell(p.x(), grid.cell()) : std::nullopt;
     const std::optional<long> iy = ix ? stableCell(p.y(), grid.cell()) : std::nullopt;
-    if (!iy) {  // shifted as a point, as the definition says
-      for (std::size_t i = 0; i < xs.size(); ++i) {
-        for (std::size_t j = 0; j < ny; ++j) hits[i * ny + j] += grid.occupied(p + Vec2(xs[i], ys[j]));
+    if (!iy) {  // shifted as a point, as the definition says: p + (xs[i], ys[j]) per axis
+      for (std::size_t i = 0; i < xs.size(); ++i) shifted_x[i] = cellIndex(p.x() + xs[i], grid.cell());
+      for (std::size_t j = 0; j < ny; ++j) shifted_y[j] = cellIndex(p.y() + ys[j], grid.cell());
+      for (std::size_t j = 0; j < ny; ++j) {
+        for (std::size_t i = 0; i < xs.size(); ++i)
+          hits[i * ny + j] += grid.occupiedCell(shifted_x[i], shifted_y[j]);
       }
       continue;
     }

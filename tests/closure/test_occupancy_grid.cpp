@@ -3,8 +3,11 @@
 // the origin, and for shifts that are not whole cells.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
+#include <utility>
 
 #include "occupancy_grid.hpp"
 
@@ -63,6 +66,68 @@ TEST(OccupancyGrid, HitCountsMatchTheDefinition) {
                                    std::pair{shifts(4 * cell * 3, 4, cell), shifts(-4 * cell * 2, 4, cell)},
                                    std::pair{shifts(0.25, 3, 0.25 * cell), shifts(0.0, 3, 0.25 * cell)}}) {
         ASSERT_EQ(countHits(grid, points, xs, ys), byDefinition(grid, points, xs, ys));
+      }
+    }
+  }
+}
+
+// Columns by definition: every point's column in an ordered map, its
+// points summed in point order; kept where they span `height`.
+std::vector<ColumnStats> columnsByDefinition(const PointCloud& cloud, double cell, double height) {
+  std::map<std::pair<long, long>, ColumnStats> columns;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Vec3 p = cloud.world(i);
+    const long ix = cellIndex(p.x(), cell);
+    const long iy = cellIndex(p.y(), cell);
+    auto [it, fresh] = columns.try_emplace({ix, iy});
+    ColumnStats& c = it->second;
+    if (fresh) {
+      c.ix = ix;
+      c.iy = iy;
+      c.z_min = c.z_max = p.z();
+    }
+    c.z_min = std::min(c.z_min, p.z());
+    c.z_max = std::max(c.z_max, p.z());
+    c.sum += p;
+    ++c.count;
+  }
+  std::vector<ColumnStats> kept;
+  for (const auto& [key, c] : columns) {
+    if (c.z_max - c.z_min >= height) kept.push_back(c);
+  }
+  return kept;
+}
+
+TEST(OccupancyGrid, StructureColumnsAreThoseOfTheDefinitionToTheBit) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> spread(-30.0, 30.0);
+  std::uniform_real_distribution<double> height(-1.0, 3.0);
+  for (const Vec3& origin : {Vec3(0.0, 0.0, 0.0), Vec3(3.2e5, -4.1e6, 80.0)}) {  // and UTM
+    PointCloud cloud;
+    cloud.origin = origin;
+    for (int k = 0; k < 20000; ++k) {
+      // Mostly ground, some walls: columns of both kinds, many points each.
+      const bool wall = k % 5 == 0;
+      cloud.points.emplace_back(static_cast<float>(spread(random)), static_cast<float>(spread(random)),
+                                static_cast<float>(wall ? height(random) : 0.05 * height(random)));
+    }
+    for (const double cell : {0.25, 0.5, 2.0}) {
+      // Compared column by column in (ix, iy) order (the search keeps its own fixed order).
+      std::vector<ColumnStats> found = structureColumns(cloud, cell, 0.5);
+      std::sort(found.begin(), found.end(), [](const ColumnStats& a, const ColumnStats& b) {
+        return std::pair(a.ix, a.iy) < std::pair(b.ix, b.iy);
+      });
+      const std::vector<ColumnStats> expected = columnsByDefinition(cloud, cell, 0.5);
+      ASSERT_EQ(found.size(), expected.size());
+      ASSERT_GT(found.size(), 10u);
+      ASSERT_LT(found.size(), columnsByDefinition(cloud, cell, 0.0).size());  // some are ground only
+      for (std::size_t c = 0; c < found.size(); ++c) {
+        EXPECT_EQ(found[c].ix, expected[c].ix);
+        EXPECT_EQ(found[c].iy, expected[c].iy);
+        EXPECT_EQ(found[c].z_min, expected[c].z_min);
+        EXPECT_EQ(found[c].z_max, expected[c].z_max);
+        EXPECT_EQ(found[c].count, expected[c].count);
+        EXPECT_TRUE(found[c].sum == expected[c].sum) << "column " << c;
       }
     }
   }
