@@ -106,29 +106,49 @@ bool OccupancyGrid::occupied(const Vec2& p) const {
 
 std::vector<std::uint32_t> countHits(const OccupancyGrid& grid, const std::vector<Vec2>& points,
                                      const std::vector<double>& xs, const std::vector<double>& ys) {
+  const std::size_t nx = xs.size();
   const std::size_t ny = ys.size();
-  std::vector<std::uint32_t> hits(xs.size() * ny, 0);
+  // Counted row by row (shift j, then i: a point's hits along x are one
+  // stretch of a grid row), handed out as hits[i * ny + j].
+  std::vector<std::uint32_t> by_row(nx * ny, 0);
   const std::optional<std::vector<long>> cx = wholeCells(xs, grid.cell());
   const std::optional<std::vector<long>> cy = wholeCells(ys, grid.cell());
+  // Whole-cell shifts one cell apart (as the search makes them): the cells
+  // a point's x shifts reach are consecutive.
+  bool consecutive = cx.has_value();
+  for (std::size_t i = 1; consecutive && i < nx; ++i) consecutive = (*cx)[i] == (*cx)[i - 1] + 1;
   // A point shifted as a point: its cells along each axis, taken once.
-  std::vector<long> shifted_x(xs.size()), shifted_y(ny);
+  std::vector<long> shifted_x(nx), shifted_y(ny);
   for (const Vec2& p : points) {
     const std::optional<long> ix = cx && cy ? stableCell(p.x(), grid.cell()) : std::nullopt;
     const std::optional<long> iy = ix ? stableCell(p.y(), grid.cell()) : std::nullopt;
     if (!iy) {  // shifted as a point, as the definition says: p + (xs[i], ys[j]) per axis
-      for (std::size_t i = 0; i < xs.size(); ++i) shifted_x[i] = cellIndex(p.x() + xs[i], grid.cell());
+      for (std::size_t i = 0; i < nx; ++i) shifted_x[i] = cellIndex(p.x() + xs[i], grid.cell());
       for (std::size_t j = 0; j < ny; ++j) shifted_y[j] = cellIndex(p.y() + ys[j], grid.cell());
-      for (std::size_t j = 0; j < ny; ++j) {
-        for (std::size_t i = 0; i < xs.size(); ++i)
-          hits[i * ny + j] += grid.occupiedCell(shifted_x[i], shifted_y[j]);
-      }
-      continue;
+    } else {
+      for (std::size_t i = 0; i < nx; ++i) shifted_x[i] = *ix + (*cx)[i];
+      for (std::size_t j = 0; j < ny; ++j) shifted_y[j] = *iy + (*cy)[j];
     }
-    // Along x innermost: the grid's rows are in x.
+    const bool stretch = iy && consecutive && nx > 0;
     for (std::size_t j = 0; j < ny; ++j) {
-      const long y = *iy + (*cy)[j];
-      for (std::size_t i = 0; i < xs.size(); ++i) hits[i * ny + j] += grid.occupiedCell(*ix + (*cx)[i], y);
+      const std::uint8_t* row = grid.row(shifted_y[j]);
+      if (row == nullptr) continue;
+      std::uint32_t* counts = by_row.data() + j * nx;
+      if (!stretch) {
+        for (std::size_t i = 0; i < nx; ++i) counts[i] += grid.occupiedCell(shifted_x[i], shifted_y[j]);
+        continue;
+      }
+      // Shifts i in [begin, end) land inside the row.
+      const long first = shifted_x[0];
+      const long begin = std::max(0L, grid.firstColumn() - first);
+      const long end = std::min(static_cast<long>(nx), grid.lastColumn() - first + 1);
+      const long offset = first - grid.firstColumn();
+      for (long i = begin; i < end; ++i) counts[i] += row[offset + i];
     }
+  }
+  std::vector<std::uint32_t> hits(nx * ny);
+  for (std::size_t j = 0; j < ny; ++j) {
+    for (std::size_t i = 0; i < nx; ++i) hits[i * ny + j] = by_row[j * nx + i];
   }
   return hits;
 }

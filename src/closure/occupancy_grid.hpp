@@ -42,6 +42,14 @@ class OccupancyGrid {
     if (ix < min_x_ || ix > max_x_ || iy < min_y_ || iy > max_y_) return false;
     return occupied_[index(ix, iy)] != 0;
   }
+  // Row iy as flags (1 occupied) for the columns firstColumn() ..
+  // lastColumn(), or null outside the grid.
+  const std::uint8_t* row(long iy) const {
+    if (iy < min_y_ || iy > max_y_) return nullptr;
+    return occupied_.data() + index(min_x_, iy);
+  }
+  long firstColumn() const { return min_x_; }
+  long lastColumn() const { return max_x_; }
 
  private:
   std::size_t index(long ix, long iy) const {

@@ -61,9 +61,12 @@ TEST(OccupancyGrid, HitCountsMatchTheDefinition) {
         points.push_back(p);
       }
       points.push_back(Vec2(std::nan(""), 0.0));
-      // Whole cells (both levels' shifts, centred on a peak or not), and not.
+      // Whole cells (both levels' shifts, centred on a peak or not; two
+      // cells apart), and not.
       for (const auto& [xs, ys] : {std::pair{shifts(0.0, 8, cell), shifts(0.0, 8, cell)},
                                    std::pair{shifts(4 * cell * 3, 4, cell), shifts(-4 * cell * 2, 4, cell)},
+                                   std::pair{shifts(0.0, 5, 2 * cell), shifts(cell, 3, cell)},
+                                   std::pair{shifts(60.0, 2, cell), shifts(0.0, 2, cell)},  // off the grid
                                    std::pair{shifts(0.25, 3, 0.25 * cell), shifts(0.0, 3, 0.25 * cell)}}) {
         ASSERT_EQ(countHits(grid, points, xs, ys), byDefinition(grid, points, xs, ys));
       }
