@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iterator>
 #include <string>
+#include <utility>
 
 #include "core/stopwatch.hpp"
 #include "hba/ba/association.hpp"
@@ -18,15 +19,20 @@ namespace {
 // Associations, each followed by an LM, from `initial` until a round gains
 // little; the first round's figures go to `result`, the time and
 // iterations add up over calls.
+// `at_initial`: the first round's association, when made already (moved
+// from, then null).
 void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                  const RefinementSettings& settings, const MotionPrior& prior,
-                 const PositionPriors& positions, RefinementResult& result) {
+                 const PositionPriors& positions, Association*& at_initial, RefinementResult& result) {
   result.poses = initial;
   // At most this many rounds: the ETA is an upper bound.
   Progress progress("refinement", static_cast<std::size_t>(settings.association_rounds), "rounds");
   for (int round = 0; round < settings.association_rounds; ++round, progress.advance()) {
     const auto start = Clock::now();
-    Association association = associate(scans, result.poses, settings.planes, settings.reject_ratio);
+    Association association = round == 0 && at_initial != nullptr
+                                  ? std::move(*at_initial)
+                                  : associate(scans, result.poses, settings.planes, settings.reject_ratio);
+    at_initial = nullptr;
     // The points of each plane are summed into its clusters: their indices
     // (8 bytes a plane point) are not needed by the LM.
     association.extraction = {};
@@ -74,7 +80,8 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m,
-                                const std::vector<Pose>& reference, const PositionPriors& positions) {
+                                const std::vector<Pose>& reference, const PositionPriors& positions,
+                                Association* at_initial) {
   if (scans.size() != initial.size()) {
     throw Error("refinement: " + std::to_string(scans.size()) + " scans but " +
                 std::to_string(initial.size()) + " poses");
@@ -96,7 +103,7 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, con
   MotionPrior prior = neighbourPrior(anchor, path_m, settings.motion_prior);
   std::vector<std::size_t> held;
   for (int attempt = 0;; ++attempt) {
-    solveRounds(scans, initial, settings, prior, positions, result);
+    solveRounds(scans, initial, settings, prior, positions, at_initial, result);
     if (!settings.motion_prior.enabled || initial.size() < 2) break;
     const std::vector<std::size_t> slid =
         stepsBeyondThePrior(anchor, result.poses, path_m, settings.slide_prior, settings.slide_sigmas);

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/release_memory.hpp"
+#include "hba/ba/association.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "refinement_priors.hpp"
 
@@ -18,10 +19,11 @@ namespace {
 std::size_t regionCount(std::size_t frames) { return std::clamp<std::size_t>(frames / 100, 4, 20); }
 
 // The block's plane BA from `poses`, held by the priors among its frames.
+// `at_start`: the association at out.poses, when made already.
 void refineFrom(const Block& block, const std::vector<const PointCloud*>& pointers, std::size_t index,
                 const std::vector<Pose>& input, const std::vector<double>& steps,
                 const std::vector<graph::PositionPriorFactor>& priors, const RefineSettings& settings,
-                BlockOutcome& out) {
+                ba::Association* at_start, BlockOutcome& out) {
   const std::vector<double> block_steps(steps.begin() + static_cast<long>(block.first),
                                         steps.begin() + static_cast<long>(block.end - 1));
   const ba::PositionPriors positions =
@@ -35,7 +37,7 @@ void refineFrom(const Block& block, const std::vector<const PointCloud*>& pointe
     spdlog::info("refinement: frames {}-{} held by {} position priors, first frame {}", block.first,
                  block.end - 1, positions.terms().size(), rs.lm.hold_first ? "held" : "free");
   }
-  out.refinement = ba::refineGlobally(pointers, out.poses, rs, block_steps, input, positions);
+  out.refinement = ba::refineGlobally(pointers, out.poses, rs, block_steps, input, positions, at_start);
   out.refined = true;
   out.poses = std::move(out.refinement.poses);
   out.refinement.poses.clear();
@@ -100,11 +102,12 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
   const std::vector<Pose> input = inputOnto(initial, result, block.first, block.end);
   const std::vector<Pose> current = slice(result, block.first, block.end);
   const ba::RefinementSettings& rs = settings.ba;
-  BlockOutcome out(FixedPlaneMap(pointers, input, rs.planes, rs.reject_ratio, regionCount(input.size())));
-  // The plane problem the map was made from (hundreds of MB in small
-  // pieces): returned, so that the refinement's association does not stack
-  // its peak on it.
-  releaseFreedMemory();
+  // The input's planes, as the refinement associates them (kept whole while
+  // the map judges the hierarchy: a refinement from the input starts on
+  // this very association).
+  ba::Association found = ba::associate(pointers, input, rs.planes, rs.reject_ratio);
+  found.extraction = {};
+  BlockOutcome out(FixedPlaneMap(found.problem, input.size(), regionCount(input.size())));
   const FixedPlaneMap::Figures at_input = out.map.figures(input);
   out.input_rms = at_input.rms;
   out.hierarchy_rms = out.map.rms(current);
@@ -122,7 +125,16 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
                             : "keeping the input poses (with the closure stage's loops), "
                               "unrefined"));
   }
-  if (refines) refineFrom(block, pointers, index, input, steps, priors, settings, out);
+  const bool from_input = refines && out.hierarchy_rejected;
+  if (!from_input) {
+    // The plane problem the map was made from (hundreds of MB in small
+    // pieces): returned, so that the refinement's association does not
+    // stack its peak on it.
+    found = {};
+    releaseFreedMemory();
+  }
+  if (refines)
+    refineFrom(block, pointers, index, input, steps, priors, settings, from_input ? &found : nullptr, out);
   FixedPlaneMap::Figures at_final = out.map.figures(out.poses);
   out.final_rms = at_final.rms;
   if (!(out.final_rms <= out.input_rms * kEqualMapMargin)) {

@@ -11,9 +11,7 @@
 
 namespace hba::refine {
 
-FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
-                             const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions) {
-  const ba::PlaneProblem problem = ba::associate(scans, poses, planes, reject_ratio).problem;
+FixedPlaneMap::FixedPlaneMap(const ba::PlaneProblem& problem, std::size_t frames, std::size_t regions) {
   std::size_t total = 0;
   for (const ba::PlaneObservation& plane : problem.planes()) total += plane.clusters.size();
   clusters_.reserve(total);
@@ -32,7 +30,7 @@ FixedPlaneMap::FixedPlaneMap(const std::vector<const PointCloud*>& scans, const 
     }
     plane_begin_.push_back(clusters_.size());
   }
-  const std::size_t frames = std::max<std::size_t>(1, poses.size());
+  frames = std::max<std::size_t>(1, frames);
   regions = std::clamp<std::size_t>(regions, 1, frames);
   for (std::size_t r = 0; r < regions; ++r) region_starts_.push_back(r * frames / regions);
   region_points_.assign(regions, 0.0);

@@ -19,9 +19,9 @@ namespace hba::refine {
 
 class FixedPlaneMap {
  public:
-  // Planes found at `poses` with the refinement's plane settings.
-  FixedPlaneMap(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
-                const voxel::PlaneSettings& planes, double reject_ratio, std::size_t regions);
+  // The planes of `found`, an association over `frames` frames (at the
+  // input poses, with the refinement's plane settings).
+  FixedPlaneMap(const ba::PlaneProblem& found, std::size_t frames, std::size_t regions);
 
   std::size_t planes() const { return plane_begin_.size() - 1; }
   std::size_t regions() const { return region_points_.size(); }

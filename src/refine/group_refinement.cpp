@@ -9,6 +9,7 @@
 #include "consistency.hpp"
 #include "core/progress.hpp"
 #include "core/stopwatch.hpp"
+#include "hba/ba/association.hpp"
 #include "hba/ba/global_refinement.hpp"
 #include "hba/voxel/downsample.hpp"
 
@@ -102,7 +103,13 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   ba::RefinementSettings rs = settings.ba;
   // Few unknowns, whose weak long-range modes are the point: exact steps.
   rs.lm.dense_max_frames = groups.size();
-  const ba::RefinementResult refined = ba::refineGlobally(pointers, start_poses, rs, path, reference);
+  // The groups' own planes at their start poses judge the result; they are
+  // the refinement's first association too, made once for both.
+  ba::Association found = ba::associate(pointers, start_poses, rs.planes, rs.reject_ratio);
+  found.extraction = {};
+  const FixedPlaneMap fixed(found.problem, start_poses.size(), 1);
+  const ba::RefinementResult refined =
+      ba::refineGlobally(pointers, start_poses, rs, path, reference, ba::PositionPriors(), &found);
   notes.seconds_voxelize += refined.seconds_associate;
   notes.seconds_solve += refined.seconds_solve;
   if (refined.still_sliding > 0) {
@@ -112,8 +119,6 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
                     refined.still_sliding));
   }
 
-  // The groups' own planes at their start poses judge the result.
-  const FixedPlaneMap fixed(pointers, start_poses, rs.planes, rs.reject_ratio, 1);
   g.planes = fixed.planes();
   g.rms_before = fixed.rms(start_poses);
   g.rms_after = fixed.rms(refined.poses);

@@ -6,6 +6,7 @@
 #include <random>
 #include <string>
 
+#include "hba/ba/association.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
 #include "hba/eval/trajectory_error.hpp"
@@ -56,7 +57,7 @@ TEST(RefineStage, KeptSelfCheckMapReadsBackTheSame) {
   for (const PointCloud& scan : seq.scans) scans.push_back(&scan);
   voxel::PlaneSettings planes;
   planes.voxel_size = 1.0;
-  const FixedPlaneMap map(scans, seq.initial, planes, 0.05, 4);
+  const FixedPlaneMap map(ba::associate(scans, seq.initial, planes, 0.05).problem, seq.initial.size(), 4);
   ASSERT_GT(map.planes(), 10u);
   const std::string path = ::testing::TempDir() + "kept_map.bin";
   map.save(path);

@@ -6,6 +6,7 @@
 // windows cannot see (planes shared by frames of different windows).
 #include <vector>
 
+#include "hba/ba/association.hpp"
 #include "hba/ba/motion_prior.hpp"
 #include "hba/ba/position_prior.hpp"
 #include "hba/ba/sparse_lm.hpp"
@@ -78,9 +79,13 @@ struct RefinementResult {
 // local steps are usually better than those of a window that slid.
 // `positions` hold frames near absolute positions (with settings.lm.
 // hold_first off where they define the frame). Scans are only read.
+// `at_initial`, when given: associate(scans, initial, settings.planes,
+// settings.reject_ratio) made already (the self-check's, when the
+// refinement starts from the input), taken as the first round's instead of
+// the same association made again; it is moved from.
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m = {},
-                                const std::vector<Pose>& reference = {},
-                                const PositionPriors& positions = {});
+                                const std::vector<Pose>& reference = {}, const PositionPriors& positions = {},
+                                Association* at_initial = nullptr);
 
 }  // namespace hba::ba

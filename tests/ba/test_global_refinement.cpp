@@ -1,0 +1,70 @@
+// The refinement's plane BA over many frames (ba::refineGlobally): an
+// association made already at its start poses (the self-check's, the
+// groups' judge) is taken as its first round's instead of being made again.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "hba/ba/association.hpp"
+#include "hba/ba/global_refinement.hpp"
+#include "synthetic_window.hpp"
+
+namespace hba::ba {
+namespace {
+
+test::SyntheticWindow refinementWindow() {
+  test::SyntheticWindowSpec spec;
+  spec.frames = 12;
+  spec.points_per_patch = 60;
+  spec.noise_sigma = 0.01;
+  spec.perturb_angle_deg = 0.3;
+  spec.perturb_translation = 0.05;
+  spec.seed = 7;
+  return test::makeSyntheticWindow(spec);
+}
+
+RefinementSettings settingsFor() {
+  RefinementSettings settings;
+  settings.planes.voxel_size = 4.0;
+  settings.planes.min_frames = 2;
+  return settings;
+}
+
+void expectSamePoses(const std::vector<Pose>& a, const std::vector<Pose>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(a[i].t == b[i].t) << "frame " << i;
+    EXPECT_TRUE(a[i].q.coeffs() == b[i].q.coeffs()) << "frame " << i;
+  }
+}
+
+TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
+  const test::SyntheticWindow window = refinementWindow();
+  const std::vector<const PointCloud*> scans = window.scanPointers();
+  const RefinementSettings settings = settingsFor();
+  const RefinementResult fresh = refineGlobally(scans, window.initial, settings);
+  ASSERT_GT(fresh.planes, 0u);
+  ASSERT_GT(fresh.iterations, 0);
+
+  Association given = associate(scans, window.initial, settings.planes, settings.reject_ratio);
+  const RefinementResult reused = refineGlobally(scans, window.initial, settings, {}, {}, {}, &given);
+  expectSamePoses(reused.poses, fresh.poses);
+  EXPECT_EQ(reused.iterations, fresh.iterations);
+  EXPECT_EQ(reused.cg_products, fresh.cg_products);
+  EXPECT_EQ(reused.rounds, fresh.rounds);
+  EXPECT_EQ(reused.cost_before, fresh.cost_before);
+  EXPECT_EQ(reused.cost_after, fresh.cost_after);
+  EXPECT_EQ(given.problem.numPlanes(), 0u);  // moved from
+
+  // And it is taken, not made again: one found with another outlier share
+  // starts the refinement from other planes.
+  Association other = associate(scans, window.initial, settings.planes, 0.5);
+  const std::size_t other_planes = other.problem.numPlanes();
+  ASSERT_LT(other_planes, fresh.planes);
+  const RefinementResult from_other = refineGlobally(scans, window.initial, settings, {}, {}, {}, &other);
+  EXPECT_EQ(from_other.planes, other_planes);
+  EXPECT_NE(from_other.cost_before, fresh.cost_before);
+}
+
+}  // namespace
+}  // namespace hba::ba
