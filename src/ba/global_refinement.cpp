@@ -31,11 +31,8 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     const auto start = Clock::now();
     Association association = round == 0 && at_initial != nullptr
                                   ? std::move(*at_initial)
-                                  : associate(scans, result.poses, settings.planes, settings.reject_ratio);
+                                  : refinementAssociation(scans, result.poses, settings);
     at_initial = nullptr;
-    // The points of each plane are summed into its clusters: their indices
-    // (8 bytes a plane point) are not needed by the LM.
-    association.extraction = {};
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;
@@ -77,6 +74,15 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 }
 
 }  // namespace
+
+Association refinementAssociation(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                                  const RefinementSettings& settings) {
+  Association association = associate(scans, poses, settings.planes, settings.reject_ratio);
+  // The points of each plane are summed into its clusters: their indices
+  // (8 bytes a plane point) are not needed by the LM.
+  association.extraction = {};
+  return association;
+}
 
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m,

@@ -8,7 +8,6 @@
 #include <utility>
 
 #include "core/release_memory.hpp"
-#include "hba/ba/association.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "refinement_priors.hpp"
 
@@ -105,8 +104,7 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
   // The input's planes, as the refinement associates them (kept whole while
   // the map judges the hierarchy: a refinement from the input starts on
   // this very association).
-  ba::Association found = ba::associate(pointers, input, rs.planes, rs.reject_ratio);
-  found.extraction = {};
+  ba::Association found = ba::refinementAssociation(pointers, input, rs);
   BlockOutcome out(FixedPlaneMap(found.problem, input.size(), regionCount(input.size())));
   const FixedPlaneMap::Figures at_input = out.map.figures(input);
   out.input_rms = at_input.rms;

@@ -9,7 +9,6 @@
 #include "consistency.hpp"
 #include "core/progress.hpp"
 #include "core/stopwatch.hpp"
-#include "hba/ba/association.hpp"
 #include "hba/ba/global_refinement.hpp"
 #include "hba/voxel/downsample.hpp"
 
@@ -105,8 +104,7 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   rs.lm.dense_max_frames = groups.size();
   // The groups' own planes at their start poses judge the result; they are
   // the refinement's first association too, made once for both.
-  ba::Association found = ba::associate(pointers, start_poses, rs.planes, rs.reject_ratio);
-  found.extraction = {};
+  ba::Association found = ba::refinementAssociation(pointers, start_poses, rs);
   const FixedPlaneMap fixed(found.problem, start_poses.size(), 1);
   const ba::RefinementResult refined =
       ba::refineGlobally(pointers, start_poses, rs, path, reference, ba::PositionPriors(), &found);

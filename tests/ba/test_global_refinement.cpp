@@ -46,7 +46,7 @@ TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
   ASSERT_GT(fresh.planes, 0u);
   ASSERT_GT(fresh.iterations, 0);
 
-  Association given = associate(scans, window.initial, settings.planes, settings.reject_ratio);
+  Association given = refinementAssociation(scans, window.initial, settings);
   const RefinementResult reused = refineGlobally(scans, window.initial, settings, {}, {}, {}, &given);
   expectSamePoses(reused.poses, fresh.poses);
   EXPECT_EQ(reused.iterations, fresh.iterations);
@@ -58,7 +58,9 @@ TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
 
   // And it is taken, not made again: one found with another outlier share
   // starts the refinement from other planes.
-  Association other = associate(scans, window.initial, settings.planes, 0.5);
+  RefinementSettings other_share = settings;
+  other_share.reject_ratio = 0.5;
+  Association other = refinementAssociation(scans, window.initial, other_share);
   const std::size_t other_planes = other.problem.numPlanes();
   ASSERT_LT(other_planes, fresh.planes);
   const RefinementResult from_other = refineGlobally(scans, window.initial, settings, {}, {}, {}, &other);

@@ -79,10 +79,16 @@ struct RefinementResult {
 // local steps are usually better than those of a window that slid.
 // `positions` hold frames near absolute positions (with settings.lm.
 // hold_first off where they define the frame). Scans are only read.
-// `at_initial`, when given: associate(scans, initial, settings.planes,
-// settings.reject_ratio) made already (the self-check's, when the
-// refinement starts from the input), taken as the first round's instead of
-// the same association made again; it is moved from.
+// `at_initial`, when given: refinementAssociation(scans, initial,
+// settings) made already (the self-check's, when the refinement starts
+// from the input), taken as the first round's instead of the same
+// association made again; it is moved from.
+// The refinement's association at `poses` (each round's, at the poses the
+// round starts from), without the planes' point indices, which the LM does
+// not need.
+Association refinementAssociation(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                                  const RefinementSettings& settings);
+
 RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                                 const RefinementSettings& settings, const std::vector<double>& path_m = {},
                                 const std::vector<Pose>& reference = {}, const PositionPriors& positions = {},
