@@ -108,15 +108,11 @@ std::vector<std::uint32_t> countHits(const OccupancyGrid& grid, const std::vecto
                                      const std::vector<double>& xs, const std::vector<double>& ys) {
   const std::size_t nx = xs.size();
   const std::size_t ny = ys.size();
-  // Counted row by row (shift j, then i: a point's hits along x are one
-  // stretch of a grid row), handed out as hits[i * ny + j].
+  // Counted row by row (shift j, then i: a point's shifts along x read one
+  // grid row), handed out as hits[i * ny + j].
   std::vector<std::uint32_t> by_row(nx * ny, 0);
   const std::optional<std::vector<long>> cx = wholeCells(xs, grid.cell());
   const std::optional<std::vector<long>> cy = wholeCells(ys, grid.cell());
-  // Whole-cell shifts one cell apart (as the search makes them): the cells
-  // a point's x shifts reach are consecutive.
-  bool consecutive = cx.has_value();
-  for (std::size_t i = 1; consecutive && i < nx; ++i) consecutive = (*cx)[i] == (*cx)[i - 1] + 1;
   // A point shifted as a point: its cells along each axis, taken once.
   std::vector<long> shifted_x(nx), shifted_y(ny);
   for (const Vec2& p : points) {
@@ -129,21 +125,14 @@ std::vector<std::uint32_t> countHits(const OccupancyGrid& grid, const std::vecto
       for (std::size_t i = 0; i < nx; ++i) shifted_x[i] = *ix + (*cx)[i];
       for (std::size_t j = 0; j < ny; ++j) shifted_y[j] = *iy + (*cy)[j];
     }
-    const bool stretch = iy && consecutive && nx > 0;
     for (std::size_t j = 0; j < ny; ++j) {
       const std::uint8_t* row = grid.row(shifted_y[j]);
       if (row == nullptr) continue;
       std::uint32_t* counts = by_row.data() + j * nx;
-      if (!stretch) {
-        for (std::size_t i = 0; i < nx; ++i) counts[i] += grid.occupiedCell(shifted_x[i], shifted_y[j]);
-        continue;
+      for (std::size_t i = 0; i < nx; ++i) {
+        const long x = shifted_x[i];
+        if (x >= grid.firstColumn() && x <= grid.lastColumn()) counts[i] += row[x - grid.firstColumn()];
       }
-      // Shifts i in [begin, end) land inside the row.
-      const long first = shifted_x[0];
-      const long begin = std::max(0L, grid.firstColumn() - first);
-      const long end = std::min(static_cast<long>(nx), grid.lastColumn() - first + 1);
-      const long offset = first - grid.firstColumn();
-      for (long i = begin; i < end; ++i) counts[i] += row[offset + i];
     }
   }
   std::vector<std::uint32_t> hits(nx * ny);
