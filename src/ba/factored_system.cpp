@@ -4,6 +4,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "dist/bytes.hpp"
+#include "hba/core/error.hpp"
 #include "hba/core/relative_pose_error.hpp"
 
 namespace hba::ba {
@@ -27,49 +29,63 @@ ObservationIndex::ObservationIndex(const PlaneProblem& problem, std::size_t fram
 
 namespace {
 
-// Plane ranges of about equal observation counts, each summing into its
-// own partial result of `partial_bytes`: enough for two cores to share (up
-// to 64), few enough that the partials stay within `budget` bytes and a
-// chunk holds at least 16 384 observations (every product zeroes and adds
-// up the partials: with 4096, a tenth of nclt's refinement). Depends on the sizes
-// only, so sums taken chunk by chunk in order are the same for any thread
-// count.
-std::vector<std::size_t> planeChunks(const ObservationIndex& index, std::size_t planes,
-                                     std::size_t partial_bytes, std::size_t budget) {
-  const std::size_t observations = index.frame_of.size();
-  const std::size_t by_memory = budget / std::max<std::size_t>(partial_bytes, 1);
-  const std::size_t chunks =
-      std::clamp<std::size_t>(std::min({std::size_t{64}, by_memory, observations / 16384}), 1, 64);
-  std::vector<std::size_t> begin{0};
-  for (std::size_t c = 1; c < chunks; ++c) {
-    const std::size_t target = observations * c / chunks;
-    // The first plane whose observations start at or after the target.
-    const auto it = std::lower_bound(index.plane_begin.begin() + static_cast<long>(begin.back()),
-                                     index.plane_begin.begin() + static_cast<long>(planes), target);
-    begin.push_back(static_cast<std::size_t>(it - index.plane_begin.begin()));
-  }
-  begin.push_back(planes);
-  return begin;
-}
+// One chunk of planes' sums: the cost, then per frame its gradient (6),
+// diagonal block (36) and own block (36), in one array that a group's
+// members send each other as it is.
+class FrameSums {
+ public:
+  explicit FrameSums(std::size_t frames) : values_(1 + kPerFrame * frames, 0.0) {}
+  explicit FrameSums(std::vector<double> values) : values_(std::move(values)) {}
+  double& cost() { return values_[0]; }
+  double cost() const { return values_[0]; }
+  Eigen::Map<Vec6> gradient(std::size_t i) { return Eigen::Map<Vec6>(at(i)); }
+  Eigen::Map<Mat6> diagonal(std::size_t i) { return Eigen::Map<Mat6>(at(i) + 6); }
+  Eigen::Map<Mat6> own(std::size_t i) { return Eigen::Map<Mat6>(at(i) + 42); }
+  Eigen::Map<const Vec6> gradient(std::size_t i) const { return Eigen::Map<const Vec6>(at(i)); }
+  Eigen::Map<const Mat6> diagonal(std::size_t i) const { return Eigen::Map<const Mat6>(at(i) + 6); }
+  Eigen::Map<const Mat6> own(std::size_t i) const { return Eigen::Map<const Mat6>(at(i) + 42); }
+  const std::vector<double>& values() const { return values_; }
 
-// One chunk of planes' sums per frame.
-struct FrameSums {
-  double cost = 0.0;
-  Eigen::VectorXd gradient;
-  Mat6List diagonal;
-  Mat6List own;
+ private:
+  static constexpr std::size_t kPerFrame = 6 + 36 + 36;
+  double* at(std::size_t i) { return values_.data() + 1 + kPerFrame * i; }
+  const double* at(std::size_t i) const { return values_.data() + 1 + kPerFrame * i; }
+  std::vector<double> values_;
 };
+
+// Every chunk's partial, in chunk order: this member's own (`mine`, for
+// its chunks) and, when the problem is spread, the others' as they sent
+// them. The sums then add them in order, as one process does.
+template <typename T>
+std::vector<std::vector<T>> allChunks(const PlaneSpread& spread, std::vector<std::vector<T>> mine) {
+  if (!spread.spread()) return mine;
+  dist::ByteWriter writer;
+  for (const std::vector<T>& part : mine) writer.putVector(part);
+  std::vector<std::vector<T>> all;
+  for (const dist::Bytes& bytes : spread.group->allGather(writer.take())) {
+    dist::ByteReader reader(bytes);
+    while (!reader.done()) all.push_back(reader.getVector<T>());
+  }
+  if (all.size() + 1 != spread.chunk_begin.size()) {
+    throw Error("refinement: the group's members sent " + std::to_string(all.size()) + " chunks of " +
+                std::to_string(spread.chunk_begin.size() - 1));
+  }
+  return all;
+}
 
 }  // namespace
 
 FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& prior,
                                const PositionPriors& positions, const ObservationIndex& index,
                                const std::vector<Pose>& poses)
-    : index_(index), frames_(poses.size()) {
+    : index_(index), spread_(problem.spread()), frames_(poses.size()) {
   const FrameTransforms transforms(poses);
   const std::size_t planes = problem.numPlanes();
-  // H x sums 6 floats a frame per chunk (16 MB in all).
-  chunk_begin_ = planeChunks(index, planes, 6 * sizeof(float) * frames_, std::size_t{16} << 20);
+  if (!spread_.group) {  // one process: all the chunks, of all the planes
+    spread_.planes = planes;
+    spread_.chunk_begin = sumChunks(index.plane_begin, frames_);
+    spread_.end_chunk = spread_.chunk_begin.size() - 1;
+  }
   z_.resize(18 * index.frame_of.size());
   weights_.resize(planes);
   gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
@@ -78,19 +94,16 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
   // Planes linearized in parallel chunks, each summing into its own
   // per-frame gradient and blocks (16 MB in all); the chunks are then
   // added in order (deterministic). No plane's full linearization is kept.
-  const std::vector<std::size_t> build =
-      planeChunks(index, planes, frames_ * (sizeof(Vec6) + 2 * sizeof(Mat6)), std::size_t{16} << 20);
-  std::vector<FrameSums> partial(build.size() - 1);
-  tbb::parallel_for(std::size_t{0}, partial.size(), [&](std::size_t c) {
-    FrameSums& sums = partial[c];
-    sums.gradient.setZero(6 * static_cast<Eigen::Index>(frames_));
-    sums.diagonal.assign(frames_, Mat6::Zero());
-    sums.own.assign(frames_, Mat6::Zero());
+  std::vector<std::vector<double>> mine(spread_.end_chunk - spread_.first_chunk);
+  tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
+    FrameSums sums(frames_);
     thread_local PlaneTerms terms;
-    for (std::size_t p = build[c]; p < build[c + 1]; ++p) {
+    const std::size_t c = spread_.first_chunk + k;
+    for (std::size_t p = spread_.chunk_begin[c] - spread_.first_plane;
+         p < spread_.chunk_begin[c + 1] - spread_.first_plane; ++p) {
       planeTerms(problem.planes()[p], transforms, terms);
       weights_[p] = terms.weights.cast<float>();
-      sums.cost += terms.cost;
+      sums.cost() += terms.cost;
       const std::size_t first = index.plane_begin[p];
       const auto& clusters = problem.planes()[p].clusters;
       for (std::size_t a = 0; a < clusters.size(); ++a) {
@@ -98,18 +111,20 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
         const Eigen::Matrix<double, 3, 6>& Za = terms.z[a];
         Eigen::Map<Eigen::Matrix<float, 3, 6, Eigen::RowMajor>> stored(&z_[18 * (first + a)]);
         stored = Za.cast<float>();
-        sums.gradient.segment<6>(6 * static_cast<Eigen::Index>(i)) += terms.gradient[a];
-        sums.diagonal[i] += terms.diagonal[a];
-        sums.own[i].noalias() += Za.transpose() * terms.weights.asDiagonal() * Za;
+        sums.gradient(i) += terms.gradient[a];
+        sums.diagonal(i) += terms.diagonal[a];
+        sums.own(i).noalias() += Za.transpose() * terms.weights.asDiagonal() * Za;
       }
     }
+    mine[k] = sums.values();
   });
-  for (const FrameSums& sums : partial) {
-    cost_ += sums.cost;
-    gradient_ += sums.gradient;
+  for (std::vector<double>& values : allChunks(spread_, std::move(mine))) {
+    const FrameSums sums(std::move(values));
+    cost_ += sums.cost();
     for (std::size_t i = 0; i < frames_; ++i) {
-      diagonal_[i] += sums.diagonal[i];
-      own_[i] += sums.own[i];
+      gradient_.segment<6>(6 * static_cast<Eigen::Index>(i)) += sums.gradient(i);
+      diagonal_[i] += sums.diagonal(i);
+      own_[i] += sums.own(i);
     }
   }
   for (const RelativePosePrior& term : prior.terms()) {
@@ -138,6 +153,7 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
 // blocks above the diagonal of column i come from the plane's observations
 // up to frame i's own: half the products of the whole matrix.
 Eigen::MatrixXd FactoredSystem::upperTriangle(std::size_t first) const {
+  if (spread_.spread()) throw Error("refinement: the dense solve of a problem spread over processes");
   first = std::min(first, frames_);
   // The prior's off-diagonal blocks, by the later frame of their pair.
   std::vector<std::vector<const PriorBlock*>> priors_at(frames_);
@@ -181,12 +197,13 @@ Eigen::MatrixXd FactoredSystem::dense() const {
 Eigen::VectorXd FactoredSystem::multiply(const Eigen::VectorXd& x) const {
   const Eigen::VectorXf xf = x.cast<float>();
   const auto n = static_cast<Eigen::Index>(6 * frames_);
-  const std::size_t chunks = chunk_begin_.size() - 1;
-  std::vector<Eigen::VectorXf> partial(chunks);
-  tbb::parallel_for(std::size_t{0}, chunks, [&](std::size_t c) {
-    Eigen::VectorXf& out = partial[c];
-    out.setZero(n);
-    for (std::size_t p = chunk_begin_[c]; p < chunk_begin_[c + 1]; ++p) {
+  std::vector<std::vector<float>> mine(spread_.end_chunk - spread_.first_chunk);
+  tbb::parallel_for(std::size_t{0}, mine.size(), [&](std::size_t k) {
+    std::vector<float>& out = mine[k];
+    out.assign(static_cast<std::size_t>(n), 0.0f);
+    const std::size_t c = spread_.first_chunk + k;
+    for (std::size_t p = spread_.chunk_begin[c] - spread_.first_plane;
+         p < spread_.chunk_begin[c + 1] - spread_.first_plane; ++p) {
       const std::uint32_t k0 = index_.plane_begin[p];
       const std::uint32_t k1 = index_.plane_begin[p + 1];
       // Each row of Z as 4 + 2 floats, the 4 in one SIMD register: Z x
@@ -194,9 +211,9 @@ Eigen::VectorXd FactoredSystem::multiply(const Eigen::VectorXd& x) const {
       // Z^T w as three rows scaled and added.
       Eigen::Vector4f head[3] = {Eigen::Vector4f::Zero(), Eigen::Vector4f::Zero(), Eigen::Vector4f::Zero()};
       Eigen::Vector2f tail[3] = {Eigen::Vector2f::Zero(), Eigen::Vector2f::Zero(), Eigen::Vector2f::Zero()};
-      for (std::uint32_t k = k0; k < k1; ++k) {
-        const float* zk = &z_[18 * std::size_t{k}];
-        const float* xk = xf.data() + 6 * std::size_t{index_.frame_of[k]};
+      for (std::uint32_t o = k0; o < k1; ++o) {
+        const float* zk = &z_[18 * std::size_t{o}];
+        const float* xk = xf.data() + 6 * std::size_t{index_.frame_of[o]};
         const Eigen::Map<const Eigen::Vector4f> x_head(xk);
         const Eigen::Map<const Eigen::Vector2f> x_tail(xk + 4);
         for (int r = 0; r < 3; ++r) {
@@ -207,9 +224,9 @@ Eigen::VectorXd FactoredSystem::multiply(const Eigen::VectorXd& x) const {
       const Eigen::Vector3f zx(head[0].sum() + tail[0].sum(), head[1].sum() + tail[1].sum(),
                                head[2].sum() + tail[2].sum());
       const Eigen::Vector3f wz = weights_[p].cwiseProduct(zx);
-      for (std::uint32_t k = k0; k < k1; ++k) {
-        const float* zk = &z_[18 * std::size_t{k}];
-        float* yk = out.data() + 6 * std::size_t{index_.frame_of[k]};
+      for (std::uint32_t o = k0; o < k1; ++o) {
+        const float* zk = &z_[18 * std::size_t{o}];
+        float* yk = out.data() + 6 * std::size_t{index_.frame_of[o]};
         Eigen::Map<Eigen::Vector4f>(yk) += wz(0) * Eigen::Map<const Eigen::Vector4f>(zk) +
                                            wz(1) * Eigen::Map<const Eigen::Vector4f>(zk + 6) +
                                            wz(2) * Eigen::Map<const Eigen::Vector4f>(zk + 12);
@@ -219,10 +236,12 @@ Eigen::VectorXd FactoredSystem::multiply(const Eigen::VectorXd& x) const {
       }
     }
   });
+  const std::vector<std::vector<float>> partial = allChunks(spread_, std::move(mine));
   Eigen::VectorXd y(n);
   tbb::parallel_for(std::size_t{0}, frames_, [&](std::size_t i) {
     Eigen::Matrix<float, 6, 1> sum = Eigen::Matrix<float, 6, 1>::Zero();
-    for (const Eigen::VectorXf& part : partial) sum += part.segment<6>(6 * i);
+    for (const std::vector<float>& part : partial)
+      sum += Eigen::Map<const Eigen::Matrix<float, 6, 1>>(&part[6 * i]);
     y.segment<6>(6 * i) = diagonal_[i] * x.segment<6>(6 * i) + sum.cast<double>();
   });
   for (const PriorBlock& block : prior_) {

@@ -5,7 +5,8 @@
 // Z, per plane the weights, so that H = blockdiag(D) + sum_p Z_p^T W_p Z_p
 // + the motion prior's blocks. See plane_cost.hpp for Z, W and D.
 // Every sum is taken in fixed chunks added in order: the same bits for any
-// thread count.
+// thread count, and for a problem spread over a group's processes, each
+// summing its own chunks (plane_spread.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -69,9 +70,11 @@ class FactoredSystem {
   }
 
   const ObservationIndex& index_;
+  // The chunks the sums are taken in, and this process's (all of them
+  // unless the problem is spread over a group).
+  PlaneSpread spread_;
   std::size_t frames_ = 0;
-  std::vector<std::size_t> chunk_begin_;  // planes of chunk c: [chunk_begin_[c], chunk_begin_[c+1])
-  std::vector<float> z_;                  // 3x6 per observation, rows contiguous
+  std::vector<float> z_;  // 3x6 per observation, rows contiguous
   std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;

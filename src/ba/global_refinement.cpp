@@ -44,13 +44,25 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     result.cg_products += summary.cg_products;
     result.rounds = round + 1;
     if (round == 0) {
-      result.planes = problem.numPlanes();
-      result.observations = 0;
-      result.plane_points = 0;
+      double observations = 0.0;
+      double plane_points = 0.0;
       for (const PlaneObservation& plane : problem.planes()) {
-        result.observations += plane.clusters.size();
-        result.plane_points += static_cast<std::size_t>(plane.pointCount());
+        observations += static_cast<double>(plane.clusters.size());
+        plane_points += plane.pointCount();
       }
+      result.planes = problem.numPlanes();
+      if (problem.spread().spread()) {  // every member's planes (whole numbers: exact)
+        result.planes = problem.spread().planes;
+        const std::vector<std::vector<double>> all =
+            gatherPerMember(*problem.spread().group, {observations, plane_points});
+        observations = plane_points = 0.0;
+        for (const std::vector<double>& theirs : all) {
+          observations += theirs.at(0);
+          plane_points += theirs.at(1);
+        }
+      }
+      result.observations = static_cast<std::size_t>(observations);
+      result.plane_points = static_cast<std::size_t>(plane_points);
       result.cost_before = association.cost();  // found at `before`
       result.cost_after = problem.cost(result.poses);
     }
@@ -77,6 +89,8 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 
 Association refinementAssociation(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                                   const RefinementSettings& settings) {
+  if (settings.spread_over != nullptr && settings.spread_over->size() > 1)
+    return associateSpread(scans, poses, settings.planes, settings.reject_ratio, *settings.spread_over);
   Association association = associate(scans, poses, settings.planes, settings.reject_ratio);
   // The points of each plane are summed into its clusters: their indices
   // (8 bytes a plane point) are not needed by the LM.

@@ -26,6 +26,11 @@ PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num
   }
 }
 
+PlaneProblem::PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames, PlaneSpread spread)
+    : PlaneProblem(std::move(planes), num_frames) {
+  spread_ = std::move(spread);
+}
+
 std::vector<double> PlaneProblem::planeCosts(const std::vector<Pose>& poses) const {
   const FrameTransforms frames(poses);
   std::vector<double> costs(planes_.size());
@@ -41,7 +46,12 @@ double PlaneProblem::total(const std::vector<double>& plane_costs) {
   return sum;
 }
 
-double PlaneProblem::cost(const std::vector<Pose>& poses) const { return total(planeCosts(poses)); }
+std::vector<double> PlaneProblem::allPlaneCosts(const std::vector<Pose>& poses) const {
+  if (!spread_.spread()) return planeCosts(poses);
+  return gatherInOrder(*spread_.group, planeCosts(poses));
+}
+
+double PlaneProblem::cost(const std::vector<Pose>& poses) const { return total(allPlaneCosts(poses)); }
 
 namespace {
 

@@ -22,9 +22,9 @@ void logStageTimes(Run& run);  // stage_times.cpp
 
 namespace {
 
-// Where a stage runs in a group of processes. The stages after the pyramid
-// read every scan: the first process runs them and sends the others its
-// poses at the end.
+// Where a stage runs in a group of processes. The refinement runs in every
+// process, each with its share of the planes; the stages after it are the
+// first process's, which sends the others its poses at the end.
 enum class Where { EveryProcess, FirstProcess };
 
 struct Stage {
@@ -37,7 +37,7 @@ struct Stage {
 constexpr Stage kStages[] = {
     {"closures",    closeLoops,     Where::EveryProcess},
     {"pyramid",     buildPyramid,   Where::EveryProcess},
-    {"refinement",  refineMap,      Where::FirstProcess},
+    {"refinement",  refineMap,      Where::EveryProcess},
     {"anchoring",   anchorOnPriors, Where::FirstProcess},
     {"stage times", logStageTimes,  Where::FirstProcess},
 };

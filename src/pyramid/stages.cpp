@@ -34,11 +34,14 @@ void refineMap(Run& run) {
   facts.layers = report.layers;
   facts.layer_one_points = report.layer_reports.empty() ? 0 : report.layer_reports.front().cloud_points;
   facts.scans_kept = run.scans.kept();
+  // Every process of a group runs it, each with its share of the planes
+  // (docs/mpi.md).
+  refine::RefineSettings settings = refineSettingsOf(run.settings);
+  settings.ba.spread_over = &run.group;
   // The motion prior and the self-check take the closed start as the
   // input: its steps are the input's, its loops closed.
-  refine::RefineOutcome refined =
-      refine::refineAndCheck(run.scans.source(), run.closed.start, run.poses, facts, run.closed.priors,
-                             refineSettingsOf(run.settings));
+  refine::RefineOutcome refined = refine::refineAndCheck(run.scans.source(), run.closed.start, run.poses,
+                                                         facts, run.closed.priors, settings);
   run.poses = std::move(refined.poses);
   report.consistency = std::move(refined.consistency);
   report.refinement = std::move(refined.refinement);

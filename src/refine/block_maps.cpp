@@ -25,9 +25,12 @@ void BlockMaps::keep(const FixedPlaneMap& map) {
   if (!folder_) folder_ = std::make_unique<io::CloudStore>(0);
   files_.push_back(folder_->folder() / ("map-" + std::to_string(files_.size()) + ".bin"));
   map.save(files_.back());
+  groups_.push_back(map.group());
 }
 
-FixedPlaneMap BlockMaps::load(std::size_t block) const { return FixedPlaneMap::load(files_.at(block)); }
+FixedPlaneMap BlockMaps::load(std::size_t block) const {
+  return FixedPlaneMap::load(files_.at(block), groups_.at(block));
+}
 
 double remeasure(const std::vector<Pose>& initial, const std::vector<Pose>& result,
                  const std::vector<FrameSpan>& spans, const BlockMaps& kept,

@@ -50,6 +50,7 @@ class BlockMaps {
  private:
   std::unique_ptr<io::CloudStore> folder_;
   std::vector<std::filesystem::path> files_;  // per block
+  std::vector<const dist::Group*> groups_;    // per block: what its map is spread over
 };
 
 // The final poses measured again on each block's kept map (the groups

@@ -34,19 +34,30 @@ FixedPlaneMap::FixedPlaneMap(const ba::PlaneProblem& problem, std::size_t frames
   regions = std::clamp<std::size_t>(regions, 1, frames);
   for (std::size_t r = 0; r < regions; ++r) region_starts_.push_back(r * frames / regions);
   region_points_.assign(regions, 0.0);
+  // Each plane's points and region; of every member's planes, in order,
+  // when the problem is spread over a group.
+  std::vector<double> figures;
   for (const ba::PlaneObservation& plane : problem.planes()) {
     const std::size_t first = plane.clusters.front().frame;
-    const std::size_t region = std::min(regions - 1, first * regions / frames);
+    figures.push_back(plane.pointCount());
+    figures.push_back(static_cast<double>(std::min(regions - 1, first * regions / frames)));
+  }
+  if (problem.spread().spread()) {
+    group_ = problem.spread().group;
+    figures = ba::gatherInOrder(*group_, figures);
+  }
+  for (std::size_t k = 0; k + 1 < figures.size(); k += 2) {
+    const auto region = static_cast<std::size_t>(figures[k + 1]);
     plane_region_.push_back(region);
-    plane_points_.push_back(plane.pointCount());
-    region_points_[region] += plane.pointCount();
-    points_ += plane.pointCount();
+    plane_points_.push_back(figures[k]);
+    region_points_[region] += figures[k];
+    points_ += figures[k];
   }
 }
 
 std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) const {
   const ba::FrameTransforms frames(poses);
-  std::vector<double> costs(planes());
+  std::vector<double> costs(plane_begin_.size() - 1);
   tbb::parallel_for(std::size_t{0}, costs.size(), [&](std::size_t p) {
     thread_local ba::PlaneObservation plane;  // reused: no allocation per plane
     plane.clusters.clear();
@@ -61,7 +72,7 @@ std::vector<double> FixedPlaneMap::planeCosts(const std::vector<Pose>& poses) co
     }
     costs[p] = ba::planeCost(plane, frames);
   });
-  return costs;
+  return group_ ? ba::gatherInOrder(*group_, costs) : costs;
 }
 
 namespace {
@@ -98,9 +109,10 @@ void FixedPlaneMap::save(const std::filesystem::path& path) const {
   if (!out) failAt(path, "cannot write a kept self-check map (disk full?)");
 }
 
-FixedPlaneMap FixedPlaneMap::load(const std::filesystem::path& path) {
+FixedPlaneMap FixedPlaneMap::load(const std::filesystem::path& path, const dist::Group* group) {
   std::ifstream in(path, std::ios::binary);
   FixedPlaneMap map;
+  map.group_ = group != nullptr && group->size() > 1 ? group : nullptr;
   readVector(in, map.clusters_);
   readVector(in, map.plane_begin_);
   readVector(in, map.plane_region_);

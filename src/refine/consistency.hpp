@@ -14,6 +14,7 @@
 #include "hba/ba/association.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/dist/group.hpp"
 
 namespace hba::refine {
 
@@ -23,7 +24,9 @@ class FixedPlaneMap {
   // input poses, with the refinement's plane settings).
   FixedPlaneMap(const ba::PlaneProblem& found, std::size_t frames, std::size_t regions);
 
-  std::size_t planes() const { return plane_begin_.size() - 1; }
+  // When `found` is spread over a group's processes, the map is too: each
+  // holds its planes, and the figures (collectives) are of every plane.
+  std::size_t planes() const { return plane_points_.size(); }
   std::size_t regions() const { return region_points_.size(); }
   double points() const { return points_; }
   // RMS point-to-plane distance (m) over all planes, and per region (planes
@@ -40,10 +43,12 @@ class FixedPlaneMap {
   // First frame of each region.
   const std::vector<std::size_t>& regionStarts() const { return region_starts_; }
   // The map written to a file and read back, the same to the bit (a
-  // long refinement keeps its blocks' maps on disk, not in memory).
+  // long refinement keeps its blocks' maps on disk, not in memory); a
+  // spread map is each member's part, read back with its `group`.
   // Throw hba::Error naming the file.
   void save(const std::filesystem::path& path) const;
-  static FixedPlaneMap load(const std::filesystem::path& path);
+  static FixedPlaneMap load(const std::filesystem::path& path, const dist::Group* group = nullptr);
+  const dist::Group* group() const { return group_; }
 
  private:
   // A frame's cluster of one plane in single precision (44 bytes instead
@@ -67,6 +72,7 @@ class FixedPlaneMap {
   std::vector<double> region_points_;
   std::vector<std::size_t> region_starts_;
   double points_ = 0.0;
+  const dist::Group* group_ = nullptr;  // spread over it; null: one process
 };
 
 }  // namespace hba::refine

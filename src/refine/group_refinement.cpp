@@ -102,6 +102,9 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   ba::RefinementSettings rs = settings.ba;
   // Few unknowns, whose weak long-range modes are the point: exact steps.
   rs.lm.dense_max_frames = groups.size();
+  // A dense solve is one process's: every member places the groups alike
+  // (the same sums, whatever its thread count).
+  rs.spread_over = nullptr;
   // The groups' own planes at their start poses judge the result; they are
   // the refinement's first association too, made once for both.
   ba::Association found = ba::refinementAssociation(pointers, start_poses, rs);

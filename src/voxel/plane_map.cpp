@@ -255,12 +255,20 @@ namespace {
 constexpr std::size_t kPointsPerPlaneVoxel = 64;
 
 // The planes of the root voxels `cells` (of settings.voxel_size) of `world`.
-PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, const PlaneSettings& settings) {
+// `world_ids`: the world id of each point the cells number (empty: they
+// number every point of `world`).
+PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, const PlaneSettings& settings,
+                              const std::vector<std::uint32_t>& world_ids = {}) {
   // Root voxels, their ids ascending (counting sort by cell).
   CellMembers members = membersOf(cells);
+  if (!world_ids.empty()) {
+    for (std::uint32_t& id : members.ids) id = world_ids[id];  // ascending still: they ascend
+  }
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
-    keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(), settings.voxel_size);
+    const std::uint32_t first = cells.first_point_of_cell[c];
+    const std::uint32_t id = world_ids.empty() ? first : world_ids[first];
+    keys[c] = VoxelKey::of(world.position[id].cast<double>(), settings.voxel_size);
   }
   cells = {};  // 4 bytes a point, while the planes' clusters grow
 
@@ -299,6 +307,28 @@ PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, co
   return out;
 }
 
+// The x index of a point's root voxel: its cell key's x.
+std::int64_t xIndexOf(const Vec3f& p, double size) {
+  return VoxelKey::cell(static_cast<double>(p.x()) / size);
+}
+
+// The lowest x index of each share but the first, from a sample of the
+// points (every 64th: the same in every process, and a few hundred
+// thousand at most sorted), so that the shares hold about equal points.
+std::vector<std::int64_t> shareBounds(const WorldPoints& world, double size, std::size_t shares) {
+  constexpr std::size_t kSampleStride = 64;
+  std::vector<std::int64_t> sample;
+  sample.reserve(world.position.size() / kSampleStride + 1);
+  for (std::size_t i = 0; i < world.position.size(); i += kSampleStride)
+    sample.push_back(xIndexOf(world.position[i], size));
+  std::sort(sample.begin(), sample.end());
+  std::vector<std::int64_t> bounds;
+  for (std::size_t k = 1; k < shares; ++k) {
+    bounds.push_back(sample.empty() ? 0 : sample[sample.size() * k / shares]);
+  }
+  return bounds;
+}
+
 }  // namespace
 
 std::vector<PointRef> PlaneExtraction::pointsOf(const PlaneFeature& plane) const {
@@ -335,6 +365,40 @@ PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const
   const WorldPoints world = placeInWorld(scans, poses);
   return planesOfCells(world, assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel),
                        settings);
+}
+
+PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                              const PlaneSettings& settings, std::size_t share, std::size_t shares) {
+  if (shares == 0 || share >= shares) {
+    throw Error("plane extraction: share " + std::to_string(share) + " of " + std::to_string(shares));
+  }
+  if (shares == 1) return extractPlanes(scans, poses, settings);
+  validate(scans, poses, settings);
+  const WorldPoints world = placeInWorld(scans, poses);
+  const double size = settings.voxel_size;
+  const std::vector<std::int64_t> bounds = shareBounds(world, size, shares);
+  const std::int64_t low = share == 0 ? std::numeric_limits<std::int64_t>::min() : bounds[share - 1];
+  const std::int64_t high = share + 1 == shares ? std::numeric_limits<std::int64_t>::max() : bounds[share];
+  // A root voxel lies in one share whole (its points share its x index):
+  // the share's points, in id order, make the very voxels one extraction
+  // over every point makes there.
+  std::vector<Vec3f> positions;
+  std::vector<std::uint32_t> ids;
+  for (std::size_t i = 0; i < world.position.size(); ++i) {
+    const std::int64_t x = xIndexOf(world.position[i], size);
+    if (x >= low && x < high) {
+      positions.push_back(world.position[i]);
+      ids.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  if (ids.empty()) {
+    PlaneExtraction none;
+    none.first_id = world.first;
+    return none;
+  }
+  CellAssignment cells = assignCells(positions, size, kPointsPerPlaneVoxel);
+  positions = {};
+  return planesOfCells(world, std::move(cells), settings, ids);
 }
 
 std::pair<PlaneExtraction, PlaneExtraction> extractPlanesAtTwoVoxels(

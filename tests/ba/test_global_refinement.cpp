@@ -7,6 +7,7 @@
 
 #include "hba/ba/association.hpp"
 #include "hba/ba/global_refinement.hpp"
+#include "same_poses.hpp"
 #include "synthetic_window.hpp"
 
 namespace hba::ba {
@@ -30,14 +31,6 @@ RefinementSettings settingsFor() {
   return settings;
 }
 
-void expectSamePoses(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    EXPECT_TRUE(a[i].t == b[i].t) << "frame " << i;
-    EXPECT_TRUE(a[i].q.coeffs() == b[i].q.coeffs()) << "frame " << i;
-  }
-}
-
 TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
   const test::SyntheticWindow window = refinementWindow();
   const std::vector<const PointCloud*> scans = window.scanPointers();
@@ -48,7 +41,7 @@ TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
 
   Association given = refinementAssociation(scans, window.initial, settings);
   const RefinementResult reused = refineGlobally(scans, window.initial, settings, {}, {}, {}, &given);
-  expectSamePoses(reused.poses, fresh.poses);
+  test::expectSamePoses(reused.poses, fresh.poses);
   EXPECT_EQ(reused.iterations, fresh.iterations);
   EXPECT_EQ(reused.cg_products, fresh.cg_products);
   EXPECT_EQ(reused.rounds, fresh.rounds);

@@ -166,18 +166,27 @@ TEST(PlaneMap, OutputIsIdenticalForAnyThreadCount) {
   expectSameFeatures(one, two);
 }
 
-TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
-  std::mt19937 rng(8);
-  std::vector<PointCloud> scans(4);
-  for (auto& s : scans) {
-    for (int wall = 0; wall < 6; ++wall) addSquare(s, rng, wall % 3, 1.3f + 3.7f * wall, -9.f, 9.f, 3000);
-  }
+// Four scans of six walls across and along the axes, far from the origin,
+// turned off the axes, each frame a little apart.
+struct FarWalls {
+  std::vector<PointCloud> scans = std::vector<PointCloud>(4);
   std::vector<Pose> poses;
-  for (int f = 0; f < 4; ++f) {
-    // Far from the origin, turned off the axes, each frame a little apart.
-    poses.emplace_back(Quat(Eigen::AngleAxisd(0.3 + 0.001 * f, Vec3(0.3, 0.2, 1.0).normalized())),
-                       Vec3(0.01 * f - 350.0, 0.005 * f + 1200.0, -0.002 * f));
+  explicit FarWalls(std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    for (auto& s : scans) {
+      for (int wall = 0; wall < 6; ++wall) addSquare(s, rng, wall % 3, 1.3f + 3.7f * wall, -9.f, 9.f, 3000);
+    }
+    for (int f = 0; f < 4; ++f) {
+      poses.emplace_back(Quat(Eigen::AngleAxisd(0.3 + 0.001 * f, Vec3(0.3, 0.2, 1.0).normalized())),
+                         Vec3(0.01 * f - 350.0, 0.005 * f + 1200.0, -0.002 * f));
+    }
   }
+};
+
+TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
+  const FarWalls walls(8);
+  const std::vector<PointCloud>& scans = walls.scans;
+  const std::vector<Pose>& poses = walls.poses;
   PlaneSettings coarse;
   coarse.voxel_size = 4.0;
   for (const double fine_voxel : {4.0, 2.0, 1.0, 1.5}) {  // 1.5: cells that do not nest
@@ -191,6 +200,40 @@ TEST(PlaneMap, TwoVoxelsAtOnceGiveEachExtractionsPlanes) {
   }
   EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 8.0), Error);
   EXPECT_THROW(extractPlanesAtTwoVoxels(pointers(scans), poses, coarse, 0.0), Error);
+}
+
+TEST(PlaneMap, SharesOneAfterAnotherAreTheWholeExtraction) {
+  // Walls across the x axis and along it (the cells of one wall in several
+  // shares), turned, so that the shares' x ranges cut between planes' voxels.
+  const FarWalls walls(10);
+  const std::vector<PointCloud>& scans = walls.scans;
+  const std::vector<Pose>& poses = walls.poses;
+  PlaneSettings settings;
+  settings.voxel_size = 1.0;
+  const PlaneExtraction whole = extractPlanes(pointers(scans), poses, settings);
+  ASSERT_GT(whole.planes.size(), 20u);
+  for (const std::size_t shares : {1, 2, 3, 7}) {
+    PlaneExtraction joined;
+    joined.first_id = whole.first_id;
+    std::size_t fewest = SIZE_MAX;
+    for (std::size_t share = 0; share < shares; ++share) {
+      PlaneExtraction part = extractPlanes(pointers(scans), poses, settings, share, shares);
+      fewest = std::min(fewest, part.planes.size());
+      // Each plane's points moved behind those joined so far.
+      for (PlaneFeature& plane : part.planes) {
+        joined.point_ids.insert(joined.point_ids.end(), part.point_ids.begin() + plane.first_point,
+                                part.point_ids.begin() + plane.end_point);
+        const std::uint32_t count = plane.end_point - plane.first_point;
+        plane.first_point = static_cast<std::uint32_t>(joined.point_ids.size()) - count;
+        plane.end_point = plane.first_point + count;
+        joined.planes.push_back(std::move(plane));
+      }
+    }
+    expectSameFeatures(whole, joined);
+    EXPECT_GT(fewest, 0u) << shares << " shares: one is empty";
+  }
+  EXPECT_THROW(extractPlanes(pointers(scans), poses, settings, 2, 2), Error);
+  EXPECT_THROW(extractPlanes(pointers(scans), poses, settings, 0, 0), Error);
 }
 
 TEST(PlaneMap, ClustersAreEachFramesPointsInItsOwnCoordinates) {

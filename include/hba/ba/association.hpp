@@ -34,6 +34,16 @@ struct Association {
 Association associate(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                       const voxel::PlaneSettings& planes, double reject_ratio);
 
+// associate() spread over the members of `group` (a collective: every
+// member calls it with the same scans and poses): each extracts the planes
+// of its share of the root voxels, the outlier filter drops the same planes
+// everywhere, and each member ends with whole chunks of the planes
+// (problem.spread()). plane_costs are every plane's; the extraction is
+// left empty. With one member, associate()'s association.
+Association associateSpread(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                            const voxel::PlaneSettings& planes, double reject_ratio,
+                            const dist::Group& group);
+
 // associate() at root voxel `planes.voxel_size` and at `fine_voxel`, at the
 // same poses: the same two associations, from one placing and hashing of the
 // points (voxel::extractPlanesAtTwoVoxels).

@@ -12,6 +12,7 @@
 #include "hba/ba/sparse_lm.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/dist/group.hpp"
 #include "hba/voxel/plane_map.hpp"
 
 namespace hba::ba {
@@ -38,6 +39,10 @@ struct RefinementSettings {
   int max_holds = 2;
   SparseLmSettings lm;
   MotionPriorSettings motion_prior;
+  // The processes that share the work (docs/mpi.md), each calling with the
+  // same scans and settings; null: this process alone. The poses are those
+  // of one process, bit for bit.
+  const dist::Group* spread_over = nullptr;
   RefinementSettings() {
     planes.voxel_size = 1.0;
     // Tighter than the windows' prior: it holds neighbouring frames at the

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "hba/ba/plane_cost.hpp"
+#include "hba/ba/plane_spread.hpp"
 #include "hba/core/pose.hpp"
 
 namespace hba::ba {
@@ -26,13 +27,21 @@ class PlaneProblem {
   // clusters other than in strictly ascending frame order.
   PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames);
 
+  // `planes`: chunks [spread.first_chunk, spread.end_chunk) of a problem
+  // spread over spread.group (plane_spread.hpp).
+  PlaneProblem(std::vector<PlaneObservation> planes, std::size_t num_frames, PlaneSpread spread);
+
   std::size_t numFrames() const { return num_frames_; }
+  // The planes this process holds: all of them unless spread.
   std::size_t numPlanes() const { return planes_.size(); }
   const std::vector<PlaneObservation>& planes() const { return planes_; }
+  const PlaneSpread& spread() const { return spread_; }
 
-  // Per-plane costs (N * lambda_min), in plane order.
+  // Per-plane costs (N * lambda_min) of the planes held, in plane order.
   std::vector<double> planeCosts(const std::vector<Pose>& poses) const;
-  double cost(const std::vector<Pose>& poses) const;
+  // Of every plane, gathered from the group when spread (a collective).
+  std::vector<double> allPlaneCosts(const std::vector<Pose>& poses) const;
+  double cost(const std::vector<Pose>& poses) const;  // of every plane
   // The sum of per-plane costs as cost() takes it (in order: deterministic).
   static double total(const std::vector<double>& plane_costs);
   Linearization linearize(const std::vector<Pose>& poses) const;
@@ -40,6 +49,7 @@ class PlaneProblem {
  private:
   std::vector<PlaneObservation> planes_;
   std::size_t num_frames_ = 0;
+  PlaneSpread spread_;
 };
 
 }  // namespace hba::ba

@@ -68,6 +68,14 @@ bool passesPlaneTest(const Vec3& eigenvalues, const PlaneSettings& settings);
 PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                               const PlaneSettings& settings);
 
+// The planes of share `share` (0 .. shares - 1) of the root voxels: ranges
+// of their x index, about equal in points, in ascending order. The shares'
+// planes, one after the other in share order, are extractPlanes(scans,
+// poses, settings)'s, bit for bit: each process of a group can extract
+// its own share. Throws as extractPlanes, and for a share >= shares.
+PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                              const PlaneSettings& settings, std::size_t share, std::size_t shares);
+
 // The planes at two root voxels, `settings.voxel_size` and `fine_voxel`, of
 // the same scans at the same poses: the same features, bit for bit, as two
 // extractPlanes calls, with the points placed and hashed into cells once

@@ -1,0 +1,50 @@
+#pragma once
+// A refinement's plane problem spread over the members of a process group
+// (docs/mpi.md): each member holds whole chunks of the planes, in order.
+// Every sum over planes is taken in these chunks, added in chunk order, in
+// one process as in many, so a group gets the poses of one process, bit
+// for bit.
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "hba/dist/group.hpp"
+
+namespace hba::ba {
+
+struct PlaneSpread {
+  const dist::Group* group = nullptr;  // null: one process holds every plane
+  std::size_t first_plane = 0;         // the member's first plane among all
+  std::size_t planes = 0;              // all planes, over the group
+  // Chunks as ranges of all planes: [chunk_begin[c], chunk_begin[c + 1]);
+  // the member holds chunks [first_chunk, end_chunk).
+  std::vector<std::size_t> chunk_begin;
+  std::size_t first_chunk = 0;
+  std::size_t end_chunk = 0;
+
+  bool spread() const { return group != nullptr && group->size() > 1; }
+};
+
+// The chunks the sums over planes are taken in: ranges of about equal
+// observation counts (`plane_begin[p]`: observations before plane p, and
+// the total last) that hold whole planes. Each sums into its own partial
+// result of `frames` frames' gradients and 6x6 blocks: enough for two
+// cores to share (up to 64), few enough that the partials stay within
+// 16 MB and a chunk holds at least 16 384 observations. Depends on the
+// sizes only: the same chunks for any thread or process count.
+std::vector<std::size_t> sumChunks(const std::vector<std::uint32_t>& plane_begin, std::size_t frames);
+
+// The chunks member `rank` of `size` holds: consecutive ones, about equal
+// in observations.
+std::pair<std::size_t, std::size_t> memberChunks(const std::vector<std::size_t>& chunk_begin,
+                                                 const std::vector<std::uint32_t>& plane_begin, int rank,
+                                                 int size);
+
+// Every member's `mine`, in rank order (a collective).
+std::vector<std::vector<double>> gatherPerMember(const dist::Group& group, const std::vector<double>& mine);
+
+// Every member's `mine`, one after another in rank order (a collective).
+std::vector<double> gatherInOrder(const dist::Group& group, const std::vector<double>& mine);
+
+}  // namespace hba::ba
