@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -185,13 +184,20 @@ Association associateSpread(const std::vector<const PointCloud*>& scans, const s
   spread.group = &group;
   spread.planes = best.size();
   spread.chunk_begin = sumChunks(plane_begin, poses.size());
-  std::vector<std::size_t> member_begin;
-  for (int m = 0; m < group.size(); ++m)
-    member_begin.push_back(
-        spread.chunk_begin[memberChunks(spread.chunk_begin, plane_begin, m, group.size()).first]);
-  member_begin.push_back(best.size());
-  std::tie(spread.first_chunk, spread.end_chunk) =
-      memberChunks(spread.chunk_begin, plane_begin, group.rank(), group.size());
+  // Each member's chunks start where its own kept planes do (the first
+  // chunk starting there or after): they mostly stay where they are.
+  std::vector<std::size_t> kept_start;  // per member, then all kept planes
+  for (std::size_t m = 0; m < members; ++m) {
+    kept_start.push_back(
+        static_cast<std::size_t>(std::lower_bound(best.begin(), best.end(), found_before[m]) - best.begin()));
+  }
+  kept_start.push_back(best.size());
+  const std::vector<std::size_t> chunk_start = memberChunkStarts(spread.chunk_begin, kept_start);
+  std::vector<std::size_t> member_begin;  // each member's planes once moved, then all
+  for (const std::size_t c : chunk_start) member_begin.push_back(spread.chunk_begin[c]);
+  const auto rank = static_cast<std::size_t>(group.rank());
+  spread.first_chunk = chunk_start[rank];
+  spread.end_chunk = chunk_start[rank + 1];
   spread.first_plane = spread.chunk_begin[spread.first_chunk];
   std::vector<PlaneObservation> held;
   for (const dist::Bytes& bytes : group.allToAll(packForMembers(kept, first_kept, member_begin))) {

@@ -26,23 +26,16 @@ std::vector<std::size_t> sumChunks(const std::vector<std::uint32_t>& plane_begin
   return begin;
 }
 
-std::pair<std::size_t, std::size_t> memberChunks(const std::vector<std::size_t>& chunk_begin,
-                                                 const std::vector<std::uint32_t>& plane_begin, int rank,
-                                                 int size) {
+std::vector<std::size_t> memberChunkStarts(const std::vector<std::size_t>& chunk_begin,
+                                           const std::vector<std::size_t>& plane_start) {
   const std::size_t chunks = chunk_begin.size() - 1;
-  const std::size_t observations = plane_begin.back();
-  // The first chunk that starts at or after a member's share of the
-  // observations begins that member's chunks.
-  auto startOf = [&](int member) {
-    if (member <= 0) return std::size_t{0};
-    if (member >= size) return chunks;
-    const std::size_t target =
-        observations * static_cast<std::size_t>(member) / static_cast<std::size_t>(size);
-    std::size_t c = 0;
-    while (c < chunks && plane_begin[chunk_begin[c]] < target) ++c;
-    return c;
-  };
-  return {startOf(rank), startOf(rank + 1)};
+  std::vector<std::size_t> starts;
+  for (std::size_t m = 0; m + 1 < plane_start.size(); ++m) {
+    const auto it = std::lower_bound(chunk_begin.begin(), chunk_begin.end() - 1, plane_start[m]);
+    starts.push_back(m == 0 ? 0 : static_cast<std::size_t>(it - chunk_begin.begin()));
+  }
+  starts.push_back(chunks);
+  return starts;
 }
 
 std::vector<std::vector<double>> gatherPerMember(const dist::Group& group, const std::vector<double>& mine) {

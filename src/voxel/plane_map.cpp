@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -40,7 +41,9 @@ Vec3 originOf(const std::vector<Pose>& poses) {
   return kGrid * (mean / kGrid).array().round().matrix();
 }
 
-WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses) {
+// `with_points` false: the frames and offsets only, no point placed.
+WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
+                         bool with_points = true) {
   std::size_t total = 0;
   for (const PointCloud* scan : scans) total += scan->size();
   if (total > std::numeric_limits<std::uint32_t>::max()) {
@@ -55,6 +58,7 @@ WorldPoints placeInWorld(const std::vector<const PointCloud*>& scans, const std:
     world.R.push_back(pose.R());
     world.t.push_back(pose.t - world.origin);
   }
+  if (!with_points) return world;
   world.position.resize(total);
   tbb::parallel_for(std::size_t{0}, scans.size(), [&](std::size_t f) {
     const Mat3& R = world.R[f];
@@ -255,20 +259,12 @@ namespace {
 constexpr std::size_t kPointsPerPlaneVoxel = 64;
 
 // The planes of the root voxels `cells` (of settings.voxel_size) of `world`.
-// `world_ids`: the world id of each point the cells number (empty: they
-// number every point of `world`).
-PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, const PlaneSettings& settings,
-                              const std::vector<std::uint32_t>& world_ids = {}) {
+PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, const PlaneSettings& settings) {
   // Root voxels, their ids ascending (counting sort by cell).
   CellMembers members = membersOf(cells);
-  if (!world_ids.empty()) {
-    for (std::uint32_t& id : members.ids) id = world_ids[id];  // ascending still: they ascend
-  }
   std::vector<VoxelKey> keys(cells.cells());
   for (std::size_t c = 0; c < keys.size(); ++c) {
-    const std::uint32_t first = cells.first_point_of_cell[c];
-    const std::uint32_t id = world_ids.empty() ? first : world_ids[first];
-    keys[c] = VoxelKey::of(world.position[id].cast<double>(), settings.voxel_size);
+    keys[c] = VoxelKey::of(world.position[cells.first_point_of_cell[c]].cast<double>(), settings.voxel_size);
   }
   cells = {};  // 4 bytes a point, while the planes' clusters grow
 
@@ -307,26 +303,86 @@ PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, co
   return out;
 }
 
-// The x index of a point's root voxel: its cell key's x.
-std::int64_t xIndexOf(const Vec3f& p, double size) {
-  return VoxelKey::cell(static_cast<double>(p.x()) / size);
+// The x index of a point's root voxel (its cell key's x), as VoxelKey::of
+// takes it: a power-of-two edge by its exact inverse, else by division.
+class XIndex {
+ public:
+  explicit XIndex(double size) : size_(size), inverse_(1.0 / size) {
+    int exponent = 0;
+    power_of_two_ = std::frexp(size, &exponent) == 0.5;
+  }
+  std::int64_t operator()(const Vec3f& p) const {
+    const double x = static_cast<double>(p.x());
+    return VoxelKey::cell(power_of_two_ ? x * inverse_ : x / size_);
+  }
+
+ private:
+  double size_;
+  double inverse_;
+  bool power_of_two_ = false;
+};
+
+// A point of scan `f` in the world, as placeInWorld puts it.
+Vec3f placed(const WorldPoints& frames, const PointCloud& scan, std::size_t f, std::size_t i) {
+  return (frames.R[f] * scan.points[i].cast<double>() + frames.t[f]).cast<float>();
 }
 
 // The lowest x index of each share but the first, from a sample of the
 // points (every 64th: the same in every process, and a few hundred
 // thousand at most sorted), so that the shares hold about equal points.
-std::vector<std::int64_t> shareBounds(const WorldPoints& world, double size, std::size_t shares) {
+std::vector<std::int64_t> shareBounds(const std::vector<const PointCloud*>& scans, const WorldPoints& frames,
+                                      const XIndex& xIndex, std::size_t shares) {
   constexpr std::size_t kSampleStride = 64;
   std::vector<std::int64_t> sample;
-  sample.reserve(world.position.size() / kSampleStride + 1);
-  for (std::size_t i = 0; i < world.position.size(); i += kSampleStride)
-    sample.push_back(xIndexOf(world.position[i], size));
+  for (std::size_t f = 0; f < scans.size(); ++f) {
+    // Every 64th point of all the scans in order.
+    const std::size_t first = frames.first[f];
+    for (std::size_t id = (first + kSampleStride - 1) / kSampleStride * kSampleStride;
+         id < frames.first[f + 1]; id += kSampleStride) {
+      sample.push_back(xIndex(placed(frames, *scans[f], f, id - first)));
+    }
+  }
   std::sort(sample.begin(), sample.end());
   std::vector<std::int64_t> bounds;
-  for (std::size_t k = 1; k < shares; ++k) {
+  for (std::size_t k = 1; k < shares; ++k)
     bounds.push_back(sample.empty() ? 0 : sample[sample.size() * k / shares]);
-  }
   return bounds;
+}
+
+// The points of `scans` whose root voxel's x index is in [low, high), in
+// the world as placeInWorld puts them, numbered as in `all` (every point:
+// only its offsets and frames are read) through `ids`.
+WorldPoints placeShareInWorld(const std::vector<const PointCloud*>& scans, const WorldPoints& all,
+                              const XIndex& xIndex, std::int64_t low, std::int64_t high,
+                              std::vector<std::uint32_t>& ids) {
+  auto inside = [&](const Vec3f& q) {
+    const std::int64_t x = xIndex(q);
+    return x >= low && x < high;
+  };
+  const std::size_t frames = scans.size();
+  std::vector<std::uint32_t> count(frames, 0);
+  tbb::parallel_for(std::size_t{0}, frames, [&](std::size_t f) {
+    for (std::size_t i = 0; i < scans[f]->size(); ++i)
+      count[f] += inside(placed(all, *scans[f], f, i)) ? 1 : 0;
+  });
+  WorldPoints world;
+  world.origin = all.origin;
+  world.R = all.R;
+  world.t = all.t;
+  world.first.push_back(0);
+  for (std::size_t f = 0; f < frames; ++f) world.first.push_back(world.first.back() + count[f]);
+  world.position.resize(world.first.back());
+  ids.resize(world.first.back());
+  tbb::parallel_for(std::size_t{0}, frames, [&](std::size_t f) {
+    std::uint32_t k = world.first[f];
+    for (std::size_t i = 0; i < scans[f]->size(); ++i) {
+      const Vec3f q = placed(all, *scans[f], f, i);
+      if (!inside(q)) continue;
+      world.position[k] = q;
+      ids[k++] = all.first[f] + static_cast<std::uint32_t>(i);
+    }
+  });
+  return world;
 }
 
 }  // namespace
@@ -374,31 +430,22 @@ PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const
   }
   if (shares == 1) return extractPlanes(scans, poses, settings);
   validate(scans, poses, settings);
-  const WorldPoints world = placeInWorld(scans, poses);
-  const double size = settings.voxel_size;
-  const std::vector<std::int64_t> bounds = shareBounds(world, size, shares);
+  // The frames' placement and point offsets, no points placed yet.
+  const WorldPoints frames = placeInWorld(scans, poses, /*with_points=*/false);
+  const XIndex xIndex(settings.voxel_size);
+  const std::vector<std::int64_t> bounds = shareBounds(scans, frames, xIndex, shares);
   const std::int64_t low = share == 0 ? std::numeric_limits<std::int64_t>::min() : bounds[share - 1];
   const std::int64_t high = share + 1 == shares ? std::numeric_limits<std::int64_t>::max() : bounds[share];
   // A root voxel lies in one share whole (its points share its x index):
   // the share's points, in id order, make the very voxels one extraction
-  // over every point makes there.
-  std::vector<Vec3f> positions;
+  // over every point makes there. Only they are placed and hashed.
   std::vector<std::uint32_t> ids;
-  for (std::size_t i = 0; i < world.position.size(); ++i) {
-    const std::int64_t x = xIndexOf(world.position[i], size);
-    if (x >= low && x < high) {
-      positions.push_back(world.position[i]);
-      ids.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
-  if (ids.empty()) {
-    PlaneExtraction none;
-    none.first_id = world.first;
-    return none;
-  }
-  CellAssignment cells = assignCells(positions, size, kPointsPerPlaneVoxel);
-  positions = {};
-  return planesOfCells(world, std::move(cells), settings, ids);
+  const WorldPoints world = placeShareInWorld(scans, frames, xIndex, low, high, ids);
+  PlaneExtraction out =
+      planesOfCells(world, assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel), settings);
+  for (std::uint32_t& id : out.point_ids) id = ids[id];  // as one extraction numbers them
+  out.first_id = frames.first;
+  return out;
 }
 
 std::pair<PlaneExtraction, PlaneExtraction> extractPlanesAtTwoVoxels(

@@ -83,8 +83,14 @@ TEST(PlaneSpread, MembersSummingTheirChunksGetTheSumsOfOneProcess) {
       spread.group = &group;
       spread.planes = many.planes.size();
       spread.chunk_begin = chunks;
-      std::tie(spread.first_chunk, spread.end_chunk) =
-          memberChunks(chunks, begin, group.rank(), group.size());
+      // Shares of about equal plane counts, moved to whole chunks.
+      std::vector<std::size_t> plane_start;
+      for (int m = 0; m <= members; ++m)
+        plane_start.push_back(many.planes.size() * static_cast<std::size_t>(m) /
+                              static_cast<std::size_t>(members));
+      const std::vector<std::size_t> starts = memberChunkStarts(chunks, plane_start);
+      spread.first_chunk = starts[static_cast<std::size_t>(group.rank())];
+      spread.end_chunk = starts[static_cast<std::size_t>(group.rank()) + 1];
       spread.first_plane = chunks[spread.first_chunk];
       const std::vector<PlaneObservation> mine(
           many.planes.begin() + static_cast<long>(spread.first_plane),

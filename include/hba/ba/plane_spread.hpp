@@ -35,11 +35,12 @@ struct PlaneSpread {
 // sizes only: the same chunks for any thread or process count.
 std::vector<std::size_t> sumChunks(const std::vector<std::uint32_t>& plane_begin, std::size_t frames);
 
-// The chunks member `rank` of `size` holds: consecutive ones, about equal
-// in observations.
-std::pair<std::size_t, std::size_t> memberChunks(const std::vector<std::size_t>& chunk_begin,
-                                                 const std::vector<std::uint32_t>& plane_begin, int rank,
-                                                 int size);
+// The first chunk of each member, and the chunk count last: the chunk
+// that starts at or after the member's first plane in `plane_start` (one
+// per member, ascending, then all planes), so that planes move between
+// members only near where their shares meet.
+std::vector<std::size_t> memberChunkStarts(const std::vector<std::size_t>& chunk_begin,
+                                           const std::vector<std::size_t>& plane_start);
 
 // Every member's `mine`, in rank order (a collective).
 std::vector<std::vector<double>> gatherPerMember(const dist::Group& group, const std::vector<double>& mine);
