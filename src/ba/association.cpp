@@ -101,19 +101,25 @@ std::vector<FrameCluster> unpacked(const std::vector<PackedCluster>& clusters) {
 }
 
 // The planes of `mine` (all planes [first, first + mine.size())) that
-// fall in each member's range of `begin` (all planes, per member, and the
-// total last), packed for that member.
+// fall in each other member's range of `begin` (all planes, per member,
+// and the total last), packed for that member; none for `self`.
 std::vector<dist::Bytes> packForMembers(const std::vector<PlaneObservation>& mine, std::size_t first,
-                                        const std::vector<std::size_t>& begin) {
-  std::vector<dist::Bytes> out;
+                                        const std::vector<std::size_t>& begin, std::size_t self) {
+  std::vector<dist::Bytes> out(begin.size() - 1);
   for (std::size_t member = 0; member + 1 < begin.size(); ++member) {
+    if (member == self) continue;
     dist::ByteWriter writer;
     const std::size_t from = std::max(first, begin[member]);
     const std::size_t to = std::min(first + mine.size(), begin[member + 1]);
     for (std::size_t p = from; p < to; ++p) writer.putVector(packed(mine[p - first].clusters));
-    out.push_back(writer.take());
+    out[member] = writer.take();
   }
   return out;
+}
+
+void unpackInto(const dist::Bytes& bytes, std::vector<PlaneObservation>& planes) {
+  dist::ByteReader reader(bytes);
+  while (!reader.done()) planes.emplace_back().clusters = unpacked(reader.getVector<PackedCluster>());
 }
 
 }  // namespace
@@ -199,11 +205,16 @@ Association associateSpread(const std::vector<const PointCloud*>& scans, const s
   spread.first_chunk = chunk_start[rank];
   spread.end_chunk = chunk_start[rank + 1];
   spread.first_plane = spread.chunk_begin[spread.first_chunk];
+  // Planes of lower members come first, then this member's own (which stay
+  // as they are), then higher members'.
+  const std::vector<dist::Bytes> received =
+      group.allToAll(packForMembers(kept, first_kept, member_begin, rank));
   std::vector<PlaneObservation> held;
-  for (const dist::Bytes& bytes : group.allToAll(packForMembers(kept, first_kept, member_begin))) {
-    dist::ByteReader reader(bytes);
-    while (!reader.done()) held.emplace_back().clusters = unpacked(reader.getVector<PackedCluster>());
-  }
+  for (std::size_t m = 0; m < rank; ++m) unpackInto(received[m], held);
+  for (std::size_t p = std::max(first_kept, member_begin[rank]);
+       p < std::min(first_kept + kept.size(), member_begin[rank + 1]); ++p)
+    held.push_back(std::move(kept[p - first_kept]));
+  for (std::size_t m = rank + 1; m < members; ++m) unpackInto(received[m], held);
   kept = {};
   out.problem = PlaneProblem(std::move(held), poses.size(), std::move(spread));
   std::size_t points = 0;
