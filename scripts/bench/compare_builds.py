@@ -21,7 +21,7 @@ import report_md
 from measure import MME_MAX_FRAMES, SCAN_VOXEL_M
 from process import CommandFailed
 from scenarios import add_data_arguments, HKU1, NCLT, SPARSE_TWIN, DataStore, scenario_set
-from tools import Tools
+from tools import Tools, add_build_arguments
 
 REPO = Path(__file__).resolve().parents[2]
 DEFAULT_SCENARIOS = "sim-hdl32-1000-drift,sim-hdl32-1000-loop,sim-livox-1000-drift,hku1,nclt"
@@ -29,10 +29,7 @@ DEFAULT_SCENARIOS = "sim-hdl32-1000-drift,sim-hdl32-1000-loop,sim-livox-1000-dri
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0].replace("\n", " "))
-    parser.add_argument("--hba-a", type=Path, required=True, help="the baseline build's hba")
-    parser.add_argument("--hba-b", type=Path, required=True, help="the candidate build's hba")
-    parser.add_argument("--label-a", default="A")
-    parser.add_argument("--label-b", default="B")
+    add_build_arguments(parser)
     parser.add_argument("--io-floor", type=Path, default=REPO / "build/bin/io_floor")
     parser.add_argument("--only", default=DEFAULT_SCENARIOS,
                         help=f"comma-separated scenarios (default {DEFAULT_SCENARIOS}; any of the "

@@ -9,8 +9,11 @@ window's summary goes to every process; a keyframe goes only to the process
 whose next-layer windows read it: those across the edge of its range (as
 many as the two-process run sent), all of them to the one process that runs
 the top layer's window. The closure stage's verifications are spread evenly
-(its seconds / K). What is not spread (the refinement, reading, the pose
-graph) runs in the first process, as measured, per frame. The model is checked against the
+(its seconds / K). The refinement is part spread (its planes' sums) and
+part done by every process whole (reading a block's scans, the groups):
+the part spread is what the two-process run saved, twice over, and it
+divides among at most --chunks processes. What is not spread (reading, the
+pose graph) runs in the first process, as measured, per frame. The model is checked against the
 two-process run, then extrapolated to N scans: layer l has about
 N / stride^(l-1) frames, its windows cost what they cost in the measured
 run's layer (deeper layers as its deepest local one), the rest grows with N.
@@ -107,6 +110,8 @@ def main():
     parser.add_argument("--frames", type=int, default=1_000_000)
     parser.add_argument("--processes", default="1,8,64")
     parser.add_argument("--bandwidth", type=float, default=1.25e9, help="bytes/s a process receives")
+    parser.add_argument("--chunks", type=int, default=35,
+                        help="chunks of a refinement block's sums (at most 64; 35 for 740-frame blocks)")
     args = parser.parse_args()
     one = json.load(open(args.one))
     many = json.load(open(args.many)) if args.many else None
@@ -116,16 +121,28 @@ def main():
     layers = measured_layers(one, many)
     layer_seconds = sum(l["seconds"] for l in one["layer_reports"])
     closures = one.get("closure", {}).get("seconds", 0.0)
-    rest = one["seconds"]["total"] - layer_seconds - closures
+    refinement = one.get("refinement", {}).get("seconds", 0.0)
+    # The refinement's part spread: what two processes saved, twice over
+    # (none when the two-process run's refinement ran in one process).
+    spread = 0.0
+    if many and many.get("processes", 1) == 2:
+        spread = min(max(2.0 * (refinement - many.get("refinement", {}).get("seconds", refinement)), 0.0),
+                     refinement)
+    whole = refinement - spread
+    rest = one["seconds"]["total"] - layer_seconds - closures - refinement
     n1 = one["frames"]
+
+    def refinement_on(k, scale=1.0):
+        return scale * (whole + spread / min(k, args.chunks))
+
     print(f"measured, one process: {one['seconds']['total']:.1f} s for {n1} frames; layers {layer_seconds:.1f} s, "
-          f"closures {closures:.1f} s (spread), the rest {rest:.1f} s ({1e3 * rest / n1:.1f} ms a frame, "
-          f"in the first process)")
+          f"closures {closures:.1f} s (spread), refinement {refinement:.1f} s ({spread:.1f} s of it spread), "
+          f"the rest {rest:.1f} s ({1e3 * rest / n1:.1f} ms a frame, in the first process)")
     if many:
         k = many["processes"]
         times, _ = model(layers, k, args.bandwidth)
         measured = many["seconds"]["total"]
-        modelled = sum(times) + closures / k + rest
+        modelled = sum(times) + closures / k + refinement_on(k) + rest
         print(f"check, {k} processes: modelled {modelled:.1f} s, measured {measured:.1f} s "
               f"({modelled / measured:.2f}); layers modelled " + ", ".join(f"{t:.2f}" for t in times)
               + " s, measured " + ", ".join(f"{l['seconds']:.2f}" for l in many["layer_reports"]) + " s")
@@ -137,17 +154,19 @@ def main():
     big = extrapolate(layers, args.frames, window, stride)
     rest_big = rest / n1 * args.frames
     closures_big = closures / n1 * args.frames
+    scale = args.frames / n1
     print(f"\nN = {args.frames} frames: {len(big)} layers, windows " + ", ".join(str(l["windows"]) for l in big))
-    print("| processes | layers (s) | closures (s) | the rest (s) | total (h) | speed-up | a process sends (GB) | "
-          "the busiest receives (GB) |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| processes | layers (s) | closures (s) | refinement (s) | the rest (s) | total (h) | speed-up | "
+          "a process sends (GB) | the busiest receives (GB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     base = None
     for k in [int(x) for x in args.processes.split(",")]:
         times, received = model(big, k, args.bandwidth)
-        total = sum(times) + closures_big / k + rest_big
+        total = sum(times) + closures_big / k + refinement_on(k, scale) + rest_big
         base = base or total
         sent = sum(layer_sent(l, k, i + 2 == len(big)) for i, l in enumerate(big))
-        print(f"| {k} | {sum(times):.0f} | {closures_big / k:.0f} | {rest_big:.0f} | {total / 3600:.2f} | "
+        print(f"| {k} | {sum(times):.0f} | {closures_big / k:.0f} | {refinement_on(k, scale):.0f} | "
+              f"{rest_big:.0f} | {total / 3600:.2f} | "
               f"{base / total:.2f}x | "
               f"{sent / 1e9:.2f} | {sum(received) / 1e9:.1f} |")
 

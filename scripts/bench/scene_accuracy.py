@@ -18,7 +18,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from tools import Tools
+from tools import Tools, add_build_arguments
 
 REPO = Path(__file__).resolve().parents[2]
 FRAMES = 400
@@ -31,10 +31,7 @@ SCENES += [("mixed-livox-300", ["--sensor", "livox", "--frames", "300", "--seed"
 
 def parse_args(argv):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--hba-a", type=Path, required=True, help="the baseline build's hba")
-    parser.add_argument("--hba-b", type=Path, required=True, help="the candidate build's hba")
-    parser.add_argument("--label-a", default="A")
-    parser.add_argument("--label-b", default="B")
+    add_build_arguments(parser)
     parser.add_argument("--data-dir", type=Path,
                         default=Path(os.environ.get("HBA_BENCH_DATA", "/work/hba-bench-data")))
     parser.add_argument("--real", nargs="*", type=Path,

@@ -3,10 +3,19 @@ import json
 import re
 import shlex
 import subprocess
+from pathlib import Path
 
 import process
 
 MME_LINE = re.compile(r"^MME (\S+)", re.MULTILINE)
+
+
+def add_build_arguments(parser):
+    """--hba-a and --hba-b (two builds' hba, the baseline first) and their labels."""
+    parser.add_argument("--hba-a", type=Path, required=True, help="the baseline build's hba")
+    parser.add_argument("--hba-b", type=Path, required=True, help="the candidate build's hba")
+    parser.add_argument("--label-a", default="A")
+    parser.add_argument("--label-b", default="B")
 
 
 class Tools:
