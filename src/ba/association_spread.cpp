@@ -134,7 +134,8 @@ std::vector<PlaneObservation> movedToChunks(const dist::Group& group, std::vecto
   std::vector<PlaneObservation> held;
   for (std::size_t m = 0; m < rank; ++m) unpackInto(received[m], held);
   const std::size_t end = std::min(first + kept.size(), member_begin[rank + 1]);
-  for (std::size_t p = std::max(first, member_begin[rank]); p < end; ++p) held.push_back(std::move(kept[p - first]));
+  for (std::size_t p = std::max(first, member_begin[rank]); p < end; ++p)
+    held.push_back(std::move(kept[p - first]));
   for (std::size_t m = rank + 1; m < received.size(); ++m) unpackInto(received[m], held);
   return held;
 }
@@ -169,7 +170,8 @@ Association associateSpread(const std::vector<const PointCloud*>& scans, const s
   // Where each member's kept planes start among all kept, and its own.
   std::vector<std::size_t> kept_start;
   for (const std::size_t before : all.found_before) {
-    kept_start.push_back(static_cast<std::size_t>(std::lower_bound(best.begin(), best.end(), before) - best.begin()));
+    kept_start.push_back(
+        static_cast<std::size_t>(std::lower_bound(best.begin(), best.end(), before) - best.begin()));
   }
   std::vector<PlaneObservation> kept;
   for (std::size_t k = kept_start[rank]; k < kept_start[rank + 1]; ++k)
@@ -177,8 +179,8 @@ Association associateSpread(const std::vector<const PointCloud*>& scans, const s
   found = {};
   std::vector<std::size_t> member_begin;
   PlaneSpread spread = chunksOf(group, kept_begin, kept_start, poses.size(), member_begin);
-  out.problem = PlaneProblem(movedToChunks(group, std::move(kept), kept_start[rank], member_begin), poses.size(),
-                             std::move(spread));
+  out.problem = PlaneProblem(movedToChunks(group, std::move(kept), kept_start[rank], member_begin),
+                             poses.size(), std::move(spread));
   std::size_t points = 0;
   for (const PointCloud* scan : scans) points += scan->size();
   if (points >= kReleaseMemoryFrom) releaseFreedMemory();

@@ -44,7 +44,7 @@ class FrameSums {
   Eigen::Map<const Vec6> gradient(std::size_t i) const { return Eigen::Map<const Vec6>(at(i)); }
   Eigen::Map<const Mat6> diagonal(std::size_t i) const { return Eigen::Map<const Mat6>(at(i) + 6); }
   Eigen::Map<const Mat6> own(std::size_t i) const { return Eigen::Map<const Mat6>(at(i) + 42); }
-  const std::vector<double>& values() const { return values_; }
+  std::vector<double> take() { return std::move(values_); }
 
  private:
   static constexpr std::size_t kPerFrame = 6 + 36 + 36;
@@ -116,7 +116,7 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
         sums.own(i).noalias() += Za.transpose() * terms.weights.asDiagonal() * Za;
       }
     }
-    mine[k] = sums.values();
+    mine[k] = sums.take();
   });
   for (std::vector<double>& values : allChunks(spread_, std::move(mine))) {
     const FrameSums sums(std::move(values));

@@ -47,29 +47,6 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
   return bounds;
 }
 
-// VoxelKey::of for one edge length. Dividing by a power of two is
-// multiplying by its exact inverse: the same keys without three divisions a
-// point (plane voxels are 4 m halved; scan voxels like 0.1 m keep the
-// division).
-class KeyOf {
- public:
-  explicit KeyOf(double size) : size_(size), inverse_(1.0 / size) {
-    int exponent = 0;
-    power_of_two_ = std::frexp(size, &exponent) == 0.5;
-  }
-  VoxelKey operator()(const Vec3f& point) const {
-    const Vec3 p = point.cast<double>();
-    if (!power_of_two_) return VoxelKey::of(p, size_);
-    return VoxelKey{VoxelKey::cell(p.x() * inverse_), VoxelKey::cell(p.y() * inverse_),
-                    VoxelKey::cell(p.z() * inverse_)};
-  }
-
- private:
-  double size_;
-  double inverse_;
-  bool power_of_two_ = false;
-};
-
 // Clouds of this many points or more (refinement blocks of millions) take
 // their keys in parallel, as each point's key is independent of the others.
 constexpr std::size_t kParallelFrom = std::size_t{1} << 20;

@@ -2,13 +2,39 @@
 // Which grid cell each point of a cloud falls in, numbered in the order the
 // cells are first hit. Shared by downsampling and plane extraction, which
 // both group every point of a large cloud by cell.
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "hba/core/types.hpp"
+#include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
+
+// VoxelKey::of for one edge length. Dividing by a power of two is
+// multiplying by its exact inverse: the same keys without three divisions a
+// point (plane voxels are 4 m halved; scan voxels like 0.1 m keep the
+// division).
+class KeyOf {
+ public:
+  explicit KeyOf(double size) : size_(size), inverse_(1.0 / size) {
+    int exponent = 0;
+    power_of_two_ = std::frexp(size, &exponent) == 0.5;
+  }
+  VoxelKey operator()(const Vec3f& point) const {
+    const Vec3 p = point.cast<double>();
+    return VoxelKey{cell(p.x()), cell(p.y()), cell(p.z())};
+  }
+  // The key's x alone.
+  std::int64_t x(const Vec3f& point) const { return cell(static_cast<double>(point.x())); }
+
+ private:
+  std::int64_t cell(double v) const { return VoxelKey::cell(power_of_two_ ? v * inverse_ : v / size_); }
+  double size_;
+  double inverse_;
+  bool power_of_two_ = false;
+};
 
 struct CellAssignment {
   std::vector<std::uint32_t> cell_of_point;        // one per point

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -303,25 +302,6 @@ PlaneExtraction planesOfCells(const WorldPoints& world, CellAssignment cells, co
   return out;
 }
 
-// The x index of a point's root voxel (its cell key's x), as VoxelKey::of
-// takes it: a power-of-two edge by its exact inverse, else by division.
-class XIndex {
- public:
-  explicit XIndex(double size) : size_(size), inverse_(1.0 / size) {
-    int exponent = 0;
-    power_of_two_ = std::frexp(size, &exponent) == 0.5;
-  }
-  std::int64_t operator()(const Vec3f& p) const {
-    const double x = static_cast<double>(p.x());
-    return VoxelKey::cell(power_of_two_ ? x * inverse_ : x / size_);
-  }
-
- private:
-  double size_;
-  double inverse_;
-  bool power_of_two_ = false;
-};
-
 // A point of scan `f` in the world, as placeInWorld puts it.
 Vec3f placed(const WorldPoints& frames, const PointCloud& scan, std::size_t f, std::size_t i) {
   return (frames.R[f] * scan.points[i].cast<double>() + frames.t[f]).cast<float>();
@@ -331,7 +311,7 @@ Vec3f placed(const WorldPoints& frames, const PointCloud& scan, std::size_t f, s
 // points (every 64th: the same in every process, and a few hundred
 // thousand at most sorted), so that the shares hold about equal points.
 std::vector<std::int64_t> shareBounds(const std::vector<const PointCloud*>& scans, const WorldPoints& frames,
-                                      const XIndex& xIndex, std::size_t shares) {
+                                      const KeyOf& keyOf, std::size_t shares) {
   constexpr std::size_t kSampleStride = 64;
   std::vector<std::int64_t> sample;
   for (std::size_t f = 0; f < scans.size(); ++f) {
@@ -339,7 +319,7 @@ std::vector<std::int64_t> shareBounds(const std::vector<const PointCloud*>& scan
     const std::size_t first = frames.first[f];
     for (std::size_t id = (first + kSampleStride - 1) / kSampleStride * kSampleStride;
          id < frames.first[f + 1]; id += kSampleStride) {
-      sample.push_back(xIndex(placed(frames, *scans[f], f, id - first)));
+      sample.push_back(keyOf.x(placed(frames, *scans[f], f, id - first)));
     }
   }
   std::sort(sample.begin(), sample.end());
@@ -353,17 +333,19 @@ std::vector<std::int64_t> shareBounds(const std::vector<const PointCloud*>& scan
 // the world as placeInWorld puts them, numbered as in `all` (every point:
 // only its offsets and frames are read) through `ids`.
 WorldPoints placeShareInWorld(const std::vector<const PointCloud*>& scans, const WorldPoints& all,
-                              const XIndex& xIndex, std::int64_t low, std::int64_t high,
+                              const KeyOf& keyOf, std::int64_t low, std::int64_t high,
                               std::vector<std::uint32_t>& ids) {
-  auto inside = [&](const Vec3f& q) {
-    const std::int64_t x = xIndex(q);
-    return x >= low && x < high;
-  };
+  // Which points are the share's (a byte a point), then only those placed
+  // again where they go.
+  std::vector<std::uint8_t> inside(all.first.back());
   const std::size_t frames = scans.size();
   std::vector<std::uint32_t> count(frames, 0);
   tbb::parallel_for(std::size_t{0}, frames, [&](std::size_t f) {
-    for (std::size_t i = 0; i < scans[f]->size(); ++i)
-      count[f] += inside(placed(all, *scans[f], f, i)) ? 1 : 0;
+    for (std::size_t i = 0; i < scans[f]->size(); ++i) {
+      const std::int64_t x = keyOf.x(placed(all, *scans[f], f, i));
+      inside[all.first[f] + i] = x >= low && x < high;
+      count[f] += inside[all.first[f] + i];
+    }
   });
   WorldPoints world;
   world.origin = all.origin;
@@ -376,9 +358,8 @@ WorldPoints placeShareInWorld(const std::vector<const PointCloud*>& scans, const
   tbb::parallel_for(std::size_t{0}, frames, [&](std::size_t f) {
     std::uint32_t k = world.first[f];
     for (std::size_t i = 0; i < scans[f]->size(); ++i) {
-      const Vec3f q = placed(all, *scans[f], f, i);
-      if (!inside(q)) continue;
-      world.position[k] = q;
+      if (!inside[all.first[f] + i]) continue;
+      world.position[k] = placed(all, *scans[f], f, i);
       ids[k++] = all.first[f] + static_cast<std::uint32_t>(i);
     }
   });
@@ -432,15 +413,15 @@ PlaneExtraction extractPlanes(const std::vector<const PointCloud*>& scans, const
   validate(scans, poses, settings);
   // The frames' placement and point offsets, no points placed yet.
   const WorldPoints frames = placeInWorld(scans, poses, /*with_points=*/false);
-  const XIndex xIndex(settings.voxel_size);
-  const std::vector<std::int64_t> bounds = shareBounds(scans, frames, xIndex, shares);
+  const KeyOf keyOf(settings.voxel_size);
+  const std::vector<std::int64_t> bounds = shareBounds(scans, frames, keyOf, shares);
   const std::int64_t low = share == 0 ? std::numeric_limits<std::int64_t>::min() : bounds[share - 1];
   const std::int64_t high = share + 1 == shares ? std::numeric_limits<std::int64_t>::max() : bounds[share];
   // A root voxel lies in one share whole (its points share its x index):
   // the share's points, in id order, make the very voxels one extraction
   // over every point makes there. Only they are placed and hashed.
   std::vector<std::uint32_t> ids;
-  const WorldPoints world = placeShareInWorld(scans, frames, xIndex, low, high, ids);
+  const WorldPoints world = placeShareInWorld(scans, frames, keyOf, low, high, ids);
   PlaneExtraction out =
       planesOfCells(world, assignCells(world.position, settings.voxel_size, kPointsPerPlaneVoxel), settings);
   for (std::uint32_t& id : out.point_ids) id = ids[id];  // as one extraction numbers them
