@@ -112,7 +112,6 @@ PlaneSpread chunksOf(const dist::Group& group, const std::vector<std::uint32_t>&
                      std::vector<std::size_t>& member_begin) {
   PlaneSpread spread;
   spread.group = &group;
-  spread.planes = kept_begin.size() - 1;
   spread.chunk_begin = sumChunks(kept_begin, frames);
   const std::vector<std::size_t> chunk_start = memberChunkStarts(spread.chunk_begin, kept_start);
   member_begin.clear();
@@ -120,7 +119,6 @@ PlaneSpread chunksOf(const dist::Group& group, const std::vector<std::uint32_t>&
   const auto rank = static_cast<std::size_t>(group.rank());
   spread.first_chunk = chunk_start[rank];
   spread.end_chunk = chunk_start[rank + 1];
-  spread.first_plane = spread.chunk_begin[spread.first_chunk];
   return spread;
 }
 

@@ -82,7 +82,6 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
   const FrameTransforms transforms(poses);
   const std::size_t planes = problem.numPlanes();
   if (!spread_.group) {  // one process: all the chunks, of all the planes
-    spread_.planes = planes;
     spread_.chunk_begin = sumChunks(index.plane_begin, frames_);
     spread_.end_chunk = spread_.chunk_begin.size() - 1;
   }
@@ -99,8 +98,8 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
     FrameSums sums(frames_);
     thread_local PlaneTerms terms;
     const std::size_t c = spread_.first_chunk + k;
-    for (std::size_t p = spread_.chunk_begin[c] - spread_.first_plane;
-         p < spread_.chunk_begin[c + 1] - spread_.first_plane; ++p) {
+    for (std::size_t p = spread_.chunk_begin[c] - spread_.firstPlane();
+         p < spread_.chunk_begin[c + 1] - spread_.firstPlane(); ++p) {
       planeTerms(problem.planes()[p], transforms, terms);
       weights_[p] = terms.weights.cast<float>();
       sums.cost() += terms.cost;
@@ -202,8 +201,8 @@ Eigen::VectorXd FactoredSystem::multiply(const Eigen::VectorXd& x) const {
     std::vector<float>& out = mine[k];
     out.assign(static_cast<std::size_t>(n), 0.0f);
     const std::size_t c = spread_.first_chunk + k;
-    for (std::size_t p = spread_.chunk_begin[c] - spread_.first_plane;
-         p < spread_.chunk_begin[c + 1] - spread_.first_plane; ++p) {
+    for (std::size_t p = spread_.chunk_begin[c] - spread_.firstPlane();
+         p < spread_.chunk_begin[c + 1] - spread_.firstPlane(); ++p) {
       const std::uint32_t k0 = index_.plane_begin[p];
       const std::uint32_t k1 = index_.plane_begin[p + 1];
       // Each row of Z as 4 + 2 floats, the 4 in one SIMD register: Z x

@@ -52,7 +52,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
       }
       result.planes = problem.numPlanes();
       if (problem.spread().spread()) {  // every member's planes (whole numbers: exact)
-        result.planes = problem.spread().planes;
+        result.planes = problem.spread().allPlanes();
         const std::vector<std::vector<double>> all =
             gatherPerMember(*problem.spread().group, {observations, plane_points});
         observations = plane_points = 0.0;

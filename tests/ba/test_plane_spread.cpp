@@ -81,7 +81,6 @@ TEST(PlaneSpread, MembersSummingTheirChunksGetTheSumsOfOneProcess) {
     eachMember(groups, [&](const dist::Group& group) {
       PlaneSpread spread;
       spread.group = &group;
-      spread.planes = many.planes.size();
       spread.chunk_begin = chunks;
       // Shares of about equal plane counts, moved to whole chunks.
       std::vector<std::size_t> plane_start;
@@ -91,9 +90,8 @@ TEST(PlaneSpread, MembersSummingTheirChunksGetTheSumsOfOneProcess) {
       const std::vector<std::size_t> starts = memberChunkStarts(chunks, plane_start);
       spread.first_chunk = starts[static_cast<std::size_t>(group.rank())];
       spread.end_chunk = starts[static_cast<std::size_t>(group.rank()) + 1];
-      spread.first_plane = chunks[spread.first_chunk];
       const std::vector<PlaneObservation> mine(
-          many.planes.begin() + static_cast<long>(spread.first_plane),
+          many.planes.begin() + static_cast<long>(spread.firstPlane()),
           many.planes.begin() + static_cast<long>(chunks[spread.end_chunk]));
       held[static_cast<std::size_t>(group.rank())] = mine.size();
       const PlaneProblem part(mine, frames, spread);

@@ -15,15 +15,16 @@ namespace hba::ba {
 
 struct PlaneSpread {
   const dist::Group* group = nullptr;  // null: one process holds every plane
-  std::size_t first_plane = 0;         // the member's first plane among all
-  std::size_t planes = 0;              // all planes, over the group
-  // Chunks as ranges of all planes: [chunk_begin[c], chunk_begin[c + 1]);
-  // the member holds chunks [first_chunk, end_chunk).
+  // Chunks as ranges of all planes: [chunk_begin[c], chunk_begin[c + 1]),
+  // all planes at the end; the member holds chunks [first_chunk, end_chunk).
   std::vector<std::size_t> chunk_begin;
   std::size_t first_chunk = 0;
   std::size_t end_chunk = 0;
 
   bool spread() const { return group != nullptr && group->size() > 1; }
+  // The member's first plane among all, and all planes over the group.
+  std::size_t firstPlane() const { return chunk_begin.empty() ? 0 : chunk_begin[first_chunk]; }
+  std::size_t allPlanes() const { return chunk_begin.empty() ? 0 : chunk_begin.back(); }
 };
 
 // The chunks the sums over planes are taken in: ranges of about equal
