@@ -1,15 +1,25 @@
 #!/usr/bin/env bash
-# Installs the Debian packages hba needs to build, test and benchmark.
-# Idempotent: apt-get skips what is already installed. Needs root (or sudo).
-# --bench adds what scripts/benchmark.sh needs: python3 and gnuplot (the plot).
+# Installs the Debian packages hba needs (Debian 12 "bookworm" and 13 "trixie":
+# the package names are the same). Idempotent: installs only what is missing.
+# Needs root (or sudo).
+#   (none)   everything the tests need: the tool's build, Python module, MPI,
+#            the tests' third-party writers and browser
+#   --demo   only what configuring and building the tool needs (the demo)
+#   --bench  the tests' packages and what scripts/benchmark.sh adds: gnuplot
 set -euo pipefail
 
-packages=(
-  build-essential cmake ninja-build ccache pkg-config git file
+# Configuring and building the tool (GoogleTest and Google Benchmark are small
+# and let the one configuration serve the demo and the tests alike).
+tool=(
+  build-essential cmake ninja-build ccache pkg-config
   libeigen3-dev libceres-dev libtbb-dev
   libcli11-dev libspdlog-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libpng-dev libstb-dev libnanoflann-dev liblzf-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev
+)
+# The tests and the checks beside them.
+tests=(
+  git file
   pybind11-dev python3-dev python3-numpy
   libopenmpi-dev openmpi-bin
   clang-format universal-ctags
@@ -19,9 +29,10 @@ packages=(
   chromium
 )
 case "${1:-}" in
-  "") ;;
-  --bench) packages+=(python3 gnuplot-nox) ;;
-  *) echo "usage: $0 [--bench]" >&2; exit 2 ;;
+  "") packages=("${tool[@]}" "${tests[@]}") ;;
+  --demo) packages=("${tool[@]}") ;;
+  --bench) packages=("${tool[@]}" "${tests[@]}" python3 gnuplot-nox) ;;
+  *) echo "usage: $0 [--demo|--bench]" >&2; exit 2 ;;
 esac
 
 sudo_cmd=()

@@ -6,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "core/kd_tree.hpp"
 #include "hba/core/lie.hpp"
-#include "kd_tree.hpp"
 
 namespace hba::closure {
 namespace {

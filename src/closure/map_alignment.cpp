@@ -5,9 +5,9 @@
 #include <map>
 #include <tuple>
 
+#include "core/kd_tree.hpp"
 #include "hba/core/error.hpp"
 #include "hba/voxel/downsample.hpp"
-#include "kd_tree.hpp"
 #include "place_alignment.hpp"
 
 namespace hba::closure {

@@ -11,8 +11,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "core/kd_tree.hpp"
 #include "hba/voxel/downsample.hpp"
-#include "kd_tree.hpp"
 
 namespace hba::closure {
 namespace {

@@ -7,11 +7,11 @@
 #include <cstdio>
 #include <set>
 
+#include "core/kd_tree.hpp"
 #include "core/stopwatch.hpp"
 #include "hba/closure/point_features.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/lie.hpp"
-#include "kd_tree.hpp"
 #include "neighbourhood.hpp"
 #include "place_alignment.hpp"
 

@@ -5,34 +5,23 @@
 
 #include <cmath>
 #include <limits>
-#include <nanoflann.hpp>
 #include <vector>
 
+#include "core/kd_tree.hpp"
 #include "core/progress.hpp"
 #include "hba/core/error.hpp"
 
 namespace hba::eval {
 namespace {
 
-// nanoflann reads the points through this adaptor, without a copy.
-struct CloudAdaptor {
-  const std::vector<Vec3f>& points;
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][static_cast<int>(dim)]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>,
-                                                   CloudAdaptor, 3, std::uint32_t>;
-
 // A radius "result set" that accumulates the moments of the neighbours on the
 // fly, relative to the query point (small numbers: no cancellation), instead
 // of storing their indices.
 class MomentCollector {
  public:
+  using DistanceType = float;
+  using IndexType = std::uint32_t;
+
   MomentCollector(const std::vector<Vec3f>& points, const Vec3f& query, float radius_sq,
                   std::uint32_t query_index, bool count_query)
       : points_(points),
@@ -44,6 +33,7 @@ class MomentCollector {
   std::size_t size() const { return count_; }
   bool full() const { return true; }
   float worstDist() const { return radius_sq_; }
+  void sort() {}
   bool addPoint(float dist_sq, std::uint32_t index) {
     if (dist_sq >= radius_sq_) return true;
     if (index == query_index_ && !count_query_) return true;
@@ -86,9 +76,7 @@ MmeResult meanMapEntropy(const PointCloud& map, const MmeSettings& settings) {
     result.mme = kSkipped;
     return result;
   }
-  const CloudAdaptor adaptor{map.points};
-  KdTree tree(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  const KdTree<3> tree(map.points, /*leaf_size=*/16);
 
   // At least 2 points for a sample covariance to exist at all.
   const std::size_t needed = std::max<std::size_t>(
@@ -104,7 +92,7 @@ MmeResult meanMapEntropy(const PointCloud& map, const MmeSettings& settings) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
                         MomentCollector neighbours(map.points, map.points[i], radius_sq,
                                                    static_cast<std::uint32_t>(i), settings.count_query);
-                        tree.findNeighbors(neighbours, map.points[i].data(), nanoflann::SearchParams());
+                        tree.visit(neighbours, map.points[i]);
                         if (neighbours.size() < needed) continue;
                         const double det = neighbours.covariance(settings.sample_covariance).determinant();
                         // A degenerate (exactly planar or linear) neighbourhood has no finite entropy.
