@@ -46,16 +46,14 @@ CLI::Option* addOption(CLI::App* group, const Setting& setting, const std::strin
       return group->add_flag_callback(
           name, [&slot, on = !std::get<bool>(setting.default_value)] { slot = on; }, help);
     case SettingType::Integer:
-    case SettingType::Count:
-      return group
-          ->add_option_function<long long>(
-              name, [&slot](const long long& v) { slot = v; }, help)
-          ->check(numberOf(setting));
-    case SettingType::Real:
-      return group
-          ->add_option_function<double>(
-              name, [&slot](const double& v) { slot = v; }, help)
-          ->check(numberOf(setting));
+    case SettingType::Count: {
+      const auto store = [&slot](const long long& v) { slot = v; };
+      return group->add_option_function<long long>(name, store, help)->check(numberOf(setting));
+    }
+    case SettingType::Real: {
+      const auto store = [&slot](const double& v) { slot = v; };
+      return group->add_option_function<double>(name, store, help)->check(numberOf(setting));
+    }
     case SettingType::Choice:
       return group
           ->add_option_function<std::string>(

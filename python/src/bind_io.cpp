@@ -56,7 +56,7 @@ void writePoses(const fs::path& path, const py::handle& poses, const std::string
   Trajectory trajectory;
   trajectory.poses = posesFromArray(poses, "poses");
   if (!stamps.is_none()) {
-    const auto values = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(stamps);
+    const auto values = DenseArray<double>::ensure(stamps);
     if (!values || values.ndim() != 1 || static_cast<std::size_t>(values.shape(0)) != trajectory.size()) {
       throw Error("stamps: expected one time (s) per pose, a 1-D array of " +
                   std::to_string(trajectory.size()));

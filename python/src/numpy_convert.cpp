@@ -58,7 +58,7 @@ bool isExactInDouble(Integer v) {
 
 template <typename Number>
 void requireEachExactInDouble(const py::array& array, const std::string& what) {
-  const auto values = py::array_t<Number, py::array::c_style | py::array::forcecast>::ensure(array);
+  const auto values = DenseArray<Number>::ensure(array);
   for (py::ssize_t i = 0; i < values.size(); ++i) {
     const Number v = values.data()[i];
     bool exact = true;
@@ -98,7 +98,7 @@ io::WideCloud wideCloudFromArray(const py::handle& array, const std::string& wha
   const py::array numbers = numericArray(array, what);
   requirePointShape(numbers, what);
   requireExactInDouble(numbers, what);
-  const auto points = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(numbers);
+  const auto points = DenseArray<double>::ensure(numbers);
   if (!points) throw Error(what + ": cannot be read as float64 numbers");
   const auto n = static_cast<std::size_t>(points.shape(0));
   const bool with_intensity = points.shape(1) == 4;
@@ -132,7 +132,7 @@ py::array_t<double> arrayFromWideCloud(const io::WideCloud& cloud) {
 PointCloud cloudFromArray(const py::handle& array, const std::string& what) {
   const py::array numbers = numericArray(array, what);
   requirePointShape(numbers, what);
-  const auto points = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(numbers);
+  const auto points = DenseArray<float>::ensure(numbers);
   if (!points) throw Error(what + ": cannot be read as float32 numbers");
   const auto n = static_cast<std::size_t>(points.shape(0));
   const bool with_intensity = points.shape(1) == 4;
@@ -166,7 +166,7 @@ py::array_t<float> arrayFromCloud(const PointCloud& cloud) {
 }
 
 std::vector<Pose> posesFromArray(const py::handle& poses, const std::string& what) {
-  const auto matrices = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(poses);
+  const auto matrices = DenseArray<double>::ensure(poses);
   if (!matrices) throw Error(what + ": expected a (K, 4, 4) array of poses");
   if (matrices.ndim() != 3 || matrices.shape(1) != 4 || matrices.shape(2) != 4) {
     throw Error(what + ": expected a (K, 4, 4) array of sensor-to-world poses, got shape " +
@@ -190,7 +190,7 @@ std::vector<Pose> posesFromArray(const py::handle& poses, const std::string& wha
 }
 
 Pose poseFromMatrix(const py::handle& matrix, const std::string& what) {
-  auto m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(matrix);
+  auto m = DenseArray<double>::ensure(matrix);
   if (!m || m.ndim() != 2 || m.shape(0) != 4 || m.shape(1) != 4)
     throw Error(what + ": expected a 4x4 matrix");
   return posesFromArray(m.reshape({1, 4, 4}), what).front();

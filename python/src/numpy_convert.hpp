@@ -16,6 +16,10 @@
 
 namespace hba::python {
 
+// An array of T in C order, converted (and copied) from whatever numpy holds.
+template <typename T>
+using DenseArray = pybind11::array_t<T, pybind11::array::c_style | pybind11::array::forcecast>;
+
 // An (N, 3) array (x y z) or (N, 4) array (x y z intensity), any real dtype.
 PointCloud cloudFromArray(const pybind11::handle& array, const std::string& what);
 // (N, 4) float32 with intensity, (N, 3) without.

@@ -89,7 +89,7 @@ InputFile::InputFile(const fs::path& path) : path_(path) {
   // reads of a regular file.
   fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) failAt(path, std::string("cannot open: ") + std::strerror(errno));
-  struct stat info {};
+  struct stat info = {};
   const bool regular = ::fstat(fd_, &info) == 0 && S_ISREG(info.st_mode);
   if (!regular) {
     ::close(fd_);

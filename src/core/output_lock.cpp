@@ -28,8 +28,8 @@ int lockFile(const fs::path& path) {
       ::close(fd);
       return -1;
     }
-    struct stat held {
-    }, current{};
+    struct stat held = {};
+    struct stat current = {};
     if (::fstat(fd, &held) == 0 && ::stat(path.c_str(), &current) == 0 && held.st_ino == current.st_ino) {
       return fd;
     }

@@ -18,8 +18,10 @@ namespace hba::dist {
 // vectors and matrices (plain arrays of scalars, though their copy
 // constructors are user-declared).
 template <typename T>
-inline constexpr bool kPackable = std::is_trivially_copyable_v<T> ||
-                                  (std::is_standard_layout_v<T> && std::is_trivially_destructible_v<T>);
+inline constexpr bool kPlainLayout =
+    std::conjunction_v<std::is_standard_layout<T>, std::is_trivially_destructible<T>>;
+template <typename T>
+inline constexpr bool kPackable = std::is_trivially_copyable_v<T> || kPlainLayout<T>;
 
 class ByteWriter {
  public:

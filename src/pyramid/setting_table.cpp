@@ -100,10 +100,13 @@ SettingRange zeroOr(const std::string& zero, double min, double max) {
   return {min, max, false, false, zero};
 }
 
+// One of the plane BAs' settings in HbaSettings.
+using BaSettingsOf = ba::BaSettings HbaSettings::*;
+
 // The settings of one plane BA (the windows' or the top layer's), in the
 // YAML map `section`; `which` names its flags (--voxel-local).
 void addBaSettings(std::vector<Setting>& table, const std::string& section, const std::string& which,
-                   double eigen_ratio, ba::BaSettings HbaSettings::*member) {
+                   double eigen_ratio, BaSettingsOf member) {
   const auto ba = [member](HbaSettings& h) -> ba::BaSettings& { return h.*member; };
   const std::string k = section + ".";
   table.push_back(withAliases(real(

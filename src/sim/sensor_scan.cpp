@@ -28,8 +28,8 @@ double firingShare(const SensorConfig& config, std::size_t ray) {
 
 std::vector<Return> scanReturns(const World& world, const Pose& sensor_pose, const SensorConfig& config,
                                 std::uint64_t seed, std::size_t frame) {
-  return sweepReturns(
-      world, [&sensor_pose](double) { return sensor_pose; }, 0.0, config, seed, frame);
+  const auto still = [&sensor_pose](double) { return sensor_pose; };
+  return sweepReturns(world, still, 0.0, config, seed, frame);
 }
 
 std::vector<Return> sweepReturns(const World& world, const SweepMotion& motion, double period,

@@ -110,8 +110,8 @@ void emitYamlBody(YAML::Emitter& out, const SimulationConfig& config, const std:
 }
 
 void writeYamlFile(const std::filesystem::path& path, const YAML::Emitter& out) {
-  writeFileAtomically(
-      path, [&](std::ostream& stream) { stream << out.c_str() << '\n'; }, false);
+  const auto write = [&](std::ostream& stream) { stream << out.c_str() << '\n'; };
+  writeFileAtomically(path, write, false);
 }
 
 void writeSimulationYaml(const Simulation& s, const std::filesystem::path& path) {

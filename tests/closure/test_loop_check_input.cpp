@@ -30,11 +30,8 @@ TEST(LoopCheckInput, RefusesBadPairsAndPoses) {
   const std::vector<Pose> poses(3);
   expectError([&] { verifyLoop(scans, poses, {0, 3, std::nullopt}, {}); }, "out of range");
   expectError([&] { verifyLoop(scans, poses, {1, 1, std::nullopt}, {}); }, "same frame");
-  expectError(
-      [&] {
-        verifyLoop(scans, std::vector<Pose>(2), {0, 2, std::nullopt}, {});
-      },
-      "2 poses for 3 scans");
+  const std::vector<Pose> two_poses(2);
+  expectError([&] { verifyLoop(scans, two_poses, {0, 2, std::nullopt}, {}); }, "2 poses for 3 scans");
 }
 
 TEST(LoopCheckInput, RefusesInvalidSettings) {

@@ -71,8 +71,8 @@ TEST_F(Conventions, InvertedPosesAreCaughtWithTheFix) {
 }
 
 TEST_F(Conventions, ScansInTheWorldFrameAreCaughtWithTheFix) {
-  makeCopy(
-      dir / "sim", dir / "world", [](const Pose& p) { return p; }, true);
+  const auto same = [](const Pose& p) { return p; };
+  makeCopy(dir / "sim", dir / "world", same, true);
   // The scans went through float world coordinates: millimetre agreement.
   expectCaughtAndFixed(dir / "world", "--scans-in-world", "--scans-in-world", 1e-3);
 }
@@ -178,8 +178,8 @@ TEST(ConventionsReal, Hku1InvertedOrInTheWorldFrameIsCaught) {
   if (!fs::exists(data)) GTEST_SKIP() << data << " not present";
   test::TempDir dir;
   makeCopy(data, dir / "inverted", [](const Pose& p) { return p.inverse(); });
-  makeCopy(
-      data, dir / "world", [](const Pose& p) { return p; }, true);
+  const auto same = [](const Pose& p) { return p; };
+  makeCopy(data, dir / "world", same, true);
   for (const auto& [name, hint] :
        {std::pair<std::string, std::string>{"inverted", "--invert-poses"}, {"world", "--scans-in-world"}}) {
     const test::CommandResult run = test::runOptimize(dir / name, dir / (name + "_out"), "--no-render", 2);

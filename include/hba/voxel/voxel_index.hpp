@@ -149,7 +149,8 @@ class PackedVoxelSet {
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
 
   std::size_t home(std::uint64_t key) const {
-    return static_cast<std::size_t>((PackedKeyHash{}(key)*0x9E3779B97F4A7C15ULL) >> 20) & mask_;
+    const std::uint64_t hash = PackedKeyHash{}(key);
+    return static_cast<std::size_t>((hash * 0x9E3779B97F4A7C15ULL) >> 20) & mask_;
   }
 
   void grow() {
