@@ -4,18 +4,19 @@
 # makes, and prints what passed. A check for a person to run (as root), not
 # part of CI: a full run takes about an hour on 2 cores.
 #
-#   sudo bash scripts/check_distro.sh trixie|bookworm [--root DIR] [--keep-root]
+#   sudo bash scripts/check_distro.sh trixie|bookworm [--root DIR] [--keep-root] [--demo-only]
 #
 # The root is made anew each run (a fresh machine, an empty ccache) in
 # /var/tmp/hba-distro/<release>, or DIR; --keep-root reuses one left by an
 # earlier run (its packages and ccache: quicker, not a fresh machine). The
 # project is copied in as the work tree's tracked files (a clean clone, with
 # uncommitted changes); ../shared, where present, is bound beside it read-only.
+# --demo-only runs the first command alone (its time on a fresh machine).
 # The mirror is $HBA_DEBIAN_MIRROR or http://deb.debian.org/debian.
 set -euo pipefail
 
 usage() {
-  echo "usage: $0 trixie|bookworm [--root DIR] [--keep-root]" >&2
+  echo "usage: $0 trixie|bookworm [--root DIR] [--keep-root] [--demo-only]" >&2
   exit 2
 }
 [ "$#" -ge 1 ] || usage
@@ -24,10 +25,12 @@ shift
 case "$release" in trixie | bookworm) ;; *) usage ;; esac
 root="/var/tmp/hba-distro/$release"
 keep_root=0
+commands=(demo tests)
 while [ "$#" -gt 0 ]; do
   case "$1" in
     --root) root="$2"; shift 2 ;;
     --keep-root) keep_root=1; shift ;;
+    --demo-only) commands=(demo); shift ;;
     *) usage ;;
   esac
 done
@@ -74,7 +77,7 @@ mkdir -p "$root/work/main" "$root/work/shared" "$logs"
 inside=$(
   cat <<'INSIDE'
 set -uo pipefail
-root="$1" shared="$2"
+root="$1" shared="$2" commands="$3"
 mount -t proc proc "$root/proc"
 mount -t sysfs sys "$root/sys"
 mount --bind /dev "$root/dev"
@@ -93,17 +96,17 @@ run() {  # run NAME COMMAND: the command in the chroot, its output in logs/NAME.
   echo "$status $((SECONDS - start))" >"$root/work/logs/$name.status"
 }
 run demo "bash scripts/demo.sh"
-run tests "bash scripts/test.sh"
+[ "$commands" = demo ] || run tests "bash scripts/test.sh"
 INSIDE
 )
-unshare --mount --propagation private bash -c "$inside" inside "$root" "$shared"
+unshare --mount --propagation private bash -c "$inside" inside "$root" "$shared" "${commands[*]}"
 
 # What passed.
 seconds() { printf '%dm%02ds' $(($1 / 60)) $(($1 % 60)); }
 echo
 echo "== Debian $release: $(cat "$root/etc/debian_version"), $(chroot "$root" g++ --version 2>/dev/null | head -n 1)"
 failed=0
-for name in demo tests; do
+for name in "${commands[@]}"; do
   read -r status took <"$logs/$name.status"
   # The compilers' warnings (file:line:col: warning:), not apt's or Python's.
   warnings=$(grep -cE '^[^ ]+:[0-9]+:([0-9]+:)? warning:|^cc1plus: warning:' "$logs/$name.log" || true)
@@ -114,6 +117,7 @@ for name in demo tests; do
 done
 echo "-- demo:"
 grep -E 'ATE trans m|^(before|after): *MME|^Took' "$logs/demo.log" || tail -n 15 "$logs/demo.log"
+[ "${#commands[@]}" -eq 2 ] || exit "$failed"
 echo "-- tests:"
 grep -E 'tests passed|tests failed|Total Test time' "$logs/tests.log" || tail -n 30 "$logs/tests.log"
 sed -n '/The following tests did not run/,/^$/p;/The following tests FAILED/,/^$/p' "$logs/tests.log"
