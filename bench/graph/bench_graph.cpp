@@ -82,7 +82,9 @@ void BM_OptimizePoseGraph(benchmark::State& state) {
     const auto result = hba::graph::optimizePoseGraph(p.initial, p.factors, settings);
     iterations = result.iterations;
     converged = result.converged;
-    benchmark::DoNotOptimize(result.final_cost);
+    // A copy: Google Benchmark 1.8 deprecates DoNotOptimize of a small const value.
+    double final_cost = result.final_cost;
+    benchmark::DoNotOptimize(final_cost);
   }
   state.counters["factors"] = static_cast<double>(p.factors.size());
   state.counters["lm_iterations"] = iterations;

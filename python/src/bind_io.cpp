@@ -47,7 +47,7 @@ py::object readPoses(const fs::path& path, const std::optional<std::string>& for
   const Trajectory trajectory =
       format ? io::readPoses(path, parseEnum<io::PoseFormat>(*format)) : io::readPoses(path);
   py::array_t<double> poses = arrayFromPoses(trajectory.poses);
-  if (!return_stamps) return std::move(poses);
+  if (!return_stamps) return poses;
   return py::make_tuple(poses, stampsArray(trajectory.stamps));
 }
 

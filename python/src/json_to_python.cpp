@@ -24,12 +24,12 @@ py::object toPython(const nlohmann::json& value) {
     case nlohmann::json::value_t::array: {
       py::list list;
       for (const nlohmann::json& item : value) list.append(toPython(item));
-      return std::move(list);
+      return list;
     }
     case nlohmann::json::value_t::object: {
       py::dict dict;
       for (const auto& [key, item] : value.items()) dict[py::str(key)] = toPython(item);
-      return std::move(dict);
+      return dict;
     }
     case nlohmann::json::value_t::binary:
       break;
