@@ -19,7 +19,9 @@ enum class RobustLoss { None, Huber, Cauchy };
 struct PoseGraphSettings {
   int max_iterations = 100;
   double function_tolerance = 1e-10;
-  int threads = 0;  // 0: all cores
+  // Not used by the solve, which runs on one thread so that its poses are
+  // repeatable (src/graph/pose_graph.cpp); must be >= 0.
+  int threads = 0;
   // Optional robust loss on each relative (window) factor's e^T Omega e;
   // `robust_loss_scale` is the whitened error norm (in "sigmas") where it
   // starts to down-weight.
