@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "core/progress.hpp"
+#include "core/remove_on_interrupt.hpp"
 #include "core/staging_folder.hpp"
 #include "dataset_args.hpp"
 #include "hba/core/error.hpp"
@@ -40,6 +41,7 @@ void runExtract(const ExtractArgs& args) {
   // In order: each chunk of a recording is decompressed once.
   for (std::size_t i = 0; i < dataset.size(); ++i) {
     io::writePcd(pcd / scanName(i), dataset.loadScan(i), io::PcdEncoding::Binary);
+    interruptPointForTests("scan-written");
     progress.advance();
   }
   io::writePoses(staging.path() / "pose.json", dataset.trajectory(), io::PoseFormat::Hba);

@@ -142,9 +142,11 @@ int run(int argc, char** argv) {
     spdlog::error("{}", e.what());
     return hba::cli::kExitUsage;
   } catch (const hba::Error& e) {
+    hba::waitIfInterrupted();  // a file removed by the interrupt is not the input's fault
     spdlog::error("{}", e.what());
     return hba::cli::kExitFailure;
   } catch (const std::exception& e) {
+    hba::waitIfInterrupted();
     spdlog::error("unexpected failure: {}", e.what());
     return hba::cli::kExitFailure;
   }
@@ -164,5 +166,9 @@ int main(int argc, char** argv) {
     return hba::cli::kExitFailure;
   }
   // Under mpirun a member that fails ends every member (no one waits).
-  return hba::cli::endProcessGroup(checkWritten(run(argc, argv)));
+  const int exit_code = hba::cli::endProcessGroup(checkWritten(run(argc, argv)));
+  // An interrupt being handled ends the process itself; a later one finds
+  // every output complete and is ignored.
+  hba::closeInterruptWindow();
+  return exit_code;
 }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <system_error>
 
+#include "core/remove_on_interrupt.hpp"
 #include "hba/core/error.hpp"
 
 namespace hba {
@@ -54,6 +55,7 @@ AtomicFile::AtomicFile(fs::path target, bool binary)
     : target_(std::move(target)), temp_(temporaryNameFor(target_)) {
   const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
   if (!fs::is_directory(dir)) failAt(target_, "the output folder does not exist");
+  remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(temp_);
   errno = 0;
   out_.open(temp_,
             binary ? std::ios::out | std::ios::binary | std::ios::trunc : std::ios::out | std::ios::trunc);
@@ -81,12 +83,14 @@ void AtomicFile::commit() {
   }
   syncFile(temp_);
   std::error_code ec;
+  const InterruptDeferral deferral;  // an interrupt finds the temporary or the file, not both
   fs::rename(temp_, target_, ec);
   if (ec) {
     fs::remove(temp_, ec);
     failAt(target_, "cannot move the finished file into place: " + ec.message());
   }
   committed_ = true;
+  remove_on_interrupt_.reset();
 }
 
 void writeFileAtomically(const fs::path& target, const std::function<void(std::ostream&)>& fill,

@@ -7,6 +7,8 @@
 namespace hba {
 namespace {
 
+constexpr std::int64_t kReportEveryNs = 100'000'000;  // at most ten reports a second
+
 std::mutex& sinkMutex() {
   static std::mutex mutex;
   return mutex;
@@ -31,16 +33,19 @@ Progress::~Progress() { report(true); }
 
 void Progress::advance(std::size_t count) {
   done_ += count;
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last_report_ < std::chrono::milliseconds(100)) return;  // cheap, unlocked check
+  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                  std::chrono::steady_clock::now() - start_)
+                                  .count();
+  if (now_ns - last_report_ns_.load(std::memory_order_relaxed) < kReportEveryNs) return;  // cheap check
   report(false);
 }
 
 void Progress::report(bool finished) {
   const std::lock_guard<std::mutex> lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
-  if (!finished && now - last_report_ < std::chrono::milliseconds(100)) return;
-  last_report_ = now;
+  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - start_).count();
+  if (!finished && now_ns - last_report_ns_.load() < kReportEveryNs) return;
+  last_report_ns_.store(now_ns);
   ProgressState state;
   state.label = label_;
   state.unit = unit_;

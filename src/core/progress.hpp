@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -44,7 +45,9 @@ class Progress {
   std::size_t total_;
   std::atomic<std::size_t> done_{0};
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point last_report_ = start_;
+  // Nanoseconds from start_ to the last report: read by every advance()
+  // without the lock, so atomic.
+  std::atomic<std::int64_t> last_report_ns_{0};
   std::mutex mutex_;
 };
 

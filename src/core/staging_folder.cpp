@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <system_error>
 
 #include "core/path_inside.hpp"
@@ -22,18 +23,22 @@ fs::path besideWithSuffix(const fs::path& destination, const std::string& suffix
          ("." + destination.filename().string() + suffix + std::to_string(::getpid()));
 }
 
-// Staging folders (".NAME.partial-PID") of processes that no longer exist:
-// killed outright (SIGKILL, power loss), they could not clean up.
+// Staging folders (".NAME.partial-PID") and replaced outputs (".NAME.old-PID")
+// of processes that no longer exist: killed outright (SIGKILL, power loss),
+// they could not clean up.
 void removeAbandonedStaging(const fs::path& destination) {
-  const std::string prefix = "." + destination.filename().string() + ".partial-";
+  const std::string base = "." + destination.filename().string();
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(destination.parent_path(), ec)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
-    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
-      std::error_code ignored;
-      fs::remove_all(entry.path(), ignored);
+    for (const char* suffix : {".partial-", ".old-"}) {
+      const std::string prefix = base + suffix;
+      if (name.rfind(prefix, 0) != 0) continue;
+      const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+      if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) {
+        std::error_code ignored;
+        fs::remove_all(entry.path(), ignored);
+      }
     }
   }
 }
@@ -113,18 +118,23 @@ StagingFolder::StagingFolder(fs::path destination, bool force, const std::string
   replaces_ = checkReplaceable(destination_, force);
   removeAbandonedStaging(destination_);
   staging_ = besideWithSuffix(destination_, ".partial-");
-  remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(staging_);
+  remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(staging_, destination_);
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec) || ec) {
     failAt(staging_, "cannot create the staging folder: " + ec.message());
   }
-  writeFileAtomically(
-      staging_ / kOutputMarker,
-      [&](std::ostream& out) {
-        out << "Written by " << writer << ". `--force` may replace this folder whole; without this file it "
-            << "would refuse to.\n";
-      },
-      false);
+  try {
+    writeFileAtomically(
+        staging_ / kOutputMarker,
+        [&](std::ostream& out) {
+          out << "Written by " << writer << ". `--force` may replace this folder whole; without this file it "
+              << "would refuse to.\n";
+        },
+        false);
+  } catch (...) {  // a full disk: no destructor runs for a half-made object
+    fs::remove_all(staging_, ec);
+    throw;
+  }
 }
 
 StagingFolder::~StagingFolder() {
@@ -137,19 +147,33 @@ StagingFolder::~StagingFolder() {
 void StagingFolder::commit() {
   std::error_code ec;
   fs::path old;
-  if (fs::exists(destination_, ec)) {
-    old = besideWithSuffix(destination_, ".old-");
-    fs::remove_all(old, ec);
-    fs::rename(destination_, old, ec);
-    if (ec) failAt(destination_, "cannot move the old output folder aside: " + ec.message());
+  std::optional<RemoveOnInterrupt> old_on_interrupt;
+  {
+    // An interrupt waits for the swap: it finds the earlier output or the
+    // new one in place, never neither.
+    const InterruptDeferral deferral;
+    interruptPointForTests("swap-begin");
+    if (fs::exists(destination_, ec)) {
+      old = besideWithSuffix(destination_, ".old-");
+      fs::remove_all(old, ec);
+      old_on_interrupt.emplace(old);
+      fs::rename(destination_, old, ec);
+      if (ec) failAt(destination_, "cannot move the old output folder aside: " + ec.message());
+      interruptPointForTests("swap-middle");
+    }
+    fs::rename(staging_, destination_, ec);
+    if (ec) {
+      std::error_code restore_ec;
+      if (!old.empty()) fs::rename(old, destination_, restore_ec);
+      failAt(destination_, "cannot move the finished dataset into place: " + ec.message());
+    }
+    committed_ = true;
+    remove_on_interrupt_.reset();
+    noteOutputInPlace(destination_);
+    interruptPointForTests("swap-end");
   }
-  fs::rename(staging_, destination_, ec);
-  if (ec) {
-    std::error_code restore_ec;
-    if (!old.empty()) fs::rename(old, destination_, restore_ec);
-    failAt(destination_, "cannot move the finished dataset into place: " + ec.message());
-  }
-  committed_ = true;
+  // An interrupt from here on finishes removing the earlier output.
+  interruptPointForTests("old-removal");
   if (!old.empty()) fs::remove_all(old, ec);
 }
 

@@ -46,6 +46,13 @@ void expectEmptyFolder(const fs::path& folder) {
   }
 }
 
+// Not even a hidden staging folder or an empty folder may remain.
+void expectNothingLeft(const fs::path& folder) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    ADD_FAILURE() << "left behind: " << entry.path();
+  }
+}
+
 class FullDisk : public testing::Test {
  protected:
   void SetUp() override {
@@ -69,6 +76,16 @@ TEST_F(FullDisk, SimulateOnAFullDiskIsReportedAsSuch) {
   const test::CommandResult run = test::runHba("simulate --frames 20 -o " + quoted(disk_.path() / "sim"));
   expectDiskFullMessage(run);
   expectEmptyFolder(disk_.path());
+}
+
+TEST_F(FullDisk, AFolderOutputOnAFullDiskLeavesNoStagingBehind) {
+  for (const std::string command : {"simulate --frames 20", "extract " + quoted(tmp_ / "data"),
+                                    "optimize " + quoted(tmp_ / "data") }) {
+    SCOPED_TRACE(command);
+    const test::CommandResult run = test::runHba(command + " -o " + quoted(disk_.path() / "out"));
+    expectDiskFullMessage(run);
+    expectNothingLeft(disk_.path());
+  }
 }
 
 }  // namespace

@@ -5,9 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace hba {
+
+class RemoveOnInterrupt;
 
 class AtomicFile {
  public:
@@ -25,6 +28,7 @@ class AtomicFile {
   std::filesystem::path target_;
   std::filesystem::path temp_;
   std::ofstream out_;
+  std::unique_ptr<RemoveOnInterrupt> remove_on_interrupt_;  // Ctrl-C removes the temporary
   bool committed_ = false;
 };
 
