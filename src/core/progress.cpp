@@ -33,9 +33,8 @@ Progress::~Progress() { report(true); }
 
 void Progress::advance(std::size_t count) {
   done_ += count;
-  const std::int64_t now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                  std::chrono::steady_clock::now() - start_)
-                                  .count();
+  const std::int64_t now_ns =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
   if (now_ns - last_report_ns_.load(std::memory_order_relaxed) < kReportEveryNs) return;  // cheap check
   report(false);
 }

@@ -157,6 +157,20 @@ void waitIfInterrupted() {
 
 void closeInterruptWindow() {
   gate().lock();  // never released: the process is ending
+  // A signal already sent but not yet taken by the watcher is still
+  // answered: it came before the end.
+  sigset_t pending;
+  sigemptyset(&pending);
+  sigpending(&pending);
+  const sigset_t signals = interruptSignals();
+  bool waiting = interruptArrived();
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    waiting = waiting || (sigismember(&signals, signal) == 1 && sigismember(&pending, signal) == 1);
+  }
+  if (waiting) {
+    gate().unlock();
+    waitForever();
+  }
 }
 
 void startInterruptWatcher() {

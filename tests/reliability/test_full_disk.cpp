@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 
+#include <cstdio>
+#include <vector>
+
 #include "cli_runs.hpp"
 #include "synthetic_scene.hpp"
 #include "test_support.hpp"
@@ -46,11 +49,22 @@ void expectEmptyFolder(const fs::path& folder) {
   }
 }
 
-// Not even a hidden staging folder or an empty folder may remain.
-void expectNothingLeft(const fs::path& folder) {
+// Not even a hidden staging folder or an empty folder may remain (but
+// `keep`, put there by the test).
+void expectNothingLeft(const fs::path& folder, const std::string& keep = "") {
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    ADD_FAILURE() << "left behind: " << entry.path();
+    if (entry.path().filename() != keep) ADD_FAILURE() << "left behind: " << entry.path();
   }
+}
+
+// Fills what space is left on the disk with one file.
+void fillDisk(const fs::path& filler) {
+  std::FILE* file = std::fopen(filler.c_str(), "wb");
+  ASSERT_NE(file, nullptr);
+  const std::vector<char> block(4096, 0);
+  while (std::fwrite(block.data(), 1, block.size(), file) == block.size() && std::fflush(file) == 0) {
+  }
+  std::fclose(file);
 }
 
 class FullDisk : public testing::Test {
@@ -79,12 +93,25 @@ TEST_F(FullDisk, SimulateOnAFullDiskIsReportedAsSuch) {
 }
 
 TEST_F(FullDisk, AFolderOutputOnAFullDiskLeavesNoStagingBehind) {
-  for (const std::string command : {"simulate --frames 20", "extract " + quoted(tmp_ / "data"),
-                                    "optimize " + quoted(tmp_ / "data") }) {
+  for (const std::string& command : std::vector<std::string>{
+           "simulate --frames 20", "extract " + quoted(tmp_ / "data"), "optimize " + quoted(tmp_ / "data")}) {
     SCOPED_TRACE(command);
     const test::CommandResult run = test::runHba(command + " -o " + quoted(disk_.path() / "out"));
     expectDiskFullMessage(run);
     expectNothingLeft(disk_.path());
+  }
+}
+
+// The very first write (the staging folder's marker) fails: the folder made
+// for it goes too.
+TEST_F(FullDisk, AnAlreadyFullDiskLeavesNoStagingBehind) {
+  fillDisk(disk_.path() / "filler");
+  for (const std::string& command : std::vector<std::string>{
+           "simulate --frames 4", "extract " + quoted(tmp_ / "data"), "optimize " + quoted(tmp_ / "data")}) {
+    SCOPED_TRACE(command);
+    const test::CommandResult run = test::runHba(command + " -o " + quoted(disk_.path() / "out"));
+    expectDiskFullMessage(run);
+    expectNothingLeft(disk_.path(), "filler");
   }
 }
 

@@ -79,9 +79,8 @@ bool says(const std::string& output, const std::string& text) {
 // Runs the tool with the interrupt hook at `point` (NAME or NAME:N).
 test::CommandResult runInterruptedAt(const std::string& point, const Signal& signal,
                                      const std::string& arguments) {
-  return test::runCommand(std::string("HBA_TEST_INTERRUPT_AT=") + point +
-                          " HBA_TEST_INTERRUPT_SIGNAL=" + signal.name + " " + quoted(test::cliPath()) + " " +
-                          arguments);
+  return test::runCommand(std::string("HBA_TEST_INTERRUPT_AT=") + point + " HBA_TEST_INTERRUPT_SIGNAL=" +
+                          signal.name + " " + quoted(test::cliPath()) + " " + arguments);
 }
 
 class InterruptSignals : public testing::Test {
@@ -95,7 +94,8 @@ class InterruptSignals : public testing::Test {
   // OUT holding a complete extract of the shorter dataset.
   fs::path earlierOutput(const std::string& name) {
     const fs::path out = tmp_ / name;
-    const test::CommandResult run = test::runHba("-q extract " + quoted(tmp_ / "earlier_data") + " -o " + quoted(out));
+    const test::CommandResult run =
+        test::runHba("-q extract " + quoted(tmp_ / "earlier_data") + " -o " + quoted(out));
     EXPECT_EQ(run.exit_code, 0) << run.output;
     return out;
   }
@@ -109,8 +109,9 @@ TEST_F(InterruptSignals, DuringTheScansNothingIsLeftAndTheMessageSaysSo) {
     for (const std::size_t scan : {std::size_t{1}, kScans / 2, kScans - 1, kScans}) {
       SCOPED_TRACE(std::string(signal.name) + " after scan " + std::to_string(scan));
       const fs::path out = tmp_ / ("out_" + std::string(signal.name) + std::to_string(scan));
-      const test::CommandResult run = runInterruptedAt(
-          "scan-written:" + std::to_string(scan), signal, "extract " + quoted(tmp_ / "data") + " -o " + quoted(out));
+      const test::CommandResult run =
+          runInterruptedAt("scan-written:" + std::to_string(scan), signal,
+                           "extract " + quoted(tmp_ / "data") + " -o " + quoted(out));
       EXPECT_EQ(run.exit_code, 128 + signal.number) << run.output;
       EXPECT_FALSE(fs::exists(out)) << run.output;
       EXPECT_TRUE(says(run.output, "the unfinished output was removed: " + out.string() + " was not created"))
@@ -124,8 +125,9 @@ TEST_F(InterruptSignals, DuringTheScansOfAForcedRunTheEarlierOutputStays) {
   for (const Signal& signal : kSignals) {
     SCOPED_TRACE(signal.name);
     const fs::path out = earlierOutput(std::string("forced_") + signal.name);
-    const test::CommandResult run = runInterruptedAt("scan-written:" + std::to_string(kScans - 1), signal,
-                                                     "extract " + quoted(tmp_ / "data") + " -o " + quoted(out) + " --force");
+    const test::CommandResult run =
+        runInterruptedAt("scan-written:" + std::to_string(kScans - 1), signal,
+                         "extract " + quoted(tmp_ / "data") + " -o " + quoted(out) + " --force");
     EXPECT_EQ(run.exit_code, 128 + signal.number) << run.output;
     expectCompleteExtract(out, kEarlierScans);
     EXPECT_TRUE(says(run.output, out.string() + " holds the earlier output, unchanged")) << run.output;
@@ -139,8 +141,8 @@ TEST_F(InterruptSignals, DuringTheSwapTheNewOutputIsCompleteAndTheMessageSaysSo)
     for (const char* point : {"swap-begin", "swap-middle", "swap-end", "old-removal"}) {
       SCOPED_TRACE(std::string(signal.name) + " at " + point);
       const fs::path out = earlierOutput(std::string("swap_") + signal.name + "_" + point);
-      const test::CommandResult run =
-          runInterruptedAt(point, signal, "extract " + quoted(tmp_ / "data") + " -o " + quoted(out) + " --force");
+      const test::CommandResult run = runInterruptedAt(
+          point, signal, "extract " + quoted(tmp_ / "data") + " -o " + quoted(out) + " --force");
       EXPECT_EQ(run.exit_code, 128 + signal.number) << run.output;
       expectCompleteExtract(out, kScans);
       EXPECT_TRUE(says(run.output, out.string() + " was complete before the interrupt")) << run.output;
@@ -185,7 +187,10 @@ test::CommandResult runAndSignal(const std::vector<std::string>& arguments, int 
   int status = 0;
   ::waitpid(pid, &status, 0);
   test::CommandResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  // Killed before it could start its watcher: as a shell reports it.
+  result.exit_code = WIFEXITED(status)     ? WEXITSTATUS(status)
+                     : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
+                                           : -1;
   result.output = test::readText(log);
   return result;
 }
@@ -193,7 +198,8 @@ test::CommandResult runAndSignal(const std::vector<std::string>& arguments, int 
 // Whatever the moment: a run that was cut short says what OUT holds, and it
 // does; a run that finished first exits 0 with OUT complete.
 void expectOutcomeAsSaid(const test::CommandResult& run, int signal, const fs::path& out,
-                         const std::function<void()>& expect_new, const std::function<void()>& expect_before) {
+                         const std::function<void()>& expect_new,
+                         const std::function<void()>& expect_before) {
   ASSERT_TRUE(run.exit_code == 0 || run.exit_code == 128 + signal) << run.output;
   if (run.exit_code == 0 || says(run.output, out.string() + " was complete before the interrupt")) {
     expect_new();
@@ -230,8 +236,9 @@ TEST_F(InterruptSignals, AtAnyMomentOfOptimizeOutIsWholeOrAbsent) {
     const Signal& signal = kSignals[run_index++ % 2];
     SCOPED_TRACE(std::to_string(delay_ms) + " ms, " + signal.name);
     const fs::path out = tmp_ / ("optimized_" + std::to_string(delay_ms));
-    const test::CommandResult run = runAndSignal({"optimize", (tmp_ / "data").string(), "-o", out.string()},
-                                                 signal.number, std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
+    const test::CommandResult run =
+        runAndSignal({"optimize", (tmp_ / "data").string(), "-o", out.string()}, signal.number,
+                     std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
     expectOutcomeAsSaid(
         run, signal.number, out, [&] { test::expectFiniteOptimizeOutputs(out, kScans); },
         [&] { EXPECT_FALSE(fs::exists(out)) << run.output; });
