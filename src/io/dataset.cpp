@@ -234,6 +234,11 @@ Dataset Dataset::openRecording(const fs::path& path, const DatasetOverrides& ove
     dataset.notes_.push_back({DatasetNote::Level::Warning, warning});
   }
   dataset.checkStampsIncrease();
+  const std::string& frames = recording.staticFrameProblem();
+  if (!frames.empty() && !overrides.extrinsic) {
+    failAt(path, frames + ". Give the clouds' pose in the body with --extrinsic 'tx ty tz qx qy qz qw'");
+  }
+  if (!frames.empty()) dataset.notes_.push_back({DatasetNote::Level::Warning, frames + ": --extrinsic used"});
   // The recording's own extrinsic (/tf_static) unless --extrinsic is given.
   DatasetOverrides conventions = overrides;
   if (!conventions.extrinsic && recording.staticExtrinsic())
@@ -250,6 +255,14 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
     failAt(dir,
            "--cloud-topic, --pose-topic, --time-offset and --keyframe-distance/-angle are for recordings "
            "(a bag, an MCAP file, a rosbag2 folder), not for a folder of scans");
+  }
+  // A FIFO or a device (one named run.bag, say) is neither a folder nor a
+  // recording: say what it is, as every reader does, not "not a folder".
+  std::error_code ec;
+  const fs::file_type type = fs::status(dir, ec).type();
+  if (type != fs::file_type::directory && type != fs::file_type::regular &&
+      type != fs::file_type::not_found && type != fs::file_type::none) {
+    requireRegularFile(dir);
   }
   requireFolder(dir, "dataset folder");
   Dataset dataset;

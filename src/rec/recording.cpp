@@ -57,30 +57,74 @@ std::string typeOf(const MessageStore& store, const std::string& topic) {
   return "";
 }
 
-// Poses sorted by stamp; repeated stamps (a republished pose) keep their first.
-std::vector<StampedPose> inStampOrder(std::vector<StampedPose> poses) {
-  std::stable_sort(poses.begin(), poses.end(),
-                   [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
-  poses.erase(std::unique(poses.begin(), poses.end(),
-                          [](const StampedPose& a, const StampedPose& b) { return a.stamp == b.stamp; }),
-              poses.end());
-  return poses;
+// A pose of a trajectory and where it was read, for messages ("message 12").
+struct SourcedPose {
+  StampedPose pose;
+  std::string origin;
+};
+
+// The trajectory's poses in the order recorded, which must be the order of
+// their stamps: scans are paired with poses by stamp, so stamps that run
+// backwards (a merged or re-stamped recording) are refused, as are two
+// different poses at one stamp. A pose republished with its stamp is read
+// once, with a note.
+std::vector<StampedPose> inStampOrder(const fs::path& path, const std::string& name,
+                                      std::vector<SourcedPose> poses, std::vector<std::string>& notes) {
+  const std::string named = name.empty() ? "" : name + ": ";
+  constexpr double kSamePose = 1e-6;  // m and rad: a republished pose, not another one
+  std::vector<StampedPose> out;
+  std::size_t repeats = 0;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (i > 0) {
+      const SourcedPose& before = poses[i - 1];
+      const SourcedPose& now = poses[i];
+      if (now.pose.stamp < before.pose.stamp) {
+        failAt(path, fmt::format("{}the stamps run backwards at {}: {:.9f} s after {:.9f} s ({}); scans "
+                                 "are paired with poses by stamp, so the trajectory cannot be read",
+                                 named, now.origin, now.pose.stamp, before.pose.stamp, before.origin));
+      }
+      if (now.pose.stamp == before.pose.stamp) {
+        const Pose step = relative(before.pose.pose, now.pose.pose);
+        const double angle = Eigen::AngleAxisd(step.q).angle();
+        if (step.t.norm() > kSamePose || angle > kSamePose) {
+          failAt(path, fmt::format("{}{} and {} share the stamp {:.9f} s but place the body {:.6g} m and "
+                                   "{:.6g} deg apart; a trajectory has one pose at a time",
+                                   named, before.origin, now.origin, now.pose.stamp, step.t.norm(),
+                                   angle * 180.0 / M_PI));
+        }
+        ++repeats;
+        continue;
+      }
+    }
+    out.push_back(poses[i].pose);
+  }
+  if (repeats > 0) {
+    notes.push_back(fmt::format("{}: {} {} the stamp and pose of the one before (republished): read once",
+                                name.empty() ? path.string() : name, repeats,
+                                repeats == 1 ? "pose repeats" : "poses repeat"));
+  }
+  return out;
 }
 
 // The trajectory's poses by stamp: a Path's last message, or every message.
-std::vector<StampedPose> readTrajectory(const MessageStore& store, const std::string& topic) {
+std::vector<StampedPose> readTrajectory(const MessageStore& store, const std::string& topic,
+                                        std::vector<std::string>& notes) {
   const std::string type = typeOf(store, topic);
   std::vector<StoredMessage> messages = store.messages(topic);
-  if (type == "nav_msgs/Path" && !messages.empty()) messages = {messages.back()};
-  std::vector<StampedPose> poses;
-  for (const StoredMessage& message : messages) {
+  const bool path = type == "nav_msgs/Path" && !messages.empty();
+  const std::size_t first = path ? messages.size() - 1 : 0;
+  std::vector<SourcedPose> poses;
+  for (std::size_t i = first; i < messages.size(); ++i) {
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", store.path().string(), topic, message.time);
-    for (StampedPose& pose : decodePoses(type, store.read(message), store.serialization(), what)) {
-      poses.push_back(std::move(pose));
+        fmt::format("{}: {} message {} at {:.3f} s", store.path().string(), topic, i, messages[i].time);
+    std::vector<StampedPose> decoded =
+        decodePoses(type, store.read(messages[i]), store.serialization(), what);
+    for (std::size_t k = 0; k < decoded.size(); ++k) {
+      poses.push_back({std::move(decoded[k]),
+                       path ? fmt::format("poses[{}] of message {}", k, i) : fmt::format("message {}", i)});
     }
   }
-  return inStampOrder(std::move(poses));
+  return inStampOrder(store.path(), topic, std::move(poses), notes);
 }
 
 // A tf frame's name without ROS 1's optional leading slash ("/base" is "base").
@@ -88,16 +132,20 @@ std::string frameName(const std::string& frame) {
   return !frame.empty() && frame.front() == '/' ? frame.substr(1) : frame;
 }
 
-// Every transform a tf2_msgs/TFMessage topic holds, frames named as tf names them.
-std::vector<StampedPose> readTransforms(const MessageStore& store, const std::string& topic) {
-  std::vector<StampedPose> transforms;
-  for (const StoredMessage& message : store.messages(topic)) {
+// Every transform a tf2_msgs/TFMessage topic holds, frames named as tf names
+// them, with the message each came from.
+std::vector<SourcedPose> readTransforms(const MessageStore& store, const std::string& topic) {
+  std::vector<SourcedPose> transforms;
+  const std::vector<StoredMessage> messages = store.messages(topic);
+  for (std::size_t i = 0; i < messages.size(); ++i) {
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", store.path().string(), topic, message.time);
-    for (StampedPose& t : decodeTransforms(store.read(message), store.serialization(), what)) {
+        fmt::format("{}: {} message {} at {:.3f} s", store.path().string(), topic, i, messages[i].time);
+    std::vector<StampedPose> decoded = decodeTransforms(store.read(messages[i]), store.serialization(), what);
+    for (std::size_t k = 0; k < decoded.size(); ++k) {
+      StampedPose& t = decoded[k];
       t.frame_id = frameName(t.frame_id);
       t.child_frame_id = frameName(t.child_frame_id);
-      transforms.push_back(std::move(t));
+      transforms.push_back({std::move(t), fmt::format("transforms[{}] of message {}", k, i)});
     }
   }
   return transforms;
@@ -106,15 +154,20 @@ std::vector<StampedPose> readTransforms(const MessageStore& store, const std::st
 // The transforms of a /tf topic that place `child` in `parent` (both empty:
 // the only pair there is), in order of stamp.
 std::vector<StampedPose> readTfTrajectory(const MessageStore& store, const std::string& topic,
-                                          const RecordingOptions& options) {
-  std::map<std::pair<std::string, std::string>, std::vector<StampedPose>> by_pair;
-  for (StampedPose& t : readTransforms(store, topic)) by_pair[{t.frame_id, t.child_frame_id}].push_back(t);
+                                          const RecordingOptions& options, std::vector<std::string>& notes) {
+  std::map<std::pair<std::string, std::string>, std::vector<SourcedPose>> by_pair;
+  for (SourcedPose& t : readTransforms(store, topic))
+    by_pair[{t.pose.frame_id, t.pose.child_frame_id}].push_back(std::move(t));
   std::string pairs;
   for (const auto& [pair, poses] : by_pair) {
     pairs += fmt::format("\n  {} -> {}  {} transforms", pair.first, pair.second, poses.size());
   }
   const bool named = !options.tf_parent.empty() || !options.tf_child.empty();
-  if (!named && by_pair.size() == 1) return inStampOrder(by_pair.begin()->second);
+  const auto checked = [&](const std::pair<std::string, std::string>& pair, std::vector<SourcedPose> poses) {
+    return inStampOrder(store.path(), fmt::format("{} ({} in {})", topic, pair.second, pair.first),
+                        std::move(poses), notes);
+  };
+  if (!named && by_pair.size() == 1) return checked(by_pair.begin()->first, by_pair.begin()->second);
   if (!named) {
     failAt(store.path(), fmt::format("{} holds {} pairs of frames: choose one with --tf-frames PARENT:CHILD. "
                                      "They are:{}",
@@ -126,7 +179,7 @@ std::vector<StampedPose> readTfTrajectory(const MessageStore& store, const std::
            fmt::format("{} places no {} in {} (--tf-frames). Its pairs:{}", topic, options.tf_child,
                        options.tf_parent, pairs.empty() ? "\n  (none)" : pairs));
   }
-  return inStampOrder(found->second);
+  return checked(found->first, found->second);
 }
 
 // The scans a keyframe apart: the first, then each as far or as turned
@@ -160,21 +213,47 @@ std::vector<std::size_t> scansAt(const std::vector<double>& scan_stamps,
 
 // T_from_to from the recording's /tf_static (frames as tf names them):
 // `to` reached from `from` through the static transforms, either way up
-// the tree; empty when they are not joined.
-std::optional<Pose> staticTransform(const MessageStore& store, const std::string& from,
-                                    const std::string& to) {
+// the tree; empty when they are not joined, or when the transforms form a
+// cycle (`problem` then says which frames, and whether they disagree).
+std::optional<Pose> staticTransform(const MessageStore& store, const std::string& from, const std::string& to,
+                                    std::string& problem) {
   std::map<std::string, std::pair<std::string, Pose>> parent_of;  // child -> (parent, T_parent_child)
   for (const StoredChannel& channel : store.channels()) {
     if (channel.topic != "/tf_static" || channel.type != kTfMessage) continue;
-    for (const StampedPose& t : readTransforms(store, channel.topic))
-      parent_of[t.child_frame_id] = {t.frame_id, t.pose};
+    for (const SourcedPose& t : readTransforms(store, channel.topic))
+      parent_of[t.pose.child_frame_id] = {t.pose.frame_id, t.pose.pose};
   }
-  // Each frame's pose in its root's frame, along its chain of parents.
-  const auto inRoot = [&parent_of](std::string frame, std::string& root) {
+  // Each frame's pose in its root's frame, along its chain of parents; a
+  // chain that comes back to a frame has no root (tf2 refuses such a tree).
+  const auto inRoot = [&parent_of, &problem](std::string frame, std::string& root) {
     Pose pose;
-    for (int depth = 0; depth < 64 && parent_of.count(frame); ++depth) {
+    std::vector<std::string> chain{frame};
+    while (parent_of.count(frame)) {
       pose = parent_of.at(frame).second * pose;
       frame = parent_of.at(frame).first;
+      const std::size_t seen =
+          static_cast<std::size_t>(std::find(chain.begin(), chain.end(), frame) - chain.begin());
+      chain.push_back(frame);
+      if (seen + 1 == chain.size()) continue;
+      // Round the cycle once: the identity when its transforms agree.
+      Pose round;
+      std::string names;
+      for (std::size_t at = seen; at + 1 < chain.size(); ++at) {
+        round = parent_of.at(chain[at]).second * round;
+        names += (names.empty() ? "" : ", ") + chain[at] + " in " + chain[at + 1];
+      }
+      const double angle = Eigen::AngleAxisd(round.q).angle() * 180.0 / M_PI;
+      const bool agree = round.t.norm() < 1e-6 && angle < 1e-6;
+      root.clear();
+      if (!problem.empty()) return pose;  // found from the other frame already
+      problem = fmt::format(
+          "/tf_static's transforms form a cycle ({}){}: a tf tree has no cycles, so they cannot "
+          "join frames",
+          names,
+          agree ? ""
+                : fmt::format(" and contradict each other (going round moves {:.6g} m and turns {:.6g} deg)",
+                              round.t.norm(), angle));
+      return pose;
     }
     root = frame;
     return pose;
@@ -182,7 +261,7 @@ std::optional<Pose> staticTransform(const MessageStore& store, const std::string
   std::string root_from, root_to;
   const Pose from_in_root = inRoot(frameName(from), root_from);
   const Pose to_in_root = inRoot(frameName(to), root_to);
-  if (root_from != root_to) return std::nullopt;
+  if (!problem.empty() || root_from != root_to) return std::nullopt;
   return relative(from_in_root, to_in_root);
 }
 
@@ -228,7 +307,7 @@ namespace {
 struct PoseSource {
   std::vector<StampedPose> poses;
   std::string name;
-  std::string note;
+  std::vector<std::string> notes;
 };
 
 PoseSource readPoseSource(const MessageStore& bag, const std::vector<RecordingTopic>& topics,
@@ -236,11 +315,13 @@ PoseSource readPoseSource(const MessageStore& bag, const std::vector<RecordingTo
   PoseSource source;
   if (options.poses) {
     source.name = options.poses_name;
+    std::vector<SourcedPose> poses;
     for (std::size_t i = 0; i < options.poses->size() && i < options.poses->stamps.size(); ++i) {
-      source.poses.push_back({options.poses->stamps[i], options.poses->poses[i], "", ""});
+      poses.push_back(
+          {{options.poses->stamps[i], options.poses->poses[i], "", ""}, fmt::format("pose {}", i)});
     }
-    source.note = "scans from " + cloud_topic + ", poses from " + source.name;
-    source.poses = inStampOrder(std::move(source.poses));
+    source.notes.push_back("scans from " + cloud_topic + ", poses from " + source.name);
+    source.poses = inStampOrder(source.name, "", std::move(poses), source.notes);
     return source;
   }
   // A /tf topic is a trajectory only when named: most recordings hold one.
@@ -250,19 +331,21 @@ PoseSource readPoseSource(const MessageStore& bag, const std::vector<RecordingTo
       "trajectory (nav_msgs/Odometry, geometry_msgs/PoseStamped, PoseWithCovarianceStamped, nav_msgs/Path)",
       "--pose-topic");
   if (tf) {
-    source.poses = readTfTrajectory(bag, source.name, options);
+    std::vector<std::string> notes;
+    source.poses = readTfTrajectory(bag, source.name, options, notes);
     if (!source.poses.empty()) {
-      source.note = fmt::format("scans from {}, poses from {}: {} in {}", cloud_topic, source.name,
-                                source.poses.front().child_frame_id, source.poses.front().frame_id);
+      source.notes.push_back(fmt::format("scans from {}, poses from {}: {} in {}", cloud_topic, source.name,
+                                         source.poses.front().child_frame_id, source.poses.front().frame_id));
     }
+    source.notes.insert(source.notes.end(), notes.begin(), notes.end());
     return source;
   }
   if (!options.tf_parent.empty() || !options.tf_child.empty()) {
     failAt(bag.path(), "--tf-frames is for a tf2_msgs/TFMessage trajectory: give --pose-topic /tf");
   }
-  source.note =
-      "scans from " + cloud_topic + ", poses from " + source.name + " (" + typeOf(bag, source.name) + ")";
-  source.poses = readTrajectory(bag, source.name);
+  source.notes.push_back("scans from " + cloud_topic + ", poses from " + source.name + " (" +
+                         typeOf(bag, source.name) + ")");
+  source.poses = readTrajectory(bag, source.name, source.notes);
   return source;
 }
 
@@ -290,7 +373,7 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   recording.cloud_type_ = typeOf(bag, recording.cloud_topic_);
   PoseSource source = readPoseSource(bag, recording.topics_, recording.cloud_topic_, options);
   recording.pose_topic_ = source.name;
-  if (!source.note.empty()) recording.notes_.push_back(source.note);
+  recording.notes_.insert(recording.notes_.end(), source.notes.begin(), source.notes.end());
   const std::vector<StampedPose> trajectory = std::move(source.poses);
   if (trajectory.empty()) failAt(path, recording.pose_topic_ + " holds no pose");
   recording.time_offset_ = options.time_offset;
@@ -313,18 +396,26 @@ void Recording::placeClouds(const MessageStore& bag, const RecordingOptions& opt
   cloud_messages_ = clouds.size();
   std::vector<double> dropped;
   std::vector<std::pair<double, StoredMessage>> stamped;
-  for (const StoredMessage& message : clouds) {
+  double previous = 0.0;
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    const StoredMessage& message = clouds[i];
     const std::string what =
-        fmt::format("{}: {} message at {:.3f} s", path_.string(), cloud_topic_, message.time);
+        fmt::format("{}: {} message {} at {:.3f} s", path_.string(), cloud_topic_, i, message.time);
     const CloudHeader header = decodeCloudHeader(cloud_type_, bag.read(message), bag.serialization(), what);
     if (stamped.empty()) {
       cloud_frame_ = header.frame_id;
       cloud_fields_ = header.fields;
+    } else if (header.stamp < previous) {
+      // Each scan is paired with the pose at its stamp: stamps out of order
+      // mean a merged or re-stamped recording, whose pairing cannot be trusted.
+      failAt(path_,
+             fmt::format("{}: the stamps run backwards at message {}: {:.9f} s after {:.9f} s (message "
+                         "{}); scans are paired with poses by stamp, so the clouds cannot be read",
+                         cloud_topic_, i, header.stamp, previous, i - 1));
     }
+    previous = header.stamp;
     stamped.emplace_back(header.stamp + options.time_offset, message);
   }
-  std::stable_sort(stamped.begin(), stamped.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& [stamp, message] : stamped) {
     Pose pose;
     if (!poseAt(recorded_, stamp, pose)) {
@@ -381,8 +472,11 @@ void Recording::keepKeyframes(const RecordingOptions& options, const std::vector
 void Recording::joinFrames(const MessageStore& bag, const std::string& pose_frame) {
   pose_frame_ = pose_frame;
   if (!pose_frame.empty() && !cloud_frame_.empty() && frameName(pose_frame) != frameName(cloud_frame_)) {
-    extrinsic_ = staticTransform(bag, pose_frame, cloud_frame_);
-    if (extrinsic_) {
+    extrinsic_ = staticTransform(bag, pose_frame, cloud_frame_, static_problem_);
+    if (!static_problem_.empty()) {
+      static_problem_ = "the clouds are in frame '" + cloud_frame_ + "', the poses place '" + pose_frame +
+                        "', and " + static_problem_;
+    } else if (extrinsic_) {
       notes_.push_back("the clouds are in frame '" + cloud_frame_ + "', the poses place '" + pose_frame +
                        "': joined by /tf_static");
     } else {

@@ -1,5 +1,9 @@
 #include "hba/rec/ros_messages.hpp"
 
+#include <fmt/format.h>
+
+#include <cmath>
+
 #include "hba/core/error.hpp"
 #include "message_parts.hpp"
 
@@ -31,15 +35,41 @@ Header readHeader(ByteReader& reader) {
   return header;
 }
 
-Pose readPose(ByteReader& reader) {
-  Vec3 t;
-  for (int k = 0; k < 3; ++k) t[k] = reader.f64();
-  const double x = reader.f64(), y = reader.f64(), z = reader.f64(), w = reader.f64();
-  Quat q(w, x, y, z);
+PoseFields readPoseFields(ByteReader& reader, const std::string& field, bool transform) {
+  PoseFields fields;
+  fields.field = field;
+  fields.transform = transform;
+  for (int k = 0; k < 3; ++k) fields.position[k] = reader.f64();
+  fields.x = reader.f64();
+  fields.y = reader.f64();
+  fields.z = reader.f64();
+  fields.w = reader.f64();
+  return fields;
+}
+
+Pose toPose(const PoseFields& fields, const std::string& what) {
+  // As pose files: a shorter quaternion is noise, not a rotation to renormalize.
+  constexpr double kMinQuaternionNorm = 1e-3;
+  const std::string position = fields.field + (fields.transform ? ".translation" : ".position");
+  const std::string orientation = fields.field + (fields.transform ? ".rotation" : ".orientation");
+  for (int k = 0; k < 3; ++k) {
+    const double value = fields.position[k];
+    if (std::isfinite(value)) continue;
+    throw BadFieldValue(fmt::format("{}: {}.{} is {}: a pose needs a finite position", what, position,
+                                    "xyz"[k], std::isnan(value) ? "NaN" : "infinite"));
+  }
+  Quat q(fields.w, fields.x, fields.y, fields.z);
+  if (!q.coeffs().allFinite()) {
+    throw BadFieldValue(fmt::format("{}: {} is not finite (x y z w = {} {} {} {}): a pose needs a rotation",
+                                    what, orientation, fields.x, fields.y, fields.z, fields.w));
+  }
   const double norm = q.norm();
-  if (!(norm > 0.5 && norm < 1.5))
-    reader.fail("a pose whose quaternion is not a rotation (norm " + std::to_string(norm) + ")");
-  return Pose(q.normalized(), t);
+  if (norm < kMinQuaternionNorm) {
+    throw BadFieldValue(
+        fmt::format("{}: {} has (near) zero length ({:g}): it is no rotation", what, orientation, norm));
+  }
+  q.coeffs() /= norm;
+  return Pose(q, fields.position);
 }
 
 void expectEnd(ByteReader& reader, const std::string& type) {
@@ -85,13 +115,15 @@ PointCloud2View decodePointCloud2Message(const std::vector<std::uint8_t>& messag
   reader.u8();  // is_dense
   expectEnd(reader, kPointCloud2);
   const std::uint64_t points = std::uint64_t{cloud.height} * cloud.width;
-  if (std::uint64_t{cloud.height} * cloud.row_step > cloud.data_size ||
-      (points > 0 && cloud.point_step == 0) ||
+  // The data is height rows of row_step bytes, exactly: a block that is
+  // longer is as corrupt as a shorter one (its points would be read in part).
+  const std::uint64_t expected = std::uint64_t{cloud.height} * cloud.row_step;
+  if (expected != cloud.data_size || (points > 0 && cloud.point_step == 0) ||
       std::uint64_t{cloud.width} * cloud.point_step > cloud.row_step) {
     reader.fail("a PointCloud2 of " + std::to_string(cloud.height) + " x " + std::to_string(cloud.width) +
                 " points of " + std::to_string(cloud.point_step) + " bytes (rows of " +
                 std::to_string(cloud.row_step) + ") in " + std::to_string(cloud.data_size) +
-                " bytes of data");
+                " bytes of data (height x row_step is " + std::to_string(expected) + ")");
   }
   return cloud;
 }
@@ -100,18 +132,20 @@ std::vector<StampedPose> decodeTrajectory(const std::string& type, const std::ve
                                           Serialization serialization, const std::string& what) {
   ByteReader reader = messageReader(message, serialization, what);
   std::vector<StampedPose> poses;
+  std::vector<PoseFields> fields;
   if (type == "nav_msgs/Path") {
     readHeader(reader);
     const std::uint32_t count = reader.count(16 + 56);
     for (std::uint32_t k = 0; k < count; ++k) {
       const Header header = readHeader(reader);
-      poses.push_back({header.stamp, readPose(reader), header.frame_id, ""});
+      poses.push_back({header.stamp, Pose(), header.frame_id, ""});
+      fields.push_back(readPoseFields(reader, "poses[" + std::to_string(k) + "].pose"));
     }
   } else {
     const Header header = readHeader(reader);
     StampedPose pose{header.stamp, Pose(), header.frame_id, ""};
     if (type == "nav_msgs/Odometry") pose.child_frame_id = reader.string();
-    pose.pose = readPose(reader);
+    fields.push_back(readPoseFields(reader, type == "geometry_msgs/PoseStamped" ? "pose" : "pose.pose"));
     if (type == "nav_msgs/Odometry") {
       reader.skip(36 * 8);          // pose covariance
       reader.skip(6 * 8 + 36 * 8);  // twist and its covariance
@@ -121,6 +155,7 @@ std::vector<StampedPose> decodeTrajectory(const std::string& type, const std::ve
     poses.push_back(pose);
   }
   expectEnd(reader, type);
+  for (std::size_t k = 0; k < poses.size(); ++k) poses[k].pose = toPose(fields[k], what);
   return poses;
 }
 
@@ -147,14 +182,16 @@ std::vector<StampedPose> decodeTransforms(const std::vector<std::uint8_t>& messa
   return decodeAs(kTfMessage, [&] {
     ByteReader reader = messageReader(message, serialization, what);
     std::vector<StampedPose> transforms;
+    std::vector<PoseFields> fields;
     const std::uint32_t count = reader.count(16 + 4 + 56);
     for (std::uint32_t k = 0; k < count; ++k) {
       const Header header = readHeader(reader);
-      StampedPose transform{header.stamp, Pose(), header.frame_id, reader.string()};
-      transform.pose = readPose(reader);  // a Transform is laid out as a Pose
-      transforms.push_back(transform);
+      transforms.push_back({header.stamp, Pose(), header.frame_id, reader.string()});
+      // A Transform is laid out as a Pose.
+      fields.push_back(readPoseFields(reader, "transforms[" + std::to_string(k) + "].transform", true));
     }
     expectEnd(reader, kTfMessage);
+    for (std::size_t k = 0; k < transforms.size(); ++k) transforms[k].pose = toPose(fields[k], what);
     return transforms;
   });
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
 #include "message_store.hpp"
 
@@ -57,11 +58,30 @@ class SplitStore : public MessageStore {
 };
 
 std::unique_ptr<MessageStore> openFile(const fs::path& path) {
+  // Before its first bytes are read: a FIFO would block the read forever.
+  requireRegularFile(path);
   if (looksLikeRos1Bag(path)) return openRos1Store(path);
   if (looksLikeMcap(path)) return openMcap(path);
   if (looksLikeSqlite(path)) return openSqlite(path);
-  if (!fs::exists(path)) failAt(path, "no such file");
   failAt(path, "neither a ROS 1 bag, an MCAP file nor a ROS 2 sqlite3 bag (hba reads those recordings)");
+}
+
+// A storage file named twice (or under two names) would be read twice: every
+// message twice, the scans paired with their own copies.
+void requireNamedOnce(const fs::path& metadata, const std::vector<fs::path>& files, std::size_t k) {
+  for (std::size_t earlier = 0; earlier < k; ++earlier) {
+    std::error_code error;
+    const bool same = files[earlier].lexically_normal() == files[k].lexically_normal() ||
+                      fs::equivalent(files[earlier], files[k], error);
+    if (!same) continue;
+    failAt(metadata,
+           "names the storage file " + files[k].filename().string() + " twice (relative_file_paths entries " +
+               std::to_string(earlier + 1) + " and " + std::to_string(k + 1) +
+               (files[earlier] == files[k]
+                    ? ""
+                    : ": " + files[earlier].string() + " and " + files[k].string() + " are one file") +
+               "); each file of a recording is read once");
+  }
 }
 
 }  // namespace
@@ -90,7 +110,10 @@ std::unique_ptr<MessageStore> openMessageStore(const fs::path& path) {
   }
   if (files.empty()) failAt(metadata, "names no storage file (relative_file_paths)");
   std::vector<std::unique_ptr<MessageStore>> parts;
-  for (const fs::path& file : files) parts.push_back(openFile(file));
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    requireNamedOnce(metadata, files, k);
+    parts.push_back(openFile(files[k]));
+  }
   if (parts.size() == 1) return std::move(parts.front());
   return std::make_unique<SplitStore>(path, std::move(parts));
 }

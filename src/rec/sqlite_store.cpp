@@ -1,6 +1,8 @@
 // A ROS 2 sqlite3 bag (.db3, rosbag2's default up to Humble): a table of
 // topics (name, type, serialization) and a table of messages (topic, time,
 // CDR bytes). Opened immutable: reading never writes a journal beside it.
+// A bag the recorder did not close holds its last messages (or all of them)
+// in FILE-wal: it is read with that log, still without writing a byte.
 #include <sqlite3.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <map>
 #include <mutex>
 
+#include "core/input_file.hpp"
 #include "hba/core/error.hpp"
 #include "message_store.hpp"
 
@@ -46,10 +49,47 @@ std::string text(sqlite3_stmt* statement, int column) {
   return value ? reinterpret_cast<const char*>(value) : "";
 }
 
+// A path inside a "file:" URI: '%', '?' and '#' would end or escape it.
+std::string uriPath(const std::string& path) {
+  std::string out;
+  for (const char c : path) {
+    if (c == '%' || c == '?' || c == '#') {
+      constexpr const char* kHex = "0123456789ABCDEF";
+      out += '%';
+      out += kHex[(static_cast<unsigned char>(c) >> 4) & 0xF];
+      out += kHex[static_cast<unsigned char>(c) & 0xF];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The URI that opens the bag without writing a byte beside it. Immutable
+// when no write-ahead log holds data (sqlite then ignores any log). A bag
+// whose recorder did not close it keeps messages in FILE-wal, indexed by
+// FILE-shm: both are read as they are (readonly_shm). Without FILE-shm,
+// sqlite reads the log only after creating one, which is refused.
+std::string readOnlyUri(const fs::path& path) {
+  const std::string uri = "file:" + uriPath(fs::absolute(path).string());
+  const fs::path wal = path.string() + "-wal", shm = path.string() + "-shm";
+  std::error_code ec;
+  if (!regularFileIsPresent(wal) || fs::file_size(wal, ec) == 0) return uri + "?immutable=1";
+  if (!regularFileIsPresent(shm)) {
+    const std::string name = path.filename().string();
+    failAt(path, "the bag is still in WAL mode: " + name + "-wal holds messages not yet in " + name +
+                     " (the recorder did not close it), and without " + name +
+                     "-shm they cannot be read without writing beside the bag. Copy the folder and run "
+                     "`sqlite3 COPY/" +
+                     name + " 'PRAGMA wal_checkpoint'` on the copy, then read the copy");
+  }
+  return uri + "?mode=ro&readonly_shm=1";
+}
+
 class SqliteStore : public MessageStore {
  public:
   explicit SqliteStore(const fs::path& path) : path_(path) {
-    const std::string uri = "file:" + fs::absolute(path).string() + "?immutable=1";
+    const std::string uri = readOnlyUri(path);
     if (sqlite3_open_v2(uri.c_str(), &db_, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr) != SQLITE_OK) {
       const std::string problem = db_ ? sqlite3_errmsg(db_) : "out of memory";
       sqlite3_close(db_);

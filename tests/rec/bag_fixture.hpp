@@ -82,13 +82,16 @@ inline int writeMcap(const std::filesystem::path& folder, const std::filesystem:
 
 // A rosbag2 folder of sqlite3 files (`split` of them): the CDR messages of
 // the MCAP writer's serializer stored by write_db3.py with Python's sqlite3.
-inline int writeDb3(const std::filesystem::path& folder, const std::filesystem::path& out, int split = 1) {
+// `flags`: more of write_db3.py's (--wal).
+inline int writeDb3(const std::filesystem::path& folder, const std::filesystem::path& out, int split = 1,
+                    const std::string& flags = "") {
   const std::filesystem::path lines = out.string() + ".jsonl";
   const int written = writeMcap(folder, lines, "cdr");
   if (written != 0) return written;
   const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const CommandResult result = runCommand(python + " " + std::string(HBA_DB3_WRITER) + " " + lines.string() +
-                                          " " + out.string() + " --split " + std::to_string(split));
+  const CommandResult result =
+      runCommand(python + " " + std::string(HBA_DB3_WRITER) + " " + lines.string() + " " + out.string() +
+                 " --split " + std::to_string(split) + " " + flags);
   if (result.exit_code != 0) ADD_FAILURE() << result.output;
   return result.exit_code;
 }

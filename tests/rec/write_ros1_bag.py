@@ -169,6 +169,21 @@ def main():
                         help="clouds moved into the world by their pose (FAST-LIO2's /cloud_registered)")
     parser.add_argument("--mismatch", action="store_true",
                         help="/Odometry messages that hold a PoseStamped's bytes (a definition that does not match)")
+    # Faults in one message (issue #57), K counting the scans from 0:
+    parser.add_argument("--bad-position", default="",
+                        help="'K VALUE': the odometry's position.y in message K is VALUE (nan, inf)")
+    parser.add_argument("--quaternion-scale", type=float, default=1.0,
+                        help="every odometry quaternion multiplied by this (3: not unit length; 0: none)")
+    parser.add_argument("--same-stamp", type=int, default=-1,
+                        help="odometry message K stamped as message K-1 (two poses at one stamp)")
+    parser.add_argument("--republish", type=int, default=-1,
+                        help="odometry message K written twice, stamp and pose alike")
+    parser.add_argument("--reverse-stamps", default="", choices=["", "cloud", "odometry"],
+                        help="that topic's stamps in reverse order (they run backwards)")
+    parser.add_argument("--long-cloud", type=int, default=-1,
+                        help="cloud message K's data twice as long as width x point_step says")
+    parser.add_argument("--tf-static-back", default="",
+                        help="'x y z qx qy qz qw': /tf_static also places body in lidar (a cycle)")
     args = parser.parse_args()
     if args.layout == "livox":
         try:
@@ -182,6 +197,10 @@ def main():
     times = np.loadtxt(os.path.join(args.folder, "times.txt"))
     if args.scans:
         scans, poses, times = scans[: args.scans], poses[: args.scans], times[: args.scans]
+    cloud_times = times[::-1] if args.reverse_stamps == "cloud" else times
+    odometry_times = times[::-1] if args.reverse_stamps == "odometry" else times.copy()
+    if args.same_stamp > 0:
+        odometry_times[args.same_stamp] = odometry_times[args.same_stamp - 1]
     span = float(times[-1] - times[0]) + 1.0
     clouds = {}
     path_so_far = []
@@ -206,13 +225,26 @@ def main():
                 t_static.transform.translation.x, t_static.transform.translation.y, t_static.transform.translation.z = v[:3]
                 r = t_static.transform.rotation
                 r.x, r.y, r.z, r.w = v[3:]
-                bag.write("/tf_static", TFMessage(transforms=[t_static]), stamp)
+                transforms = [t_static]
+                if args.tf_static_back:
+                    v = [float(x) for x in args.tf_static_back.split()]
+                    back = TransformStamped()
+                    back.header.stamp = stamp
+                    back.header.frame_id, back.child_frame_id = "lidar", "body"
+                    back.transform.translation.x, back.transform.translation.y, back.transform.translation.z = v[:3]
+                    r = back.transform.rotation
+                    r.x, r.y, r.z, r.w = v[3:]
+                    transforms.append(back)
+                bag.write("/tf_static", TFMessage(transforms=transforms), stamp)
             points = clouds[scan]
             if args.world_frame:
                 points = points.copy()
                 points[:, 0:3] = points[:, 0:3] @ pose[:, :3].T + pose[:, 3]
-            cloud = cloud_message(points, stamp, args.layout, args.big_endian,
-                                  "lidar" if args.tf_static else "body")
+            shift = t - times[n % len(times)]  # of the repetition
+            cloud = cloud_message(points, rospy.Time.from_sec(float(cloud_times[n % len(times)] + shift)),
+                                  args.layout, args.big_endian, "lidar" if args.tf_static else "body")
+            if n == args.long_cloud:
+                cloud.data = bytes(cloud.data) * 2
             bag.write("/cloud_registered_body", cloud, stamp)
             if args.second_cloud_topic:
                 bag.write("/cloud_registered", cloud, stamp)
@@ -236,14 +268,17 @@ def main():
                 kinds = {"odometry": Odometry, "posestamped": PoseStamped, "posecov": PoseWithCovarianceStamped,
                          "path": PoseStamped}
                 odo = kinds[args.pose_type]()
-                odo.header.stamp = rospy.Time.from_sec(float(t) + args.pose_shift)
+                odo.header.stamp = rospy.Time.from_sec(float(odometry_times[n % len(times)] + shift) + args.pose_shift)
                 odo.header.frame_id = "camera_init"
                 target = odo.pose if args.pose_type in ("posestamped", "path") else odo.pose.pose
                 if args.pose_type == "odometry":
                     odo.child_frame_id = "body"
                 w, x, y, z = quaternion(pose[:, :3])
                 target.position.x, target.position.y, target.position.z = pose[:, 3]
-                target.orientation.x, target.orientation.y, target.orientation.z, target.orientation.w = x, y, z, w
+                s = args.quaternion_scale
+                target.orientation.x, target.orientation.y, target.orientation.z, target.orientation.w = s * x, s * y, s * z, s * w
+                if args.bad_position and int(args.bad_position.split()[0]) == n:
+                    target.position.y = float(args.bad_position.split()[1])
                 if args.mismatch:
                     wrong = PoseStamped(header=odo.header, pose=odo.pose.pose)
                     buffer = io.BytesIO()
@@ -255,7 +290,8 @@ def main():
                     path_so_far.append(odo)
                     bag.write("/path", Path(header=odo.header, poses=list(path_so_far)), stamp)
                 else:
-                    bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
+                    for _ in range(2 if n == args.republish else 1):
+                        bag.write("/Odometry" if args.pose_type == "odometry" else "/pose", odo, stamp)
             if n % 50 == 0:
                 bag.write("/rosout_agg", String(data="scan %d" % n), stamp)
     return 0

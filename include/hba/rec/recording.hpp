@@ -75,6 +75,10 @@ class Recording {
   // T_body_cloud from /tf_static, when the poses place another frame (the
   // body, an IMU) than the clouds' and the recording says how they sit.
   const std::optional<Pose>& staticExtrinsic() const { return extrinsic_; }
+  // Why /tf_static cannot join the clouds' frame to the poses' (its
+  // transforms form a cycle), or "": the caller refuses the recording
+  // unless it is given the extrinsic itself.
+  const std::string& staticFrameProblem() const { return static_problem_; }
   const std::string& poseFrame() const { return pose_frame_; }
   // The first cloud's field names, as recorded ("x y z intensity ...").
   const std::vector<std::string>& cloudFields() const { return cloud_fields_; }
@@ -113,6 +117,7 @@ class Recording {
   std::vector<std::string> cloud_fields_;
   std::string pose_frame_;
   std::optional<Pose> extrinsic_;
+  std::string static_problem_;
   Trajectory trajectory_, recorded_, covered_;
   double time_offset_ = 0.0;
   std::size_t cloud_messages_ = 0;
