@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 
+#include <fstream>
+
 #include "cli_runs.hpp"
 #include "synthetic_scene.hpp"
 #include "test_support.hpp"
@@ -46,6 +48,15 @@ void expectEmptyFolder(const fs::path& folder) {
   }
 }
 
+// Writes a file on the disk until no byte more fits.
+void fillDisk(const fs::path& disk) {
+  std::ofstream filler(disk / "filler", std::ios::binary);
+  const std::string block(4096, 'x');
+  for (int i = 0; i < 1024 && filler.write(block.data(), static_cast<std::streamsize>(block.size())); ++i) {
+    filler.flush();
+  }
+}
+
 class FullDisk : public testing::Test {
  protected:
   void SetUp() override {
@@ -69,6 +80,27 @@ TEST_F(FullDisk, SimulateOnAFullDiskIsReportedAsSuch) {
   const test::CommandResult run = test::runHba("simulate --frames 20 -o " + quoted(disk_.path() / "sim"));
   expectDiskFullMessage(run);
   expectEmptyFolder(disk_.path());
+}
+
+// Issue 57 item 8: `info` logs only debug lines, which sat in the log's
+// buffer until exit, where the failed write was noticed by no one: exit 0
+// with an empty log. Now every command fails, naming the log file.
+TEST_F(FullDisk, ALogFileOnAFullDiskFailsEveryCommand) {
+  fillDisk(disk_.path());
+  const fs::path log = disk_.path() / "log.txt";
+  const fs::path data = tmp_ / "data";
+  for (const std::string& command :
+       {"info " + quoted(data), "info --json " + quoted(data), "mme " + quoted(data),
+        "map " + quoted(data) + " -o " + quoted(tmp_ / "map.pcd"),
+        "eval --gt " + quoted(data / "pose.json") + " --est " + quoted(data / "pose.json")}) {
+    const test::CommandResult run = test::runHba("--log-file " + quoted(log) + " " + command);
+    EXPECT_EQ(run.exit_code, 1) << command << "\n" << run.output;
+    EXPECT_NE(run.output.find(log.string() + ": --log-file: cannot write the log: no space left on device "
+                                             "(disk full)"),
+              std::string::npos)
+        << command << "\n"
+        << run.output;
+  }
 }
 
 }  // namespace
