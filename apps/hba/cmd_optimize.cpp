@@ -116,7 +116,7 @@ void run(const Args& args) {
     for (std::string& name : writeEveryScanPoses(out, dataset, result.poses))
       written.push_back(std::move(name));
   }
-  nlohmann::json report = reportJson(result, dataset, settings, conventions);
+  nlohmann::json report = reportJson(result, dataset, args.data, settings, conventions);
   report["memory_estimate"] = memory;
   if (dataset.pointTimes()) {
     report["deskew"] = {{"point_times", dataset.pointTimes()->describe()},

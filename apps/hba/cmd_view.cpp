@@ -31,25 +31,23 @@ struct ViewArgs {
   render::ReportPageSettings settings;
 };
 
-// The dataset an output folder was made from, as its report names it; the
-// dataset flags given (topics, --extrinsic) apply to it.
-DatasetArgs datasetOf(const ViewArgs& args, const fs::path& out, const nlohmann::json& report) {
+// The dataset an output folder was made from, opened as the run opened it
+// (a recording's topics and keyframes from the report); the dataset flags
+// given (topics, --extrinsic) apply to it.
+io::Dataset datasetOf(const ViewArgs& args, const fs::path& out, const nlohmann::json& report) {
   if (report.contains("sessions") || report.contains("map")) {
     throw Error(out.string() +
                 ": a run of several sessions or against a map; its report.html is written by hba optimize "
                 "(hba view reads single runs)");
   }
-  DatasetArgs data = args.data;
-  data.dir = outputInput(report, out, "dataset");
-  data.poses = outputInput(report, out, "poses");
-  if (data.format.empty()) data.format = outputInput(report, out, "pose_format");
+  io::Dataset dataset = openEarlierDataset(report, out, args.data);
   const std::string frame = outputInput(report, out, "pose_frame");
-  if (frame != "sensor" && data.extrinsic.empty() && data.calibration.empty()) {
+  // A recording's /tf_static or KITTI's calib.txt give the frame again; a --extrinsic must be given again.
+  if (frame != "sensor" && dataset.inputFrame() != frame) {
     failAt(out / "report.json",
            "the run's poses were of the " + frame + " frame: give the --extrinsic or --calib it had");
   }
-  if (report["input"].value("scans_in_world", false)) data.scans_in_world = true;
-  return data;
+  return dataset;
 }
 
 void run(ViewArgs& args) {
@@ -59,13 +57,13 @@ void run(ViewArgs& args) {
   io::Dataset dataset = [&] {
     if (!from_output) return args.data.open();
     input.report = readOutputReport(given);
-    return datasetOf(args, given, input.report).open();
+    return datasetOf(args, given, input.report);
   }();
   input.before = dataset.trajectory().poses;
   if (from_output) {
     if (!args.compare.empty())
       throw Error("--compare is for a dataset; " + given.string() + " is an output folder");
-    input.after = readPosesFor(dataset, given / "pose.json");
+    input.after = earlierPoses(dataset, input.report, given);
     if (regularFileIsPresent(given / "before_after.png")) input.picture = given / "before_after.png";
   } else {
     input.after = args.compare.empty() ? input.before : readPosesFor(dataset, args.compare);

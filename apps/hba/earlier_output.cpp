@@ -1,7 +1,11 @@
 #include "earlier_output.hpp"
 
+#include <system_error>
+
 #include "core/input_file.hpp"
 #include "hba/core/error.hpp"
+#include "hba/io/pose_file.hpp"
+#include "recording_entry.hpp"
 
 namespace hba::cli {
 
@@ -22,6 +26,67 @@ std::string outputInput(const nlohmann::json& report, const std::filesystem::pat
   if (input == report.end() || !input->is_object() || !input->contains(key) || !(*input)[key].is_string())
     failAt(folder / "report.json", std::string("has no input.") + key + " (not written by hba optimize?)");
   return (*input)[key].get<std::string>();
+}
+
+namespace {
+namespace fs = std::filesystem;
+
+// `path` (from report.json's `key`) must be there: a moved dataset is said to
+// be one, with where its path came from.
+void requirePresent(const std::string& path, const char* key, const fs::path& report_file) {
+  if (path.empty()) {
+    failAt(report_file, std::string("input.") + key +
+                            " is empty: the report does not say what the run read (was it edited?)");
+  }
+  std::error_code ec;
+  if (fs::symlink_status(path, ec).type() == fs::file_type::not_found) {
+    failAt(report_file, std::string("names ") + path + " as the run's input." + key +
+                            ", which is not there (moved or deleted?): an output's scans are read from the "
+                            "dataset the run read; put it back there");
+  }
+}
+
+}  // namespace
+
+io::Dataset openEarlierDataset(const nlohmann::json& report, const fs::path& folder, DatasetArgs given) {
+  const fs::path report_file = folder / "report.json";
+  DatasetArgs data = std::move(given);
+  data.dir = outputInput(report, folder, "dataset");
+  requirePresent(data.dir, "dataset", report_file);
+  const std::string poses = outputInput(report, folder, "poses");
+  // A recording's own trajectory topic is named as the recording itself.
+  if (data.poses.empty() && poses != data.dir) {
+    requirePresent(poses, "poses", report_file);
+    data.poses = poses;
+    if (data.format.empty()) data.format = outputInput(report, folder, "pose_format");
+  }
+  const nlohmann::json& input = report.at("input");
+  if (const auto recording = input.find("recording"); recording != input.end())
+    applyRecordingEntry(*recording, report_file, data);
+  if (const auto in_world = input.find("scans_in_world"); in_world != input.end() && in_world->is_boolean())
+    data.scans_in_world = data.scans_in_world || in_world->get<bool>();
+  try {
+    return data.open();
+  } catch (const Error& e) {
+    throw Error(report_file.string() + " names the dataset " + data.dir +
+                ", which hba cannot read as the run did: " + e.what());
+  }
+}
+
+std::vector<Pose> earlierPoses(const io::Dataset& dataset, const nlohmann::json& report,
+                               const fs::path& folder) {
+  const fs::path file = folder / "pose.json";
+  std::vector<Pose> poses = io::readPoses(file, io::PoseFormat::Hba).poses;
+  if (poses.size() == dataset.size()) return poses;
+  const nlohmann::json& input = report.at("input");
+  const std::string why =
+      dataset.recording() && !input.contains("recording")
+          ? ": the run kept keyframes of the recording (or read other topics), and its report.json, "
+            "written by an older hba, does not say which; optimize the recording again with this hba to "
+            "read the output back"
+          : " (was the dataset changed since the run?)";
+  failAt(file, std::to_string(poses.size()) + " poses for the " + std::to_string(dataset.size()) +
+                   " scans of " + dataset.root().string() + why);
 }
 
 }  // namespace hba::cli

@@ -1,14 +1,19 @@
 #include "log_file.hpp"
 
 #include <spdlog/sinks/base_sink.h>
-#include <spdlog/sinks/basic_file_sink.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 
 #include "hba/core/error.hpp"
+#include "hba/version.hpp"
 #include "output_dir.hpp"
 
 namespace hba::cli {
@@ -19,35 +24,48 @@ namespace {
 std::mutex failure_mutex;
 std::optional<std::string> failure;
 
-// A file sink that remembers a failed write instead of letting spdlog print
-// it to stderr once and carry on as if the log were complete.
+std::string describeWriteError(int err) {
+  if (err == ENOSPC) return "no space left on device (disk full)";
+  if (err == EDQUOT) return "disk quota exceeded";
+  return std::strerror(err != 0 ? err : EIO);
+}
+
+// Appends each message to the file and flushes it at once: a write that
+// fails (a full disk) is remembered, with the file and the cause, so the run
+// fails at the end instead of exiting 0 with a log that lost lines. (spdlog's
+// file sink leaves debug lines in the stdio buffer, where a full disk is
+// noticed only when the file is closed, and then by no one.)
 class CheckedFileSink final : public spdlog::sinks::base_sink<std::mutex> {
  public:
-  explicit CheckedFileSink(const std::string& path) : file_(path, false) {}
+  explicit CheckedFileSink(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "ab")) {
+    if (!file_) failAt(path, "--log-file: cannot open the log file: " + describeWriteError(errno));
+  }
+  ~CheckedFileSink() override {
+    if (file_) std::fclose(file_);
+  }
+  CheckedFileSink(const CheckedFileSink&) = delete;
+  CheckedFileSink& operator=(const CheckedFileSink&) = delete;
 
  protected:
   void sink_it_(const spdlog::details::log_msg& message) override {
-    guard([&] { file_.log(message); });
-  }
-  void set_pattern_(const std::string& pattern) override { file_.set_pattern(pattern); }
-  void set_formatter_(std::unique_ptr<spdlog::formatter> formatter) override {
-    file_.set_formatter(std::move(formatter));
+    spdlog::memory_buf_t line;
+    formatter_->format(message, line);
+    errno = 0;
+    if (std::fwrite(line.data(), 1, line.size(), file_) != line.size()) return remember(errno);
+    flush_();
   }
   void flush_() override {
-    guard([&] { file_.flush(); });
+    errno = 0;
+    if (std::fflush(file_) != 0) remember(errno);
   }
 
  private:
-  template <typename Write>
-  void guard(Write write) {
-    try {
-      write();
-    } catch (const spdlog::spdlog_ex& e) {
-      const std::lock_guard<std::mutex> lock(failure_mutex);
-      if (!failure) failure = e.what();
-    }
+  void remember(int err) {
+    const std::lock_guard<std::mutex> lock(failure_mutex);
+    if (!failure) failure = path_ + ": --log-file: cannot write the log: " + describeWriteError(err);
   }
-  spdlog::sinks::basic_file_sink_st file_;
+  std::string path_;
+  std::FILE* file_;
 };
 
 // hba's own log lines start "[2026-11-26 ...": a non-empty file that does
@@ -97,14 +115,20 @@ void checkLogPath(const fs::path& path, const CLI::App& command) {
 
 spdlog::sink_ptr openLogFile(const std::string& path, const CLI::App& command) {
   checkLogPath(path, command);
-  try {
-    return std::make_shared<CheckedFileSink>(path);
-  } catch (const spdlog::spdlog_ex& e) {
-    failAt(path, std::string("--log-file: cannot write the log file: ") + e.what());
-  }
+  auto sink = std::make_shared<CheckedFileSink>(path);
+  // Its first line says which run wrote what follows; written at once, so a
+  // log that cannot be written (a full disk) fails the run before any work,
+  // even a command that would log nothing more.
+  sink->set_pattern(kLogFilePattern);
+  const std::string first =
+      "hba " HBA_VERSION " " + command.get_name() + ", pid " + std::to_string(::getpid());
+  sink->log(spdlog::details::log_msg("hba", spdlog::level::info, first));
+  if (const auto failed = logFileFailure()) throw Error(*failed);
+  return sink;
 }
 
 std::optional<std::string> logFileFailure() {
+  spdlog::default_logger()->flush();  // the last lines too
   const std::lock_guard<std::mutex> lock(failure_mutex);
   return failure;
 }

@@ -11,8 +11,12 @@
 
 namespace hba::cli {
 
+// A log file's lines: "[2026-11-28 10:00:00.000] [info] ...", with times.
+inline constexpr const char* kLogFilePattern = "[%Y-%m-%d %H:%M:%S.%e] [%l] %v";
+
 // Checks `path` against the inputs and outputs of `command` (recordRunInputs
-// first) and opens it for appending. Throws hba::Error naming the file.
+// first), opens it for appending and writes the run's first line. Throws
+// hba::Error naming the file (also when that line cannot be written).
 spdlog::sink_ptr openLogFile(const std::string& path, const CLI::App& command);
 
 // Why a message could not be written to the log file (a full disk), if one

@@ -36,9 +36,9 @@ struct FixedMap {
   std::vector<Pose> poses;
 };
 
-FixedMap datasetMap(io::Dataset dataset, std::string name) {
+FixedMap datasetMap(io::Dataset dataset, std::vector<Pose> poses, std::string name) {
   FixedMap map;
-  map.poses = dataset.trajectory().poses;
+  map.poses = std::move(poses);
   eval::MapSettings settings;
   settings.voxel = kMapVoxel;
   map.cloud = eval::buildMergedMap(io::DatasetScanSource(dataset), map.poses, settings);
@@ -47,7 +47,8 @@ FixedMap datasetMap(io::Dataset dataset, std::string name) {
   return map;
 }
 
-// An earlier `hba optimize` output: its input's scans at its optimized poses.
+// An earlier `hba optimize` output: its input's scans, read as that run read
+// them (a recording's keyframes), at its optimized poses.
 FixedMap readEarlierOutput(const fs::path& folder) {
   if (!isOptimizeOutput(folder)) {
     failAt(folder,
@@ -56,23 +57,26 @@ FixedMap readEarlierOutput(const fs::path& folder) {
                io::scanFormatList(true) + ") or --fixed DATASET");
   }
   const nlohmann::json report = readOutputReport(folder);
-  const std::string dataset = outputInput(report, folder, "dataset");
-  if (report["input"].value("scans_in_world", false)) {
+  if (report.contains("input") && report["input"].is_object() &&
+      report["input"].value("scans_in_world", false)) {
     failAt(folder,
            "was made from scans saved in the world frame: write its map with hba map and give that file");
   }
-  DatasetArgs input;
-  input.dir = dataset;
-  input.poses = (folder / "pose.json").string();
-  input.format = "hba";
-  return datasetMap(input.open(), folder.string() + " (" + input.dir + " at its optimized poses)");
+  io::Dataset dataset = openEarlierDataset(report, folder, DatasetArgs());
+  std::vector<Pose> poses = earlierPoses(dataset, report, folder);
+  // Raw sweeps: deskewed by the motion the run found, as the run last did.
+  if (dataset.pointTimes()) dataset.deskewBy(poses);
+  std::string name = folder.string() + " (" + dataset.root().string() + " at its optimized poses)";
+  return datasetMap(std::move(dataset), std::move(poses), std::move(name));
 }
 
 FixedMap readFixedMap(const Args& args) {
   if (!args.fixed.empty()) {
     DatasetArgs fixed;
     fixed.dir = args.fixed;
-    return datasetMap(fixed.open(), args.fixed + " (its scans at its poses)");
+    io::Dataset dataset = fixed.open();
+    std::vector<Pose> poses = dataset.trajectory().poses;
+    return datasetMap(std::move(dataset), std::move(poses), args.fixed + " (its scans at its poses)");
   }
   const fs::path path = args.map;
   if (fs::is_directory(path)) return readEarlierOutput(path);
@@ -127,6 +131,13 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   if (!args.priors.empty()) {
     throw Error("--priors with --map: the map fixes the frame the poses come out in; give one or the other");
   }
+  std::error_code ec;
+  if (!args.fixed.empty() && (args.fixed == args.data.dir || fs::equivalent(args.fixed, args.data.dir, ec))) {
+    throw ValueError("--fixed " + args.fixed + " is the session being optimized (" + args.data.dir +
+                     "): a session placed in a map of itself finds only itself; give the map of another "
+                     "session, or optimize " +
+                     args.data.dir + " alone");
+  }
   io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
   const FixedMap map = readFixedMap(args);
@@ -177,7 +188,7 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   std::vector<Pose> in_map;
   for (const Pose& p : result.poses) in_map.push_back(to_map * p);
   writeOptimizedPoses(out, dataset, in_map);
-  nlohmann::json report = reportJson(result, dataset, settings, conventions);
+  nlohmann::json report = reportJson(result, dataset, args.data, settings, conventions);
   report["memory_estimate"] = memory;
   map_report["source"] = map.name;
   map_report["points"] = map.cloud.size();

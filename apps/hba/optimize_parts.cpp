@@ -23,6 +23,7 @@
 #include "json_text.hpp"
 #include "pyramid/convention_check.hpp"
 #include "pyramid/report_json.hpp"
+#include "recording_entry.hpp"
 #include "version_text.hpp"
 
 namespace hba::cli::optimize {
@@ -228,6 +229,13 @@ nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, 
     spdlog::info("convention check: the path has no stretch long enough to tell");
     return "not enough motion to tell";
   }
+  if (!check.cannot_tell.empty()) {
+    spdlog::warn(
+        "convention check: {}; the poses and scans are taken as given (sensor-to-world poses, "
+        "sensor-frame scans)",
+        check.cannot_tell);
+    return check.cannot_tell;
+  }
   spdlog::info(
       "convention check: the poses as given make the crispest map ({:.2f}; inverted {:.2f}, "
       "no poses {:.2f}, of a turned body {:.2f})",
@@ -240,7 +248,8 @@ nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, 
 }
 
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
-                          const pyramid::HbaSettings& settings, const nlohmann::json& conventions) {
+                          const DatasetArgs& data, const pyramid::HbaSettings& settings,
+                          const nlohmann::json& conventions) {
   nlohmann::json report = pyramid::reportToJson(result.report);
   report["convention_check"] = conventions;
   report["hba"] = {{"version", HBA_VERSION}, {"revision", HBA_REVISION}};
@@ -253,6 +262,8 @@ nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& d
       {"stamps", dataset.stampsSource().empty() ? "none (scan index)" : dataset.stampsSource()},
       {"pose_frame", dataset.inputFrame().empty() ? "sensor" : dataset.inputFrame()},
       {"scans_in_world", dataset.scansInWorld()}};
+  if (const rec::Recording* recording = dataset.recording())
+    report["input"]["recording"] = recordingEntry(*recording, data);
   report["settings"] = pyramid::settingsToJson(settings);
   return report;
 }

@@ -60,8 +60,11 @@ std::vector<std::string> writeOptimizedPoses(const std::filesystem::path& out, c
 std::vector<std::string> writeEveryScanPoses(const std::filesystem::path& out, const io::Dataset& dataset,
                                              const std::vector<Pose>& poses);
 // report.json's content for `dataset` (the caller may add to it), and writing it.
+// A recording's topics, offset and keyframes (`data`'s flags) go to its
+// input.recording, so that hba view OUT and --map OUT read the same scans.
 nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
-                          const pyramid::HbaSettings& settings, const nlohmann::json& conventions);
+                          const DatasetArgs& data, const pyramid::HbaSettings& settings,
+                          const nlohmann::json& conventions);
 // Returns what was written (with the peak memory so far).
 nlohmann::json writeReport(const std::filesystem::path& out, const nlohmann::json& report);
 // Ground truth for the picture and the page: --gt, or the simulator's gt.txt

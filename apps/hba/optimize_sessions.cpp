@@ -47,12 +47,28 @@ std::vector<Pose> readAlignmentFile(const fs::path& path, std::size_t later_sess
 
 std::string sessionName(std::size_t k) { return "session-" + std::to_string(k); }
 
+// One session given twice (`optimize A A`, or A and a link to it) would be
+// matched against itself, every scan twice: refused before any work.
+void refuseRepeatedSessions(const std::vector<std::string>& dirs) {
+  for (std::size_t k = 1; k < dirs.size(); ++k) {
+    for (std::size_t j = 0; j < k; ++j) {
+      std::error_code ec;
+      if (dirs[j] == dirs[k] || fs::equivalent(dirs[j], dirs[k], ec)) {
+        throw ValueError(dirs[k] + ": this session is given twice (sessions " + std::to_string(j) + " and " +
+                         std::to_string(k) + (dirs[j] == dirs[k] ? "" : ", as " + dirs[j]) +
+                         "); give each session once");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void runSessions(const Args& args, pyramid::HbaSettings settings) {
   refuseOverrides(args.data);
   std::vector<std::string> dirs{args.data.dir};
   dirs.insert(dirs.end(), args.more_sessions.begin(), args.more_sessions.end());
+  refuseRepeatedSessions(dirs);
   std::vector<io::Dataset> datasets;
   for (const std::string& dir : dirs) {
     DatasetArgs one = args.data;
@@ -141,7 +157,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
                         {"first_frame", first},
                         {"frames", end - first}});
   }
-  nlohmann::json report = reportJson(result, datasets[0], settings, conventions);
+  nlohmann::json report = reportJson(result, datasets[0], args.data, settings, conventions);
   report["sessions"] = sessions;
   report["memory_estimate"] = memory;
   report["alignment"] = {

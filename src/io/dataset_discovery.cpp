@@ -103,10 +103,16 @@ fs::path findScansDir(const fs::path& root, Notes& notes) {
         {DatasetNote::Level::Info, "no scans subfolder; using the scans in " + root.string() + " itself"});
     return root;
   }
+  // What stands where scans were looked for: a folder of .vtk scans is named as such.
+  std::string found = "the folder itself holds " + folderContents(root);
+  for (const char* name : kScanFolderNames) {
+    if (isFolder(root / name)) found += "; " + std::string(name) + "/ holds " + folderContents(root / name);
+  }
   failAt(root, "no scans found: none of the folders " + joined(asStrings(kScanFolderNames)) +
                    " exists with " + scanFormatList() +
                    " files in it, nor are there scans in the folder "
-                   "itself; give the folder with --scans");
+                   "itself (" +
+                   found + "); give the folder with --scans");
 }
 
 fs::path findTrajectoryFile(const fs::path& root, const fs::path& scans_dir, Notes& notes) {

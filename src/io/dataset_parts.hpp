@@ -2,6 +2,7 @@
 // Private to the io module: the steps of Dataset::open, one file each.
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "hba/core/pose.hpp"
@@ -26,6 +27,9 @@ struct ScanFiles {
 // mixed extensions, a name without a number, two files with one number or
 // time, or a gap in the numbering.
 ScanFiles listScans(const std::filesystem::path& dir);
+// What `dir` holds, for a message where scans were expected: "14 .vtk files
+// (000000.vtk ... 000013.vtk)", "2 folders", "nothing". Hidden files left out.
+std::string folderContents(const std::filesystem::path& dir);
 
 // --- dataset_time_match.cpp: scans named by time, poses stamped ---
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -133,6 +134,48 @@ void checkConsecutive(const std::vector<NumberedScan>& scans) {
 
 }  // namespace
 
+std::string folderContents(const fs::path& dir) {
+  std::map<std::string, std::vector<std::string>> files_by_extension;
+  std::size_t folders = 0;
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+    if (isHidden(entry.path())) continue;
+    std::error_code type_ec;
+    if (entry.is_directory(type_ec)) {
+      ++folders;
+    } else {
+      files_by_extension[lowercaseExtension(entry.path())].push_back(entry.path().filename().string());
+    }
+  }
+  std::vector<std::pair<std::string, std::vector<std::string>>> kinds(files_by_extension.begin(),
+                                                                      files_by_extension.end());
+  std::stable_sort(kinds.begin(), kinds.end(),
+                   [](const auto& a, const auto& b) { return a.second.size() > b.second.size(); });
+  std::vector<std::string> parts;
+  for (auto& [extension, names] : kinds) {
+    if (parts.size() == 3) {
+      parts.push_back("other files");
+      break;
+    }
+    std::sort(names.begin(), names.end());
+    const std::string kind =
+        extension.empty() ? "file" + std::string(names.size() == 1 ? "" : "s") + " without an extension"
+                          : extension + (names.size() == 1 ? " file" : " files");
+    const std::string examples = names.size() == 1   ? names.front()
+                                 : names.size() == 2 ? names.front() + ", " + names.back()
+                                                     : names.front() + " ... " + names.back();
+    parts.push_back(std::to_string(names.size()) + " " + kind + " (" + examples + ")");
+  }
+  if (folders > 0) parts.push_back(std::to_string(folders) + (folders == 1 ? " folder" : " folders"));
+  if (parts.empty()) return "nothing";
+  std::string text;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (i > 0) text += i + 1 == parts.size() ? " and " : ", ";
+    text += parts[i];
+  }
+  return text;
+}
+
 bool containsScanFile(const fs::path& dir) {
   bool found = false;
   forEachScanFile(dir, [&](const fs::path&) {
@@ -152,7 +195,10 @@ ScanFiles listScans(const fs::path& dir) {
     files.push_back(path);
     return true;
   });
-  if (files.empty()) failAt(dir, "no scan files (" + scanFormatList() + ") in this folder");
+  if (files.empty()) {
+    failAt(dir, "no scan files in this folder: it holds " + folderContents(dir) + "; hba reads scans as " +
+                    scanFormatList() + " files");
+  }
 
   std::vector<NumberedScan> scans;
   scans.reserve(files.size());

@@ -26,4 +26,14 @@ void warnAboutFile(const std::filesystem::path& path, const std::string& problem
   }
 }
 
+void warnOncePerFolder(const std::filesystem::path& path, const std::string& problem,
+                       const std::string& sentence) {
+  static std::mutex mutex;
+  static std::set<std::pair<std::string, std::string>> warned;  // problem and folder
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (!warned.insert({problem, path.parent_path().string()}).second) return;
+  spdlog::warn("{}: {} (any other file of this folder like it is read alike, without a word more)",
+               path.string(), sentence);
+}
+
 }  // namespace hba::io

@@ -18,4 +18,11 @@ inline constexpr std::size_t kNamedFilesPerProblem = 3;
 void warnAboutFile(const std::filesystem::path& path, const std::string& problem,
                    const std::string& sentence);
 
+// For a trait every file of a folder a tool writes shares (a header another
+// writer fills in its own way): logs "<path>: <sentence>" for the first file
+// of its folder only, adding that the folder's other files are read alike.
+// Thread-safe.
+void warnOncePerFolder(const std::filesystem::path& path, const std::string& problem,
+                       const std::string& sentence);
+
 }  // namespace hba::io

@@ -1,7 +1,9 @@
 // PCD header parsing. Accepts the variants found in the wild: comment lines
 // anywhere before DATA, keywords and the DATA value in any case, CRLF line
 // ends, no VIEWPOINT, no COUNT (all 1), no HEIGHT (1), and either WIDTH or
-// POINTS missing (derived from the other).
+// POINTS missing (derived from the other), and WIDTH 0 HEIGHT 0 with POINTS
+// given (one row of POINTS, as PCL reads it; a public SLAM project's
+// keyframes are written so).
 #include <cctype>
 #include <string>
 
@@ -9,6 +11,7 @@
 #include "core/input_file.hpp"
 #include "file_bytes.hpp"
 #include "hba/core/error.hpp"
+#include "io/file_warnings.hpp"
 #include "pcd_format.hpp"
 #include "text_parsing.hpp"
 
@@ -147,7 +150,15 @@ PcdHeader validate(const RawHeader& raw, const fs::path& path) {
   }
   if (!raw.width && !raw.points) failAt(path, "the header has neither WIDTH nor POINTS");
   header.height = raw.height.value_or(1);
-  if (raw.width) {
+  if (raw.width == 0u && raw.height == 0u && raw.points.value_or(0) > 0) {
+    // Some writers leave the grid at 0 x 0 and count the points in POINTS
+    // alone; PCL reads such a file as one row of POINTS points, and so does hba.
+    warnOncePerFolder(path, "PCD grid 0 x 0",
+                      "the header says WIDTH 0 HEIGHT 0 but POINTS " + std::to_string(*raw.points) +
+                          ": read as one row of " + std::to_string(*raw.points) + " points, as PCL reads it");
+    header.width = *raw.points;
+    header.height = 1;
+  } else if (raw.width) {
     header.width = *raw.width;
   } else if (header.height == 0 || *raw.points % header.height != 0) {
     failAt(path, "POINTS is not a multiple of HEIGHT and WIDTH is missing");

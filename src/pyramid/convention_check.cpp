@@ -145,6 +145,13 @@ ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<
     stored += static_cast<double>(as_stored.size());
   }
   if (single <= 0.0) return check;
+  if (single < s.min_scan_voxels) {
+    check.cannot_tell = fmt::format(
+        "the scans hold too few points to tell: {:.1f} occupied {} m voxels a scan on average, at least {} "
+        "needed",
+        single, s.voxel, s.min_scan_voxels);
+    return check;
+  }
   const auto best_turn = std::min_element(turned.begin() + 1, turned.end());
   check.as_given = turned.front() / single;
   check.turned = *best_turn / single;

@@ -43,6 +43,9 @@ struct ConventionCheck {
   Mat3 turn = Mat3::Identity();  // its rotation T_body_sensor
   std::size_t stretches = 0;     // stretches with enough motion to tell; 0: nothing checked
   std::string message;           // what is wrong and which flag fixes it (empty when AsGiven)
+  // Why the stretches could not tell the conventions apart (scans of too few
+  // points), when they could not: the verdict is then AsGiven.
+  std::string cannot_tell;
 };
 
 struct ConventionSettings {
@@ -52,6 +55,10 @@ struct ConventionSettings {
   std::size_t stretch_scans = 8;  // scans merged per stretch
   std::size_t max_stretches = 4;
   double decisive_ratio = 0.7;  // another candidate needs at most this share of the voxels
+  // Scans occupying fewer voxels than this (on average) tell nothing: a scan
+  // of one point fills one voxel however it is moved, so scans merged without
+  // poses always look crisper than spread along the path.
+  double min_scan_voxels = 20.0;
 };
 
 // Reads at most max_stretches * stretch_scans scans. Throws what the source throws.

@@ -176,15 +176,48 @@ std::string yamlLine(const std::string& indent, const Setting& s, const SettingV
   return text + "  # " + comment + flagNote(s) + "\n";
 }
 
-}  // namespace
+// The line (1-based) where the document holding `node` starts: its '---'
+// marker after the line `after`, or the node's own line when there is none.
+int documentStartLine(const std::string& yaml_text, const YAML::Node& node, int after) {
+  const int node_line = node.Mark().line + 1;
+  int line = 1, marker = 0;
+  for (std::size_t start = 0; start < yaml_text.size() && line <= node_line; ++line) {
+    if (line > after && yaml_text.compare(start, 3, "---") == 0) marker = line;
+    const std::size_t end = yaml_text.find('\n', start);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return marker > 0 ? marker : node_line;
+}
 
-void applySettingsYaml(const std::string& yaml_text, const std::string& source, HbaSettings& settings) {
-  YAML::Node root;
+// A file of several YAML documents ('---' between them): yaml-cpp's Load
+// reads the first and drops the rest without a word, so settings after the
+// separator would silently not apply. Refused, naming where the second starts.
+YAML::Node onlyDocument(const std::string& yaml_text, const std::string& source) {
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(yaml_text);
+    documents = YAML::LoadAll(yaml_text);
   } catch (const YAML::Exception& e) {
     bad(source, "not valid YAML (" + std::string(e.what()) + ")");
   }
+  // Empty documents (a leading or a trailing '---') hold nothing to lose.
+  std::vector<YAML::Node> given;
+  for (const YAML::Node& document : documents) {
+    if (document && !document.IsNull()) given.push_back(document);
+  }
+  if (given.size() > 1) {
+    bad(source, "holds more than one YAML document: a second starts at line " +
+                    std::to_string(documentStartLine(yaml_text, given[1], given[0].Mark().line + 1)) +
+                    " ('---'); hba reads the settings from one document: put them together and remove the "
+                    "'---' between them");
+  }
+  return given.empty() ? YAML::Node() : given.front();
+}
+
+}  // namespace
+
+void applySettingsYaml(const std::string& yaml_text, const std::string& source, HbaSettings& settings) {
+  const YAML::Node root = onlyDocument(yaml_text, source);
   if (!root || root.IsNull()) return;  // an empty file changes nothing
   if (!root.IsMap()) bad(source, "expected a map of settings at the top level");
   try {

@@ -4,6 +4,7 @@
 // replaced only with --force, and bad input is refused with its name.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "test_support.hpp"
@@ -113,6 +114,33 @@ TEST_F(View, BadInputIsRefusedByName) {
   const test::CommandResult broken = view(quoted(*dir / "broken"));
   EXPECT_NE(broken.exit_code, 0);
   EXPECT_NE(broken.output.find("report.json: has no input.dataset"), std::string::npos) << broken.output;
+}
+
+// Issue 57 items 16 and 20: a report.json naming a moved dataset, or none,
+// said "dataset folder not found" without saying the path came from it.
+TEST_F(View, AReportNamingAMovedOrNoDatasetSaysSo) {
+  nlohmann::json report = nlohmann::json::parse(test::readText(*dir / "out" / "report.json"));
+  for (const std::string& dataset : {std::string("/nonexistent/moved-sim"), std::string()}) {
+    const fs::path out = *dir / (dataset.empty() ? "out-no-dataset" : "out-moved");
+    fs::create_directories(out);
+    fs::copy_file(*dir / "out" / "pose.json", out / "pose.json", fs::copy_options::overwrite_existing);
+    report["input"]["dataset"] = dataset;
+    test::writeText(out / "report.json", report.dump(2));
+    const std::string expected =
+        dataset.empty() ? (out / "report.json").string() + ": input.dataset is empty"
+                        : (out / "report.json").string() + ": names " + dataset +
+                              " as the run's input.dataset, which is not there (moved or deleted?)";
+    const test::CommandResult viewed = view(quoted(out));
+    EXPECT_EQ(viewed.exit_code, 1) << viewed.output;
+    EXPECT_NE(viewed.output.find(expected), std::string::npos) << viewed.output;
+    EXPECT_FALSE(fs::exists(out / "report.html"));
+    const test::CommandResult mapped =
+        test::runCommand(hba() + " -q optimize " + quoted(*dir / "sim") + " --map " + quoted(out) + " -o " +
+                         quoted(*dir / "never"));
+    EXPECT_EQ(mapped.exit_code, 1) << mapped.output;
+    EXPECT_NE(mapped.output.find(expected), std::string::npos) << mapped.output;
+    EXPECT_FALSE(fs::exists(*dir / "never"));
+  }
 }
 
 }  // namespace

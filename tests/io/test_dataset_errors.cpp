@@ -2,6 +2,8 @@
 // error, naming files and counts, for everything it refuses.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "hba/io/dataset.hpp"
 #include "test_dataset_support.hpp"
 
@@ -22,6 +24,28 @@ TEST(DatasetErrors, EmptyFolder) {
   test::TempDir dir;
   expectErrorMentioning([&] { Dataset::open(dir.path()); },
                         {dir.path().string(), "no scans found", "--scans"});
+}
+
+// Issue 57 item 20: a folder of .vtk scans got "no scan files" without
+// naming what is there.
+TEST(DatasetErrors, ScansOfAFormatHbaDoesNotReadAreNamed) {
+  test::TempDir dir;
+  fs::create_directories(dir / "scans");
+  char name[16];
+  for (int i = 0; i < 14; ++i) {
+    std::snprintf(name, sizeof name, "%06d.vtk", i);
+    writeText(dir / "scans" / name, "# vtk DataFile Version 3.0\n");
+  }
+  writeText(dir / "odom_poses.txt", kittiPoseLines(14));
+  expectErrorMentioning([&] { Dataset::open(dir.path()); },
+                        {"no scans found", "scans/ holds 14 .vtk files (000000.vtk ... 000013.vtk)",
+                         "the folder itself holds 1 .txt file (odom_poses.txt) and 1 folder", ".pcd"});
+  DatasetOverrides overrides;
+  overrides.scans_dir = dir / "scans";
+  expectErrorMentioning([&] { Dataset::open(dir.path(), overrides); },
+                        {(dir / "scans").string(),
+                         "no scan files in this folder: it holds 14 .vtk files (000000.vtk ... 000013.vtk); "
+                         "hba reads scans as .pcd"});
 }
 
 TEST(DatasetErrors, ScansWithoutTrajectory) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "hba/io/pcd.hpp"
+#include "test_log_capture.hpp"
 #include "test_scan_helpers.hpp"
 
 namespace hba::io {
@@ -138,6 +139,38 @@ TEST(PcdVariants, EmptyCloudReadsAsEmpty) {
                     std::string(data) + "\n");
     EXPECT_TRUE(cloud.empty());
   }
+}
+
+// Issue 57 item 17: keyframes written with WIDTH 0 HEIGHT 0 and the count in
+// POINTS alone (the data exactly POINTS records) were refused as
+// inconsistent. Read as PCL reads them, one row, with one warning a folder.
+TEST(PcdVariants, ZeroByZeroGridWithPointsIsOneRowWarnedOncePerFolder) {
+  const test::LogCapture log;
+  test::TempDir dir;
+  const std::string header =
+      "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\n"
+      "TYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 0\nHEIGHT 0\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA binary\n";
+  std::string data;
+  for (int i = 0; i < 3; ++i) {
+    for (const float value : {1.0f + static_cast<float>(i), 2.0f, 3.0f, 7.0f}) append(data, value);
+  }
+  for (int k = 0; k < 4; ++k)
+    test::writeText(dir / ("keyframe_" + std::to_string(k) + ".pcd"), header + data);
+  for (int k = 0; k < 4; ++k) {
+    const PointCloud cloud = readPcd(dir / ("keyframe_" + std::to_string(k) + ".pcd"));
+    ASSERT_EQ(cloud.size(), 3u);
+    EXPECT_EQ(cloud.points[2], Vec3f(3.0f, 2.0f, 3.0f));
+    EXPECT_EQ(readPcdHeader(dir / ("keyframe_" + std::to_string(k) + ".pcd")).points, 3u);
+  }
+  const std::string text = log.text();
+  const std::string warning = "WIDTH 0 HEIGHT 0 but POINTS 3: read as one row of 3 points, as PCL reads it";
+  EXPECT_NE(text.find((dir / "keyframe_0.pcd").string() + ": the header says " + warning), std::string::npos)
+      << text;
+  EXPECT_EQ(text.find(warning), text.rfind(warning)) << "once per folder:\n" << text;
+
+  // Its data is still checked against POINTS.
+  test::writeText(dir / "short.pcd", header + data.substr(0, 40));
+  EXPECT_THROW(readPcd(dir / "short.pcd"), Error);
 }
 
 }  // namespace

@@ -130,5 +130,27 @@ TEST_F(MapCli, MapAndSessionsOrPriorsTogetherAreRefused) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// Issue 57 item 20: `optimize A A` and `--fixed A` on A itself ran without a word.
+TEST_F(MapCli, OneSessionGivenTwiceIsRefused) {
+  test::TempDir dir;
+  const std::string session = data("session-1").string();
+  fs::create_directory_symlink(data("session-1"), dir / "link");
+  for (const std::string& second : {session, (dir / "link").string()}) {
+    const test::CommandResult twice = test::runCommand(hba() + " optimize " + session + " " + second +
+                                                       " -o " + (dir / "out").string() + " 2>&1");
+    EXPECT_EQ(twice.exit_code, 2) << twice.output;
+    EXPECT_NE(twice.output.find(second + ": this session is given twice (sessions 0 and 1"),
+              std::string::npos)
+        << twice.output;
+    const test::CommandResult fixed = test::runCommand(hba() + " optimize " + session + " --fixed " + second +
+                                                       " -o " + (dir / "out").string() + " 2>&1");
+    EXPECT_EQ(fixed.exit_code, 2) << fixed.output;
+    EXPECT_NE(fixed.output.find("--fixed " + second + " is the session being optimized (" + session + ")"),
+              std::string::npos)
+        << fixed.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 }  // namespace
 }  // namespace hba

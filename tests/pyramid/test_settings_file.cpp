@@ -52,6 +52,25 @@ void expectErrorMentions(const std::string& yaml, const std::string& needle) {
   }
 }
 
+// Issue 57 item 12: a second YAML document was dropped without a word.
+TEST(SettingsFile, ASecondYamlDocumentIsRefusedNamingItsLine) {
+  expectErrorMentions("window: 12\n---\nstride: 4\n", "a second starts at line 2 ('---')");
+  expectErrorMentions("---\nwindow: 12\n---\n# the second run\nstride: 4\n", "line 3");
+  expectErrorMentions("---\n---\nwindow: 12\n--- {stride: 4}\n", "line 4");
+  try {
+    HbaSettings s;
+    applySettingsYaml("window: 12\n---\nstride: 4\n", "two.yaml", s);
+    FAIL() << "expected a refusal";
+  } catch (const ValueError&) {  // the caller's to fix: the tool exits 2
+  }
+  // One document, with its markers or an empty one after it, is read as before.
+  HbaSettings s;
+  applySettingsYaml("---\nwindow: 12\n...\n", "one.yaml", s);
+  EXPECT_EQ(s.window, 12);
+  applySettingsYaml("window: 14\n---\n", "trailing.yaml", s);
+  EXPECT_EQ(s.window, 14);
+}
+
 TEST(SettingsFile, BadInputIsAClearError) {
   expectErrorMentions("windw: 10\n", "unknown setting 'windw'");
   expectErrorMentions("local:\n  voxel: 1\n", "unknown setting 'local.voxel'");

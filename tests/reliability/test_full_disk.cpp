@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/mount.h>
 
-#include <cstdio>
+#include <fstream>
 #include <vector>
 
 #include "cli_runs.hpp"
@@ -57,14 +57,13 @@ void expectNothingLeft(const fs::path& folder, const std::string& keep = "") {
   }
 }
 
-// Fills what space is left on the disk with one file.
-void fillDisk(const fs::path& filler) {
-  std::FILE* file = std::fopen(filler.c_str(), "wb");
-  ASSERT_NE(file, nullptr);
-  const std::vector<char> block(4096, 0);
-  while (std::fwrite(block.data(), 1, block.size(), file) == block.size() && std::fflush(file) == 0) {
+// Writes a file on the disk until no byte more fits.
+void fillDisk(const fs::path& disk) {
+  std::ofstream filler(disk / "filler", std::ios::binary);
+  const std::string block(4096, 'x');
+  for (int i = 0; i < 1024 && filler.write(block.data(), static_cast<std::streamsize>(block.size())); ++i) {
+    filler.flush();
   }
-  std::fclose(file);
 }
 
 class FullDisk : public testing::Test {
@@ -105,13 +104,34 @@ TEST_F(FullDisk, AFolderOutputOnAFullDiskLeavesNoStagingBehind) {
 // The very first write (the staging folder's marker) fails: the folder made
 // for it goes too.
 TEST_F(FullDisk, AnAlreadyFullDiskLeavesNoStagingBehind) {
-  fillDisk(disk_.path() / "filler");
+  fillDisk(disk_.path());
   for (const std::string& command : std::vector<std::string>{
            "simulate --frames 4", "extract " + quoted(tmp_ / "data"), "optimize " + quoted(tmp_ / "data")}) {
     SCOPED_TRACE(command);
     const test::CommandResult run = test::runHba(command + " -o " + quoted(disk_.path() / "out"));
     expectDiskFullMessage(run);
     expectNothingLeft(disk_.path(), "filler");
+  }
+}
+
+// Issue 57 item 8: `info` logs only debug lines, which sat in the log's
+// buffer until exit, where the failed write was noticed by no one: exit 0
+// with an empty log. Now every command fails, naming the log file.
+TEST_F(FullDisk, ALogFileOnAFullDiskFailsEveryCommand) {
+  fillDisk(disk_.path());
+  const fs::path log = disk_.path() / "log.txt";
+  const fs::path data = tmp_ / "data";
+  for (const std::string& command :
+       {"info " + quoted(data), "info --json " + quoted(data), "mme " + quoted(data),
+        "map " + quoted(data) + " -o " + quoted(tmp_ / "map.pcd"),
+        "eval --gt " + quoted(data / "pose.json") + " --est " + quoted(data / "pose.json")}) {
+    const test::CommandResult run = test::runHba("--log-file " + quoted(log) + " " + command);
+    EXPECT_EQ(run.exit_code, 1) << command << "\n" << run.output;
+    EXPECT_NE(run.output.find(log.string() + ": --log-file: cannot write the log: no space left on device "
+                                             "(disk full)"),
+              std::string::npos)
+        << command << "\n"
+        << run.output;
   }
 }
 
