@@ -55,7 +55,8 @@ double mme(const py::object& scans, const py::handle& poses, double voxel, doubl
     throw Error("mme: voxel must be >= 0 (m; 0 = keep every point), got " + numberText(voxel));
   if (!(radius > 0)) throw Error("mme: radius must be > 0 (m), got " + numberText(radius));
   if (min_neighbors < 0) throw Error("mme: min_neighbors must be >= 0, got " + std::to_string(min_neighbors));
-  const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans);
+  // World points far out (UTM) keep their precision, as `hba mme --map` keeps a float64 file's.
+  const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans, FarPoints::KeepOrigin);
   const std::vector<Pose> world_poses = posesFromArray(poses, "poses");
   eval::MapSettings map_settings;
   map_settings.voxel = voxel;

@@ -129,21 +129,29 @@ py::array_t<double> arrayFromWideCloud(const io::WideCloud& cloud) {
   return array;
 }
 
-PointCloud cloudFromArray(const py::handle& array, const std::string& what) {
+PointCloud cloudFromArray(const py::handle& array, const std::string& what, FarPoints far) {
   const py::array numbers = numericArray(array, what);
   requirePointShape(numbers, what);
-  const auto points = DenseArray<float>::ensure(numbers);
-  if (!points) throw Error(what + ": cannot be read as float32 numbers");
+  const auto points = DenseArray<double>::ensure(numbers);
+  if (!points) throw Error(what + ": cannot be read as float64 numbers");
   const auto n = static_cast<std::size_t>(points.shape(0));
   const bool with_intensity = points.shape(1) == 4;
   const auto view = points.unchecked<2>();
+  const auto point = [&](std::size_t i) {
+    const auto row = static_cast<py::ssize_t>(i);
+    return Vec3(view(row, 0), view(row, 1), view(row, 2));
+  };
   PointCloud cloud;
+  if (far == FarPoints::KeepOrigin) {
+    std::vector<Vec3> wide(n);
+    for (std::size_t i = 0; i < n; ++i) wide[i] = point(i);
+    cloud.origin = io::farCloudOrigin(wide);
+  }
   cloud.reserve(n, with_intensity);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto row = static_cast<py::ssize_t>(i);
-    const Vec3f p(view(row, 0), view(row, 1), view(row, 2));
+    const Vec3f p = (point(i) - cloud.origin).cast<float>();
     if (with_intensity) {
-      cloud.add(p, view(row, 3));
+      cloud.add(p, static_cast<float>(view(static_cast<py::ssize_t>(i), 3)));
     } else {
       cloud.add(p);
     }
@@ -208,7 +216,7 @@ py::array_t<double> arrayFromPoses(const std::vector<Pose>& poses) {
   return array;
 }
 
-std::unique_ptr<io::ScanSource> scanSourceFrom(const py::handle& scans) {
+std::unique_ptr<io::ScanSource> scanSourceFrom(const py::handle& scans, FarPoints far) {
   if (py::isinstance<io::Dataset>(scans)) {
     return std::make_unique<io::DatasetScanSource>(scans.cast<const io::Dataset&>());
   }
@@ -223,7 +231,7 @@ std::unique_ptr<io::ScanSource> scanSourceFrom(const py::handle& scans) {
   const auto sequence = py::reinterpret_borrow<py::sequence>(scans);
   clouds.reserve(sequence.size());
   for (std::size_t i = 0; i < sequence.size(); ++i) {
-    clouds.push_back(cloudFromArray(sequence[i], "scans[" + std::to_string(i) + "]"));
+    clouds.push_back(cloudFromArray(sequence[i], "scans[" + std::to_string(i) + "]", far));
   }
   return std::make_unique<io::MemoryScanSource>(std::move(clouds));
 }

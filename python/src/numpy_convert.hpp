@@ -20,8 +20,22 @@ namespace hba::python {
 template <typename T>
 using DenseArray = pybind11::array_t<T, pybind11::array::c_style | pybind11::array::forcecast>;
 
-// An (N, 3) array (x y z) or (N, 4) array (x y z intensity), any real dtype.
-PointCloud cloudFromArray(const pybind11::handle& array, const std::string& what);
+// What becomes of points far from the world origin (their median more than
+// 10 km out: world points in UTM or ECEF), where floats are decimetres apart.
+enum class FarPoints {
+  // Kept to a float step of the cloud's extent, relative to an origin
+  // (PointCloud::origin, io::farCloudOrigin), as the float64 readers keep a
+  // map: for calls that merge points into the world (hba.mme).
+  KeepOrigin,
+  // Rounded to floats, as Dataset::loadScan gives a dataset's scans: for
+  // scans in their sensor frame (hba.optimize), which lie near it.
+  Narrow,
+};
+
+// An (N, 3) array (x y z) or (N, 4) array (x y z intensity), any real dtype,
+// read in float64.
+PointCloud cloudFromArray(const pybind11::handle& array, const std::string& what,
+                          FarPoints far = FarPoints::Narrow);
 // (N, 4) float32 with intensity, (N, 3) without.
 pybind11::array_t<float> arrayFromCloud(const PointCloud& cloud);
 
@@ -43,7 +57,9 @@ Pose poseFromMatrix(const pybind11::handle& matrix, const std::string& what);
 
 // Where hba reads the scans of `scans` from: an hba.Dataset is read from
 // disk as needed (it must outlive the source: the caller's argument keeps it
-// alive); a sequence of arrays is copied into memory. Needs the GIL.
-std::unique_ptr<io::ScanSource> scanSourceFrom(const pybind11::handle& scans);
+// alive); a sequence of arrays is copied into memory (far points as `far`
+// says). Needs the GIL.
+std::unique_ptr<io::ScanSource> scanSourceFrom(const pybind11::handle& scans,
+                                               FarPoints far = FarPoints::Narrow);
 
 }  // namespace hba::python

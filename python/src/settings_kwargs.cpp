@@ -59,9 +59,11 @@ long long integerValue(const py::handle& value, const std::string& name) {
 int threadCount(const py::handle& value) {
   std::optional<long long> number;
   if (!py::isinstance<py::bool_>(value) && PyIndex_Check(value.ptr())) number = asLongLong(value);
-  if (!number || *number < 0 || *number > std::numeric_limits<int>::max()) {
-    throw Error(std::string(kSource) + ": threads must be an integer >= 0 (0 = as many as allowed), got " +
-                reprOf(value));
+  // hba -j's limit.
+  if (!number || *number < 0 || *number > pyramid::kMostThreads) {
+    throw Error(std::string(kSource) +
+                ": threads must be an integer >= 0 (0 = as many as allowed) and at most " +
+                std::to_string(pyramid::kMostThreads) + " (as hba -j), got " + reprOf(value));
   }
   return static_cast<int>(*number);
 }

@@ -1,12 +1,13 @@
 """hba.ate and hba.mme: zero for the truth, worse for drifted poses."""
 import os
+import subprocess
 import tempfile
 import unittest
 
 import numpy as np
 
 import hba
-from support import main, scan_paths, simulate
+from support import HBA_CLI, main, scan_paths, simulate
 
 
 def moved(poses, rotation_angle, translation):
@@ -59,6 +60,40 @@ class Evaluation(unittest.TestCase):
         drifted = hba.mme(self.scans, self.drifted)
         self.assertTrue(np.isfinite(truth))
         self.assertLess(truth, drifted)
+
+    def world_points(self):
+        """The scans moved into the world by the truth: float64, as a georeferenced map holds them."""
+        return [scan[:, :3] @ pose[:3, :3].T + pose[:3, 3] for scan, pose in zip(self.scans, self.gt)]
+
+    def test_mme_of_world_points_is_the_same_at_every_offset(self):
+        """Issue 57: world points were rounded to float32 (-3.653 at 0, -3.474 at 5e5 m, undefined at 5e6 m)."""
+        world = self.world_points()
+        identity = np.repeat(np.eye(4)[None], len(world), axis=0)
+        at_origin = hba.mme(world, identity)
+        for offset in (1e5, 5e5, 5e6):
+            shift = np.array([offset, offset, 0.0])
+            with self.subTest(offset=offset):
+                self.assertAlmostEqual(hba.mme([points + shift for points in world], identity), at_origin,
+                                       delta=1e-3)
+                # One cloud, as a map: the same figure.
+                self.assertAlmostEqual(hba.mme([np.vstack(world) + shift], identity[:1]), at_origin,
+                                       delta=1e-3)
+
+    def test_mme_of_far_world_points_matches_hba_mme(self):
+        """The same float64 map far out (UTM): hba.mme and `hba mme --map` agree."""
+        cloud = np.vstack(self.world_points()) + np.array([4.5e5, 5.4e6, 120.0])
+        path = os.path.join(self.tmp.name, "utm_map.pcd")
+        hba.write_scan(path, cloud)
+        printed = subprocess.run([HBA_CLI, "-q", "mme", "--map", path], check=True, capture_output=True,
+                                 text=True).stdout
+        cli = float(next(line.split()[1] for line in printed.splitlines() if line.startswith("MME")))
+        self.assertAlmostEqual(hba.mme([cloud], np.eye(4)[None]), cli, delta=1e-3)
+
+    def test_far_poses_of_sensor_frame_scans_keep_the_figure(self):
+        """Scans in their sensor frame with poses in UTM: the map is kept near its first pose."""
+        shifted = self.gt.copy()
+        shifted[:, :3, 3] += [5e6, 5e6, 0.0]
+        self.assertAlmostEqual(hba.mme(self.scans, shifted), hba.mme(self.scans, self.gt), delta=1e-3)
 
     def test_mme_needs_a_pose_per_scan(self):
         with self.assertRaises(hba.Error):

@@ -73,6 +73,16 @@ class SettingsKwargs(unittest.TestCase):
         with self.assertRaisesRegex(hba.Error, "threads must be an integer >= 0.*got True"):
             hba.settings(threads=True)
 
+    def test_threads_have_the_limit_of_hba_j(self):
+        """hba -j 100000 is refused (at most 4096): so is threads=100000, before any work."""
+        self.assertEqual(hba.settings(threads=4096)["threads"], 4096)
+        for value in (4097, 100000, 2**31 - 1):
+            with self.subTest(threads=value), \
+                    self.assertRaisesRegex(hba.Error, f"threads must be .*at most 4096 .*got {value}"):
+                hba.settings(threads=value)
+        with self.assertRaisesRegex(ValueError, "at most 4096"):
+            hba.optimize(*NO_SCANS, threads=100000)
+
     def test_strings_are_not_numbers(self):
         """YAML would read the text "10" as 10: a string is refused where a number or bool is due."""
         with self.assertRaisesRegex(hba.Error, r"setting 'window' is the string '10', not a number; it takes"):

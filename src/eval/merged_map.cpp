@@ -1,6 +1,7 @@
 #include "hba/eval/merged_map.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "core/progress.hpp"
 #include "hba/core/error.hpp"
@@ -82,13 +83,16 @@ PointCloud buildMergedMap(const io::ScanSource& scans, const std::vector<Pose>& 
     throw Error("there are " + std::to_string(scans.size()) + " scans but " + std::to_string(poses.size()) +
                 " poses were given");
   }
-  // Relative to the first pose when it is far out (UTM): float coordinates
-  // would lose centimetres there, and the writers then store float64.
-  const bool far = !poses.empty() && poses.front().t.cwiseAbs().maxCoeff() > 1e4;
-  VoxelMerger merger(settings, far ? poses.front().t : Vec3::Zero());
+  // Relative to where the first scan lies when that is far out (UTM: its
+  // pose, or the origin of world points given with identity poses): float
+  // coordinates would lose centimetres there, and the writers then store float64.
+  PointCloud first = scans.size() > 0 ? scans.load(0) : PointCloud{};
+  const Vec3 first_place = poses.empty() ? Vec3::Zero() : Vec3(poses.front() * first.origin);
+  const bool far = first_place.cwiseAbs().maxCoeff() > 1e4;
+  VoxelMerger merger(settings, far ? first_place : Vec3::Zero());
   Progress progress("merging the map", scans.size(), "scans");
   for (std::size_t i = 0; i < scans.size(); ++i) {
-    merger.add(scans.load(i), poses[i], static_cast<std::uint32_t>(i));
+    merger.add(i == 0 ? std::move(first) : scans.load(i), poses[i], static_cast<std::uint32_t>(i));
     // The output cloud is still to come: a point and an intensity a voxel.
     if (settings.budget.exceeded(merger.voxelCount() * (sizeof(Vec3f) + sizeof(float)))) {
       throw settings.budget.exceededBy("the merged map (" + std::to_string(merger.voxelCount()) +

@@ -2,6 +2,8 @@
 // records every choice it made. Reads no scan.
 #include "hba/io/dataset.hpp"
 
+#include <fmt/format.h>
+
 #include <exception>
 
 #include "core/input_file.hpp"
@@ -294,8 +296,18 @@ PointCloud Dataset::loadScan(std::size_t i) const {
     PointCloud scan = recording_ ? recording_->loadScan(i) : readScan(path);
     if (point_times_ && scan.hasTime()) {
       const std::string what = recording_ ? path.string() + ": scan " + std::to_string(i) : path.string();
-      deskew(
+      const StrayTimes stray = deskew(
           scan, *point_times_, trajectory_.stamps.at(i), [this](double t) { return sensorPoseAt(t); }, what);
+      if (stray.count > 0) {
+        // Named once a file: a recording's later scans with strays go unnamed.
+        warnAboutFile(
+            path, "point times far from the scan's stamp",
+            fmt::format("{}{} of {} points have times more than {:g} s from the scan's stamp (the "
+                        "farthest {:.3g} s, read as {}): left out, their instant unknown{}",
+                        recording_ ? "scan " + std::to_string(i) + ": " : "", stray.count,
+                        scan.size() + stray.count, kFarthestTime, stray.farthest, point_times_->describe(),
+                        recording_ ? " (later scans with such points are not named)" : ""));
+      }
     }
     scan.time.clear();
     scan.time.shrink_to_fit();

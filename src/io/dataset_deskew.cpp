@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <iterator>
+#include <optional>
+#include <utility>
 
 #include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
@@ -14,6 +16,38 @@ namespace {
 // Poses further apart than this (s) cannot follow the motion within a sweep
 // (0.1 s) well enough for --deskew auto: 4 Hz and denser odometry can.
 constexpr double kSparsestMotion = 0.25;
+// Scans whose point times decide their unit: the first, the last and evenly
+// between, so that neither a first partial sweep nor one odd scan decides.
+constexpr std::size_t kSampledScans = 7;
+
+std::vector<std::size_t> sampledScans(std::size_t count) {
+  std::vector<std::size_t> picks;
+  const std::size_t n = std::min(count, kSampledScans);
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = n == 1 ? 0 : k * (count - 1) / (n - 1);
+    if (picks.empty() || picks.back() != i) picks.push_back(i);
+  }
+  return picks;
+}
+
+// "scans 0, 12 and 24"
+std::string scanList(const std::vector<std::size_t>& scans) {
+  std::string text = scans.size() == 1 ? "scan " : "scans ";
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    text += (k == 0 ? "" : k + 1 == scans.size() ? " and " : ", ") + std::to_string(scans[k]);
+  }
+  return text;
+}
+
+// The sampled scans that read their point times one way.
+struct TimeReadingVote {
+  PointTimeReading reading;
+  std::vector<std::size_t> scans;
+};
+
+bool sameReading(const PointTimeReading& a, const PointTimeReading& b) {
+  return a.scale == b.scale && a.absolute == b.absolute;
+}
 
 double medianGap(const std::vector<double>& stamps) {
   std::vector<double> gaps;
@@ -58,16 +92,25 @@ void Dataset::prepareDeskew(DeskewMode mode) {
     notes_.push_back({DatasetNote::Level::Warning, "the scans carry point times but are left as recorded: " +
                                                        why + " (--deskew on to insist, off to silence)"});
   };
-  PointCloud first;
-  try {
-    first = recording_ ? recording_->loadScan(0) : readScan(scan_paths_.at(0));
-  } catch (const Error&) {
-    if (asked) throw;
-    return;  // a scan that cannot be read is reported when it is loaded
-  }
-  if (!first.hasTime()) {
+  // Scan i as stored, or nothing when it cannot be read (under auto: it is
+  // reported when it is loaded).
+  const auto loadRaw = [&](std::size_t i) -> std::optional<PointCloud> {
+    try {
+      return recording_ ? recording_->loadScan(i) : readScan(scan_paths_.at(i));
+    } catch (const Error&) {
+      if (asked) throw;
+      return std::nullopt;
+    }
+  };
+  const std::vector<std::size_t> sampled = sampledScans(size());
+  // Whether the scans carry times at all: the first sampled scan that reads.
+  std::size_t next = 0;
+  std::optional<PointCloud> first;
+  while (!first && next < sampled.size()) first = loadRaw(sampled[next++]);
+  if (!first) return;
+  if (!first->hasTime()) {
     if (asked) {
-      failAt(scanPath(0),
+      failAt(scanPath(sampled[next - 1]),
              "--deskew on, but the scan has no per-point time (a field named " + timeFieldNames() + ")");
     }
     return;
@@ -85,15 +128,65 @@ void Dataset::prepareDeskew(DeskewMode mode) {
                     gap));
   }
   const double clock_offset = recording_ ? recording_->timeOffset() : 0.0;
-  std::optional<PointTimeReading> reading = readPointTimes(first.time, trajectory_.stamps[0] - clock_offset);
-  if (!reading) return cannot("the first scan's point times are all equal or fit no unit (s, ms, us, ns)");
-  reading->clock_offset = clock_offset;
+  // The unit the sampled scans agree on; the scans without times or whose
+  // times do not spread tell nothing.
+  std::vector<TimeReadingVote> votes;
+  std::vector<std::size_t> untimed, unread;
+  for (std::size_t k = next - 1; k < sampled.size(); ++k) {
+    const std::size_t i = sampled[k];
+    std::optional<PointCloud> read = k + 1 == next ? std::move(first) : loadRaw(i);
+    if (!read) continue;
+    const PointCloud& scan = *read;
+    if (!scan.hasTime()) {
+      untimed.push_back(i);
+      continue;
+    }
+    const std::optional<PointTimeReading> reading =
+        readPointTimes(scan.time, trajectory_.stamps[i] - clock_offset);
+    if (!reading) {
+      unread.push_back(i);
+      continue;
+    }
+    const auto same = std::find_if(votes.begin(), votes.end(), [&](const TimeReadingVote& v) {
+      return sameReading(v.reading, *reading);
+    });
+    if (same == votes.end()) {
+      votes.push_back({*reading, {i}});
+    } else {
+      same->scans.push_back(i);
+    }
+  }
+  if (votes.empty()) {
+    return cannot("the point times of " + scanList(unread) + " are all equal or fit no unit (s, ms, us, ns)");
+  }
+  std::stable_sort(votes.begin(), votes.end(), [](const TimeReadingVote& a, const TimeReadingVote& b) {
+    return a.scans.size() > b.scans.size();
+  });
+  if (votes.size() > 1 && votes[1].scans.size() == votes[0].scans.size()) {
+    return cannot(
+        fmt::format("the point times of {} read as {}, those of {} as {}: no unit most scans agree on",
+                    scanList(votes[0].scans), votes[0].reading.describe(), scanList(votes[1].scans),
+                    votes[1].reading.describe()));
+  }
+  PointTimeReading reading = votes[0].reading;
+  reading.clock_offset = clock_offset;
   point_times_ = reading;
   notes_.push_back({DatasetNote::Level::Info,
                     fmt::format("raw sweeps: each deskewed to its stamp by the motion of {} (poses {:.3f} s "
-                                "apart); point times read as {}",
+                                "apart); point times read as {} (as in {} of {} scans sampled)",
                                 recording_ ? recording_->poseTopic() : std::string("the scans' poses"), gap,
-                                reading->describe())});
+                                reading.describe(), votes[0].scans.size(), sampled.size())});
+  for (std::size_t k = 1; k < votes.size(); ++k) {
+    notes_.push_back(
+        {DatasetNote::Level::Warning,
+         fmt::format("the point times of {} would read as {} on their own; read as {}, as most "
+                     "scans' are (a partial sweep, or times in another unit)",
+                     scanList(votes[k].scans), votes[k].reading.describe(), reading.describe())});
+  }
+  if (!untimed.empty()) {
+    notes_.push_back({DatasetNote::Level::Warning,
+                      scanList(untimed) + " carry no point time: such scans are left as recorded"});
+  }
 }
 
 }  // namespace hba::io

@@ -125,19 +125,7 @@ void PointCollector<PointCloud>::add(const double (&values)[4], double time) {
 
 void PointCollector<PointCloud>::finish() {
   if (wide_points_.empty()) return;
-  constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
-  constexpr double kOnEarth = 1.0e8;  // m; beyond that stray values, not a place
-  if (cloud_.empty() && cloud_.origin.isZero()) {
-    Vec3 median;
-    std::vector<double> axis(wide_points_.size());
-    for (int a = 0; a < 3; ++a) {
-      for (std::size_t i = 0; i < wide_points_.size(); ++i) axis[i] = wide_points_[i][a];
-      std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(axis.size() / 2), axis.end());
-      median[a] = axis[axis.size() / 2];
-    }
-    const double distance = median.cwiseAbs().maxCoeff();
-    if (distance > kFar && distance < kOnEarth) cloud_.origin = median.array().round().matrix();
-  }
+  if (cloud_.empty() && cloud_.origin.isZero()) cloud_.origin = farCloudOrigin(wide_points_);
   cloud_.reserve(cloud_.size() + wide_points_.size(), with_intensity_);
   for (std::size_t i = 0; i < wide_points_.size(); ++i) {
     const Vec3f relative = (wide_points_[i] - cloud_.origin).cast<float>();
@@ -187,3 +175,26 @@ void appendFinitePoints(const PointColumns& columns, std::size_t count, WideClou
 }
 
 }  // namespace hba::io::detail
+
+namespace hba::io {
+
+Vec3 farCloudOrigin(const std::vector<Vec3>& points) {
+  constexpr double kFar = 1.0e4;      // m; floats are 1 mm apart there
+  constexpr double kOnEarth = 1.0e8;  // m; beyond that stray values, not a place
+  Vec3 median;
+  std::vector<double> axis;
+  axis.reserve(points.size());
+  for (int a = 0; a < 3; ++a) {
+    axis.clear();
+    for (const Vec3& p : points) {
+      if (p.allFinite()) axis.push_back(p[a]);
+    }
+    if (axis.empty()) return Vec3::Zero();
+    std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(axis.size() / 2), axis.end());
+    median[a] = axis[axis.size() / 2];
+  }
+  const double distance = median.cwiseAbs().maxCoeff();
+  return distance > kFar && distance < kOnEarth ? Vec3(median.array().round().matrix()) : Vec3::Zero();
+}
+
+}  // namespace hba::io

@@ -62,7 +62,10 @@ void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, con
                   std::to_string(initial.size()));
     }
   }
-  if (s.threads < 0) throw Error("thread count must be >= 0 (0 = as many as allowed)");
+  if (s.threads < 0 || s.threads > kMostThreads) {
+    throw Error("thread count must be from 0 (as many as allowed) to " + std::to_string(kMostThreads) +
+                ", got " + std::to_string(s.threads));
+  }
   checkSettings(s);  // the ranges of the setting table
 }
 

@@ -270,5 +270,21 @@ TEST(HierarchicalBa, RejectsMismatchedInput) {
   EXPECT_THROW(runHierarchicalBa(empty, {}, HbaSettings()), Error);
 }
 
+// hba -j refuses more than kMostThreads: the library (and so hba.optimize) too.
+TEST(HierarchicalBa, RefusesMoreThreadsThanHbaJTakes) {
+  const io::MemoryScanSource source(std::vector<PointCloud>(3));
+  HbaSettings settings;
+  settings.threads = kMostThreads + 1;
+  try {
+    runHierarchicalBa(source, std::vector<Pose>(3), settings);
+    ADD_FAILURE() << "expected an hba::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("thread count must be from 0 (as many as allowed) to 4096, got 4097"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace hba::pyramid

@@ -73,8 +73,9 @@ class VoxelMerger {
 };
 
 // Streams every scan of `scans` through a VoxelMerger with `poses` (one per
-// scan). When the first pose is more than 10 km out, the map's points are
-// relative to its position (the map's `origin`). When `first_scans` is
+// scan). When the first scan lies more than 10 km out (its pose's position,
+// or its own origin moved by that pose: world points in UTM), the map's
+// points are relative to that place (the map's `origin`). When `first_scans` is
 // given, it receives each map point's first scan index (the LAS writer
 // stores it whatever --color says). Throws hba::Error, and MemoryExceeded
 // when the map outgrows settings.budget.

@@ -19,8 +19,8 @@
 // scans saved in the world frame). docs/io_datasets.md describes every rule.
 //
 // Opening reads only directory listings, the trajectory and the first scan
-// (do the sweeps carry point times to deskew them by?): scans are loaded
-// lazily by index.
+// (do the sweeps carry point times to deskew them by?), and when they do up
+// to six more along the run (in which unit?): scans are loaded lazily by index.
 #include <cstddef>
 #include <filesystem>
 #include <memory>

@@ -32,6 +32,14 @@ struct WideCloud {
   }
 };
 
+// The origin a cloud of these points keeps its float precision by (its
+// PointCloud::origin, points stored relative to it): the per-axis median of
+// the finite points, in whole metres, when it lies more than 10 km out (a map
+// in UTM or ECEF), where floats would round to decimetres; zero nearer, or
+// beyond 1e8 m (stray values, not a place). The float64 readers choose a
+// file's origin so; neither a stray point nor (0,0,0) placeholders decide it.
+Vec3 farCloudOrigin(const std::vector<Vec3>& points);
+
 // The formats and checks of readScan, each coordinate as the file stores it:
 // float64 fields and LAS's scaled integers exactly, float32 ones widened.
 // NaN/Inf points are dropped. Throws hba::Error.

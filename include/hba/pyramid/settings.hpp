@@ -14,6 +14,10 @@
 
 namespace hba::pyramid {
 
+// More worker threads than this is no machine hba runs on: the limit of
+// hba -j, hba.optimize(threads=) and HbaSettings::threads.
+inline constexpr int kMostThreads = 4096;
+
 // How the top-down stage turns the pyramid into layer-1 poses.
 enum class TopDownMode {
   PoseGraph,     // the paper's method: a pose graph over all layer-1 poses
@@ -95,7 +99,7 @@ struct HbaSettings {
   // included; 0 = as many as the process allows (hba -j, a
   // tbb::global_control, or the machine's cores). Results are identical run
   // to run for a given count. Not a setting of the table: the command line's
-  // -j sets it.
+  // -j sets it. At most kMostThreads.
   int threads = 0;
 
   // Bottom-up + top-down rounds at most; they stop before when a round
