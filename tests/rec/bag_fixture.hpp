@@ -10,9 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/error.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/pcd.hpp"
+#include "hba/rec/recording.hpp"
 #include "test_support.hpp"
 
 namespace hba::test {
@@ -98,6 +100,18 @@ inline int writeDb3(const std::filesystem::path& folder, const std::filesystem::
 
 inline double angleBetween(const Pose& a, const Pose& b) {
   return Eigen::AngleAxisd(a.q.inverse() * b.q).angle();
+}
+
+// The message of the hba::Error that opening `path` and reading every scan
+// throws ("" if none).
+inline std::string openError(const std::filesystem::path& path, const rec::RecordingOptions& options = {}) {
+  try {
+    const rec::Recording recording = rec::Recording::open(path, options);
+    for (std::size_t i = 0; i < recording.size(); ++i) recording.loadScan(i);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace hba::test

@@ -23,17 +23,7 @@ namespace fs = std::filesystem;
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 
-// The message of the hba::Error opening `path` (and reading every scan)
-// throws, "" if none.
-std::string openError(const fs::path& path, const RecordingOptions& options = {}) {
-  try {
-    const Recording recording = Recording::open(path, options);
-    for (std::size_t i = 0; i < recording.size(); ++i) recording.loadScan(i);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::openError;
 
 std::string datasetError(const fs::path& path, const io::DatasetOverrides& overrides = {}) {
   try {

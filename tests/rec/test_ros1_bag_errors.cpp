@@ -12,16 +12,7 @@
 namespace hba::rec {
 namespace {
 
-// The message of the hba::Error that opening `path` throws ("" if none).
-std::string openError(const std::filesystem::path& path, const RecordingOptions& options = {}) {
-  try {
-    const Recording recording = Recording::open(path, options);
-    for (std::size_t i = 0; i < recording.size(); ++i) recording.loadScan(i);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::openError;
 
 void replaceAll(std::string& text, const std::string& from, const std::string& to) {
   for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {

@@ -1,15 +1,23 @@
 #include "cli_runs.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+
+extern char** environ;
 
 namespace hba::test {
 namespace fs = std::filesystem;
@@ -26,6 +34,35 @@ int countNulls(const nlohmann::json& value) {
 }
 
 }  // namespace
+
+CommandResult runAndSignal(const std::vector<std::string>& arguments, int signal,
+                           std::chrono::milliseconds delay, const fs::path& log) {
+  std::vector<std::string> words = {cliPath().string(), "-q"};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& word : words) argv.push_back(word.data());
+  argv.push_back(nullptr);
+  const std::string log_path = log.empty() ? std::string("/dev/null") : log.string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw Error("cannot start " + words[0]);
+  std::this_thread::sleep_for(delay);
+  ::kill(pid, signal);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  CommandResult result;
+  result.exit_code = WIFEXITED(status)     ? WEXITSTATUS(status)
+                     : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
+                                           : -1;
+  if (!log.empty()) result.output = readText(log);
+  return result;
+}
 
 std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Running the built `hba` tool and checking what it wrote.
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +21,13 @@ CommandResult runOptimize(const std::filesystem::path& data, const std::filesyst
 std::vector<Pose> readOptimizedPoses(const std::filesystem::path& out);
 // Every output of `hba optimize` exists, parses, and holds no NaN/Inf/null.
 void expectFiniteOptimizeOutputs(const std::filesystem::path& out, std::size_t pose_count);
+
+// Runs `hba -q <arguments...>` (no shell), sends it `signal` after `delay`
+// unless it has finished, and waits for it. Its stdout is discarded, its
+// stderr goes to `log` (discarded if empty). The exit code is 128 + signal
+// when the signal ended it before it could handle it, as a shell says.
+CommandResult runAndSignal(const std::vector<std::string>& arguments, int signal,
+                           std::chrono::milliseconds delay, const std::filesystem::path& log = {});
 
 // Largest translation (m) and rotation (deg) between matching poses.
 double largestTranslation(const std::vector<Pose>& a, const std::vector<Pose>& b);

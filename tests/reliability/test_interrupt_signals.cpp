@@ -8,15 +8,10 @@
 // signalling a running process after a range of delays.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fcntl.h>
 
 #include <chrono>
+#include <functional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli_runs.hpp"
@@ -25,8 +20,6 @@
 #include "hba/io/pose_file.hpp"
 #include "synthetic_scene.hpp"
 #include "test_support.hpp"
-
-extern char** environ;
 
 namespace hba {
 namespace {
@@ -165,36 +158,6 @@ TEST_F(InterruptSignals, AFirstRunInterruptedAtTheFinalRenameIsComplete) {
   }
 }
 
-// Starts `hba -q <arguments>`, signals it after `delay`, and returns its exit
-// code (-1 if it did not exit) and what it printed.
-test::CommandResult runAndSignal(const std::vector<std::string>& arguments, int signal,
-                                 std::chrono::milliseconds delay, const fs::path& log) {
-  std::vector<std::string> words = {test::cliPath().string(), "-q"};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawned != 0) throw Error("cannot start " + words[0]);
-  std::this_thread::sleep_for(delay);
-  ::kill(pid, signal);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  test::CommandResult result;
-  // Killed before it could start its watcher: as a shell reports it.
-  result.exit_code = WIFEXITED(status)     ? WEXITSTATUS(status)
-                     : WIFSIGNALED(status) ? 128 + WTERMSIG(status)
-                                           : -1;
-  result.output = test::readText(log);
-  return result;
-}
-
 // Whatever the moment: a run that was cut short says what OUT holds, and it
 // does; a run that finished first exits 0 with OUT complete.
 void expectOutcomeAsSaid(const test::CommandResult& run, int signal, const fs::path& out,
@@ -222,8 +185,8 @@ TEST_F(InterruptSignals, AtAnyMomentOfExtractOutIsWholeOrAsBefore) {
     SCOPED_TRACE(std::to_string(delay_ms) + " ms, " + signal.name);
     const fs::path out = earlierOutput("timed_" + std::to_string(delay_ms));
     const test::CommandResult run =
-        runAndSignal({"extract", (tmp_ / "data").string(), "-o", out.string(), "--force"}, signal.number,
-                     std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
+        test::runAndSignal({"extract", (tmp_ / "data").string(), "-o", out.string(), "--force"},
+                           signal.number, std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
     expectOutcomeAsSaid(
         run, signal.number, out, [&] { expectCompleteExtract(out, kScans); },
         [&] { expectCompleteExtract(out, kEarlierScans); });
@@ -237,8 +200,8 @@ TEST_F(InterruptSignals, AtAnyMomentOfOptimizeOutIsWholeOrAbsent) {
     SCOPED_TRACE(std::to_string(delay_ms) + " ms, " + signal.name);
     const fs::path out = tmp_ / ("optimized_" + std::to_string(delay_ms));
     const test::CommandResult run =
-        runAndSignal({"optimize", (tmp_ / "data").string(), "-o", out.string()}, signal.number,
-                     std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
+        test::runAndSignal({"optimize", (tmp_ / "data").string(), "-o", out.string()}, signal.number,
+                           std::chrono::milliseconds(delay_ms), tmp_ / "log.txt");
     expectOutcomeAsSaid(
         run, signal.number, out, [&] { test::expectFiniteOptimizeOutputs(out, kScans); },
         [&] { EXPECT_FALSE(fs::exists(out)) << run.output; });

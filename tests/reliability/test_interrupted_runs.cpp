@@ -4,14 +4,8 @@
 // builds its whole folder beside the destination before moving it in.
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <fcntl.h>
 
 #include <chrono>
-#include <thread>
 
 #include "cli_runs.hpp"
 #include "hba/core/error.hpp"
@@ -20,33 +14,15 @@
 #include "synthetic_scene.hpp"
 #include "test_support.hpp"
 
-extern char** environ;
-
 namespace hba {
 namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-// Starts `hba <arguments...>` with its output discarded, waits `delay`, then
-// kills it with SIGKILL (if it has not finished) and reaps it.
+// Runs `hba <arguments...>`, kills it with SIGKILL after `delay` (if it has
+// not finished) and reaps it.
 void runAndKill(const std::vector<std::string>& arguments, std::chrono::milliseconds delay) {
-  std::vector<std::string> words = {test::cliPath().string(), "-q"};
-  words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& word : words) argv.push_back(word.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ASSERT_EQ(spawned, 0) << "cannot start " << argv[0];
-  std::this_thread::sleep_for(delay);
-  ::kill(pid, SIGKILL);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
+  test::runAndSignal(arguments, SIGKILL, delay);
 }
 
 // Every visible (final-name) file below `root` parses completely.
