@@ -48,7 +48,7 @@ DatasetArgs datasetOf(const ViewArgs& args, const fs::path& out, const nlohmann:
     failAt(out / "report.json",
            "the run's poses were of the " + frame + " frame: give the --extrinsic or --calib it had");
   }
-  if (report["input"].value("scans_in_world", false)) data.scans_in_world = true;
+  if (outputInputFlag(report, out, "scans_in_world")) data.scans_in_world = true;
   return data;
 }
 

@@ -57,7 +57,7 @@ FixedMap readEarlierOutput(const fs::path& folder) {
   }
   const nlohmann::json report = readOutputReport(folder);
   const std::string dataset = outputInput(report, folder, "dataset");
-  if (report["input"].value("scans_in_world", false)) {
+  if (outputInputFlag(report, folder, "scans_in_world")) {
     failAt(folder,
            "was made from scans saved in the world frame: write its map with hba map and give that file");
   }
