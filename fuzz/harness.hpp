@@ -45,7 +45,8 @@ void feedRosMessage(const std::filesystem::path& input);
 // Shared by the recording targets: a recording file read as every command
 // reads it. The container (each channel's messages read and decoded by
 // their type), then the recording (topics chosen, trajectory read, scans
-// placed and loaded). A target for another container format calls this on
+// placed and loaded; then with the first cloud topic and a /tf trajectory
+// named, and keyframes). A target for another container format calls this on
 // its input (fuzz/CMakeLists.txt says how to add a target).
 void feedRecordingFile(const std::filesystem::path& input);
 

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -61,14 +62,28 @@ void readEveryTopic(const rec::MessageStore& store) {
   }
 }
 
-void readAsRecording(const fs::path& input) {
-  const rec::Recording recording = rec::Recording::open(input);
+void readAsRecording(const fs::path& input, const rec::RecordingOptions& options) {
+  const rec::Recording recording = rec::Recording::open(input, options);
   const Trajectory& trajectory = recording.trajectory();
   if (trajectory.size() != trajectory.stamps.size() || recording.size() == 0) std::abort();
   for (const Pose& pose : trajectory.poses) checkRotation(pose.q);
   for (std::size_t i = 0; i < recording.size() && i < kMessagesPerTopic; ++i) {
     rejectOnlyWithError([&] { checkCloud(recording.loadScan(i)); });
   }
+}
+
+// The options a user gives where the defaults refuse (several cloud topics,
+// a /tf trajectory), with keyframes: the first cloud topic, the first tf
+// topic as the trajectory.
+rec::RecordingOptions namedTopics(const rec::MessageStore& store) {
+  rec::RecordingOptions options;
+  for (const rec::StoredChannel& channel : store.channels()) {
+    if (options.cloud_topic.empty() && rec::isCloudType(channel.type)) options.cloud_topic = channel.topic;
+    if (options.pose_topic.empty() && channel.type == rec::kTfMessage && channel.topic != "/tf_static")
+      options.pose_topic = channel.topic;
+  }
+  options.keyframe_distance = 0.5;
+  return options;
 }
 
 // A private folder in memory (/dev/shm) holding a rosbag2 recording's
@@ -105,8 +120,14 @@ class Rosbag2Folder {
 }  // namespace
 
 void feedRecordingFile(const fs::path& input) {
-  rejectOnlyWithError([&] { readEveryTopic(*rec::openMessageStore(input)); });
-  rejectOnlyWithError([&] { readAsRecording(input); });
+  rec::RecordingOptions named;
+  rejectOnlyWithError([&] {
+    const std::unique_ptr<rec::MessageStore> store = rec::openMessageStore(input);
+    readEveryTopic(*store);
+    named = namedTopics(*store);
+  });
+  rejectOnlyWithError([&] { readAsRecording(input, {}); });
+  if (!named.cloud_topic.empty()) rejectOnlyWithError([&] { readAsRecording(input, named); });
 }
 
 void feedRos1Bag(const fs::path& input) { feedRecordingFile(input); }
