@@ -60,7 +60,10 @@ std::unique_ptr<MessageStore> openFile(const fs::path& path) {
   if (looksLikeRos1Bag(path)) return openRos1Store(path);
   if (looksLikeMcap(path)) return openMcap(path);
   if (looksLikeSqlite(path)) return openSqlite(path);
-  if (!fs::exists(path)) failAt(path, "no such file");
+  // A name the system refuses (longer than 255 bytes) is an error to name, not an exception.
+  std::error_code error;
+  if (!fs::exists(path, error))
+    failAt(path, error ? "cannot be examined: " + error.message() : std::string("no such file"));
   failAt(path, "neither a ROS 1 bag, an MCAP file nor a ROS 2 sqlite3 bag (hba reads those recordings)");
 }
 
