@@ -29,6 +29,26 @@ void feedHbaPoses(const std::filesystem::path& input);
 void feedKittiPoses(const std::filesystem::path& input);
 void feedTumPoses(const std::filesystem::path& input);
 void feedSettingsYaml(const std::filesystem::path& input);
+void feedLoopFile(const std::filesystem::path& input);
+void feedPriorFile(const std::filesystem::path& input);
+void feedReportJson(const std::filesystem::path& input);
+
+// Recordings (harness_recordings.cpp).
+void feedRos1Bag(const std::filesystem::path& input);
+void feedDb3(const std::filesystem::path& input);
+// The input is a rosbag2 folder's metadata.yaml, beside a fixed valid .db3.
+void feedRosbag2Metadata(const std::filesystem::path& input);
+// The input is one message: its first byte picks the type and serialization
+// (harness_recordings.cpp), the rest is the message as a container stores it.
+void feedRosMessage(const std::filesystem::path& input);
+
+// Shared by the recording targets: a recording file read as every command
+// reads it. The container (each channel's messages read and decoded by
+// their type), then the recording (topics chosen, trajectory read, scans
+// placed and loaded; then with the first cloud topic and a /tf trajectory
+// named, and keyframes). A target for another container format calls this on
+// its input (fuzz/CMakeLists.txt says how to add a target).
+void feedRecordingFile(const std::filesystem::path& input);
 
 // Every target, in the order scripts/fuzz.sh runs them.
 const std::vector<Target>& allTargets();

@@ -5,6 +5,7 @@
 #include "core/input_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "pyramid/output_report.hpp"
 #include "recording_entry.hpp"
 
 namespace hba::cli {
@@ -16,16 +17,15 @@ bool isOptimizeOutput(const std::filesystem::path& folder) {
 nlohmann::json readOutputReport(const std::filesystem::path& folder) {
   if (!isOptimizeOutput(folder))
     failAt(folder, "is not an hba optimize output (no report.json and pose.json)");
-  const nlohmann::json report = nlohmann::json::parse(readTextFile(folder / "report.json"), nullptr, false);
-  if (report.is_discarded()) failAt(folder / "report.json", "is not readable JSON");
-  return report;
+  return pyramid::parseOutputReport(readTextFile(folder / "report.json"), folder / "report.json");
 }
 
 std::string outputInput(const nlohmann::json& report, const std::filesystem::path& folder, const char* key) {
-  const auto input = report.find("input");
-  if (input == report.end() || !input->is_object() || !input->contains(key) || !(*input)[key].is_string())
-    failAt(folder / "report.json", std::string("has no input.") + key + " (not written by hba optimize?)");
-  return (*input)[key].get<std::string>();
+  return pyramid::reportInputText(report, folder / "report.json", key);
+}
+
+bool outputInputFlag(const nlohmann::json& report, const std::filesystem::path& folder, const char* key) {
+  return pyramid::reportInputFlag(report, folder / "report.json", key);
 }
 
 namespace {
@@ -63,8 +63,7 @@ io::Dataset openEarlierDataset(const nlohmann::json& report, const fs::path& fol
   const nlohmann::json& input = report.at("input");
   if (const auto recording = input.find("recording"); recording != input.end())
     applyRecordingEntry(*recording, report_file, data);
-  if (const auto in_world = input.find("scans_in_world"); in_world != input.end() && in_world->is_boolean())
-    data.scans_in_world = data.scans_in_world || in_world->get<bool>();
+  data.scans_in_world = data.scans_in_world || outputInputFlag(report, folder, "scans_in_world");
   try {
     return data.open();
   } catch (const Error& e) {

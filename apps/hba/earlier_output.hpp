@@ -1,6 +1,7 @@
 #pragma once
 // An earlier `hba optimize` output folder read back (`hba view OUT`, and
-// `hba optimize --map OUT`): the run's report.json and what it names.
+// `hba optimize --map OUT`): the run's report.json and what it names (parsed
+// by pyramid/output_report.hpp, which the fuzzer reaches).
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -22,6 +23,10 @@ nlohmann::json readOutputReport(const std::filesystem::path& folder);
 // A text field of the report's `input` section ("dataset", "poses",
 // "pose_frame"). Throws hba::Error naming report.json when it is missing.
 std::string outputInput(const nlohmann::json& report, const std::filesystem::path& folder, const char* key);
+
+// A true/false field of the report's `input` section ("scans_in_world"),
+// false when absent. Throws hba::Error naming report.json for another value.
+bool outputInputFlag(const nlohmann::json& report, const std::filesystem::path& folder, const char* key);
 
 // The dataset the run that wrote `folder` read, opened as that run opened it
 // (a recording with the topics, offset and keyframes of input.recording),

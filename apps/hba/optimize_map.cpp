@@ -57,8 +57,7 @@ FixedMap readEarlierOutput(const fs::path& folder) {
                io::scanFormatList(true) + ") or --fixed DATASET");
   }
   const nlohmann::json report = readOutputReport(folder);
-  if (report.contains("input") && report["input"].is_object() &&
-      report["input"].value("scans_in_world", false)) {
+  if (outputInputFlag(report, folder, "scans_in_world")) {
     failAt(folder,
            "was made from scans saved in the world frame: write its map with hba map and give that file");
   }

@@ -1,6 +1,8 @@
 #include "hba/io/loop_file.hpp"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "hba/core/error.hpp"
@@ -20,9 +22,12 @@ std::size_t frameIndex(const fs::path& path, std::size_t line, double value, std
     failAtLine(path, line, std::string(which) + " frame must be a whole number >= 0");
   }
   if (value >= static_cast<double>(frame_count)) {
+    // As written: a whole number, perhaps beyond any integer type (2e+33).
+    std::ostringstream number;
+    number << std::setprecision(15) << value;
     failAtLine(path, line,
-               std::string(which) + " frame " + std::to_string(static_cast<long long>(value)) +
-                   " is beyond the sequence (" + std::to_string(frame_count) + " frames, counted from 0)");
+               std::string(which) + " frame " + number.str() + " is beyond the sequence (" +
+                   std::to_string(frame_count) + " frames, counted from 0)");
   }
   return static_cast<std::size_t>(value);
 }

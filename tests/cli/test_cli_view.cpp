@@ -143,5 +143,34 @@ TEST_F(View, AReportNamingAMovedOrNoDatasetSaysSo) {
   }
 }
 
+// A report.json whose input.scans_in_world is not true or false (seen in
+// writing fuzz_report_json): refused naming the file and the field, not with
+// the JSON library's "unexpected failure: ... type must be boolean".
+TEST_F(View, AReportWithAFlagOfAnotherTypeIsRefusedByName) {
+  fs::create_directories(*dir / "odd-flag");
+  std::string report = test::readText(*dir / "out" / "report.json");
+  const std::string flag = "\"scans_in_world\": false";
+  const std::size_t at = report.find(flag);
+  ASSERT_NE(at, std::string::npos) << report;
+  report.replace(at, flag.size(), "\"scans_in_world\": \"yes\"");
+  test::writeText(*dir / "odd-flag" / "report.json", report);
+  fs::copy_file(*dir / "out" / "pose.json", *dir / "odd-flag" / "pose.json");
+  const test::CommandResult odd = view(quoted(*dir / "odd-flag"));
+  EXPECT_EQ(odd.exit_code, 1) << odd.output;
+  EXPECT_NE(odd.output.find("report.json: input.scans_in_world is a string, not true or false"),
+            std::string::npos)
+      << odd.output;
+  EXPECT_FALSE(fs::exists(*dir / "odd-flag" / "report.html"));
+  // hba optimize --map OUT reads the same report.
+  const test::CommandResult map =
+      test::runCommand(hba() + " optimize " + quoted(*dir / "sim") + " --map " + quoted(*dir / "odd-flag") +
+                       " -o " + quoted(*dir / "odd-map-out") + " --layers 1 --no-render");
+  EXPECT_EQ(map.exit_code, 1) << map.output;
+  EXPECT_NE(map.output.find("report.json: input.scans_in_world is a string, not true or false"),
+            std::string::npos)
+      << map.output;
+  EXPECT_FALSE(fs::exists(*dir / "odd-map-out"));
+}
+
 }  // namespace
 }  // namespace hba

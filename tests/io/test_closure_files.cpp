@@ -51,6 +51,10 @@ TEST(LoopFile, NamesTheFileAndLineOfEveryProblem) {
   EXPECT_NE(problem("1 2 3\n").find("line 1: expected 2 numbers"), std::string::npos);
   EXPECT_NE(problem("1 2\n1 50\n").find("line 2: second frame 50 is beyond the sequence (50 frames"),
             std::string::npos);
+  // Found by fuzz_loop_file: an index beyond any integer type is named as written (it was cast to
+  // long long for the message: undefined, "-9223372036854775808" on x86).
+  EXPECT_NE(problem("1 2e33\n").find("line 1: second frame 2e+33 is beyond the sequence (50 frames"),
+            std::string::npos);
   EXPECT_NE(problem("1.5 2\n").find("whole number"), std::string::npos);
   EXPECT_NE(problem("-1 2\n").find("whole number"), std::string::npos);
   EXPECT_NE(problem("7 7\n").find("with itself"), std::string::npos);
