@@ -29,6 +29,7 @@ void feedHbaPoses(const std::filesystem::path& input);
 void feedKittiPoses(const std::filesystem::path& input);
 void feedTumPoses(const std::filesystem::path& input);
 void feedSettingsYaml(const std::filesystem::path& input);
+void feedMcap(const std::filesystem::path& input);  // harness_mcap.cpp
 
 // Every target, in the order scripts/fuzz.sh runs them.
 const std::vector<Target>& allTargets();

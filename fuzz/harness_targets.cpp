@@ -4,14 +4,17 @@ namespace hba::fuzz {
 
 const std::vector<Target>& allTargets() {
   static const std::vector<Target> targets = {
-      {"fuzz_pcd", feedPcd},
-      {"fuzz_ply", feedPly},
-      {"fuzz_kitti_bin", feedKittiBin},
-      {"fuzz_las", feedLas},
-      {"fuzz_pose_hba", feedHbaPoses},
-      {"fuzz_pose_kitti", feedKittiPoses},
-      {"fuzz_pose_tum", feedTumPoses},
-      {"fuzz_settings_yaml", feedSettingsYaml},
+    {"fuzz_pcd", feedPcd},
+    {"fuzz_ply", feedPly},
+    {"fuzz_kitti_bin", feedKittiBin},
+    {"fuzz_las", feedLas},
+    {"fuzz_pose_hba", feedHbaPoses},
+    {"fuzz_pose_kitti", feedKittiPoses},
+    {"fuzz_pose_tum", feedTumPoses},
+    {"fuzz_settings_yaml", feedSettingsYaml},
+#if HBA_FUZZ_RECORDINGS  // hba built with recordings (HBA_WITH_RECORDINGS)
+    {"fuzz_mcap", feedMcap},
+#endif
   };
   return targets;
 }

@@ -16,7 +16,7 @@ seconds="${HBA_FUZZ_SECONDS:-60}"
 jobs="${HBA_JOBS:-$(nproc)}"
 build=build-fuzz
 all_targets=(fuzz_pcd fuzz_ply fuzz_kitti_bin fuzz_las fuzz_pose_hba fuzz_pose_kitti fuzz_pose_tum
-             fuzz_settings_yaml)
+             fuzz_settings_yaml fuzz_mcap)
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then targets=("${all_targets[@]}"); fi
 

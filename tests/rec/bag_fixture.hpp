@@ -70,12 +70,13 @@ inline int writeBag(const std::filesystem::path& folder, const std::filesystem::
 }
 
 // Runs the MCAP writer (npm's @mcap/core + @foxglove/rosmsg2-serialization);
-// 77 means node, npm or the registry is missing.
+// 77 means node, npm or the registry is missing. `layout`: see write_mcap.mjs.
 inline int writeMcap(const std::filesystem::path& folder, const std::filesystem::path& mcap,
-                     const std::string& compression = "zstd", std::size_t scans = 0) {
+                     const std::string& compression = "zstd", std::size_t scans = 0,
+                     const std::string& layout = "indexed") {
   const CommandResult result =
       runCommand("bash " + std::string(HBA_MCAP_WRITER) + " " + folder.string() + " " + mcap.string() + " " +
-                 compression + " " + std::to_string(scans));
+                 compression + " " + std::to_string(scans) + " " + layout);
   if (result.exit_code != 0 && result.exit_code != 77) ADD_FAILURE() << result.output;
   return result.exit_code;
 }

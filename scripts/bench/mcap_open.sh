@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Opening an MCAP file, before and after: `hba info FILE` (open the file,
+# read the trajectory and every cloud's header) timed by /usr/bin/time -v,
+# three interleaved runs of each build, medians of wall time and peak RSS.
+# The files: hku1's 314 scans written by npm's @mcap/core
+# (tests/rec/write_mcap.sh), zstd chunks and uncompressed chunks.
+#   scripts/bench/mcap_open.sh OLD_HBA NEW_HBA [WORKDIR]
+set -euo pipefail
+OLD=$1
+NEW=$2
+WORK=${3:-$(mktemp -d)}
+DATA=${HKU1:-$(cd "$(dirname "$0")/../.." && pwd)/../shared/data/hku1}
+RUNS=${RUNS:-3}
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$WORK"
+
+for compression in zstd none; do
+  file="$WORK/hku1-$compression.mcap"
+  [ -s "$file" ] || bash "$here/../../tests/rec/write_mcap.sh" "$DATA" "$file" "$compression"
+done
+
+# One run: "<wall s> <peak RSS KiB>".
+measure() {
+  local log
+  log=$(mktemp)
+  /usr/bin/time -v "$1" -q info "$2" > /dev/null 2> "$log"
+  awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i] }
+              /Maximum resident set size/ { rss = $2 }
+              END { printf "%.2f %d\n", s, rss }' "$log"
+  rm -f "$log"
+}
+
+median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+
+echo "| file | build | wall s (median of $RUNS) | runs | peak RSS MiB (median) |"
+echo "|---|---|---|---|---|"
+for compression in zstd none; do
+  file="$WORK/hku1-$compression.mcap"
+  size=$(stat -c %s "$file")
+  cat "$file" > /dev/null  # in the page cache: the reading speed is the parser's
+  declare -A walls=() rsss=()
+  for run in $(seq "$RUNS"); do
+    for build in old new; do
+      hba=$OLD
+      [ "$build" = new ] && hba=$NEW
+      read -r wall rss < <(measure "$hba" "$file")
+      walls[$build]+="$wall "
+      rsss[$build]+="$rss "
+    done
+  done
+  for build in old new; do
+    wall=$(tr ' ' '\n' <<< "${walls[$build]}" | grep . | median)
+    rss=$(tr ' ' '\n' <<< "${rsss[$build]}" | grep . | median)
+    echo "| hku1, $compression chunks ($((size / 1048576)) MiB) | $build | $wall | ${walls[$build]% } | $(awk -v k="$rss" 'BEGIN { printf "%.1f", k / 1024 }') |"
+  done
+  unset walls rsss
+done
