@@ -3,7 +3,8 @@
 # read the trajectory and every cloud's header) timed by /usr/bin/time -v,
 # three interleaved runs of each build, medians of wall time and peak RSS.
 # The files: hku1's 314 scans written by npm's @mcap/core
-# (tests/rec/write_mcap.sh), zstd chunks and uncompressed chunks.
+# (tests/rec/write_mcap.sh) in chunks of 1 MiB (the writer's default),
+# zstd-compressed and uncompressed.
 #   scripts/bench/mcap_open.sh OLD_HBA NEW_HBA [WORKDIR]
 set -euo pipefail
 OLD=$1
@@ -16,7 +17,7 @@ mkdir -p "$WORK"
 
 for compression in zstd none; do
   file="$WORK/hku1-$compression.mcap"
-  [ -s "$file" ] || bash "$here/../../tests/rec/write_mcap.sh" "$DATA" "$file" "$compression"
+  [ -s "$file" ] || MCAP_CHUNK_BYTES=1048576 bash "$here/../../tests/rec/write_mcap.sh" "$DATA" "$file" "$compression"
 done
 
 # One run: "<wall s> <peak RSS KiB>".
