@@ -29,7 +29,7 @@ class McapFile : public MessageStore {
     if (!mcap::readFromSummary(source, contents_, why)) {
       contents_ = mcap::Contents();
       mcap::scanDataSection(source, contents_);
-      warnings_.push_back(why + "; every chunk was read to find the messages");
+      warnings_.push_back(path_.string() + ": " + why + "; every chunk was read to find the messages");
     }
   }
   const fs::path& path() const override { return path_; }

@@ -4,6 +4,7 @@
 // The files are written by npm's @mcap/core (tests/rec/write_mcap.mjs).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <tuple>
 
@@ -65,19 +66,28 @@ TEST_P(McapLayouts, ReadTheSameScans) {
   }
 }
 
+std::string layoutName(const ::testing::TestParamInfo<McapLayouts::ParamType>& info) {
+  std::string name = std::string(std::get<0>(info.param)) + "_" + std::get<1>(info.param);
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
 INSTANTIATE_TEST_SUITE_P(Files, McapLayouts,
                          ::testing::Combine(::testing::Values("zstd", "lz4", "none"),
-                                            ::testing::Values("indexed", "no-summary", "no-message-index")));
+                                            ::testing::Values("indexed", "no-summary", "no-message-index")),
+                         layoutName);
 
 // A recorder killed before it ended the file: no summary, no footer. The
 // complete chunks are read, with a warning (hba refused such a file before).
 TEST(McapIndex, AnUnfinishedRecordingIsReadWithAWarning) {
   test::TempDir dir;
-  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 12);
+  const test::ScanFolder folder = test::writeScanFolder(dir / "folder", 14);
   WRITE_MCAP_LAYOUT_OR_SKIP(dir / "folder", dir / "run.mcap", "zstd", "unfinished");
   const Recording recording = Recording::open(dir / "run.mcap");
-  EXPECT_GT(recording.size(), 3u);
-  EXPECT_LT(recording.size(), 12u);  // the last chunk was never written
+  std::size_t messages = 0;
+  for (const RecordingTopic& topic : recording.topics()) messages += topic.messages;
+  EXPECT_LT(messages, 28u);  // the last chunk was never written
+  EXPECT_GT(recording.size(), 6u);
   expectScansOf(recording, folder);
   EXPECT_TRUE(mentions(recording.warnings(), "the summary is missing: the file ends at byte"))
       << (recording.warnings().empty() ? "" : recording.warnings().front());
@@ -89,11 +99,9 @@ TEST(McapIndex, OpeningDecompressesNoChunk) {
   test::TempDir dir;
   test::writeScanFolder(dir / "folder", 12);
   WRITE_MCAP_LAYOUT_OR_SKIP(dir / "folder", dir / "run.mcap", "zstd", "indexed");
-  std::string bytes = test::readText(dir / "run.mcap");
-  for (std::size_t at = bytes.find("zstd"); at != std::string::npos; at = bytes.find("zstd", at + 4)) {
-    bytes.replace(at, 4, "lzma");
-  }
-  test::writeText(dir / "lzma.mcap", bytes);
+  // The chunks' compression renamed, not the chunk indexes' (the summary's CRC covers them).
+  test::writeText(dir / "lzma.mcap",
+                  test::renamedChunkCompression(test::readText(dir / "run.mcap"), "zstd", "lzma"));
   const std::unique_ptr<MessageStore> store = openMcap(dir / "lzma.mcap");
   const std::vector<StoredMessage> clouds = store->messages("/cloud_registered_body");
   EXPECT_EQ(clouds.size(), 12u);
