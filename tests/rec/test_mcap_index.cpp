@@ -46,7 +46,7 @@ std::string firstPointBytes(const test::ScanFolder& folder, std::size_t k) {
   return bytes;
 }
 
-class McapLayouts : public ::testing::TestWithParam<std::tuple<const char*, const char*>> {};
+class McapLayouts : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 // Every layout and compression reads the same scans; only a file without a
 // summary is scanned, and says so.
@@ -58,7 +58,7 @@ TEST_P(McapLayouts, ReadTheSameScans) {
   const Recording recording = Recording::open(dir / "run.mcap");
   ASSERT_EQ(recording.size(), 12u);
   expectScansOf(recording, folder);
-  const bool scanned = std::string(layout) == "no-summary";
+  const bool scanned = layout == "no-summary";
   EXPECT_EQ(mentions(recording.warnings(), "the summary is missing: the file was written without one"),
             scanned);
   if (!scanned) {
@@ -67,15 +67,17 @@ TEST_P(McapLayouts, ReadTheSameScans) {
 }
 
 std::string layoutName(const ::testing::TestParamInfo<McapLayouts::ParamType>& info) {
-  std::string name = std::string(std::get<0>(info.param)) + "_" + std::get<1>(info.param);
+  std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param);
   std::replace(name.begin(), name.end(), '-', '_');
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(Files, McapLayouts,
-                         ::testing::Combine(::testing::Values("zstd", "lz4", "none"),
-                                            ::testing::Values("indexed", "no-summary", "no-message-index")),
-                         layoutName);
+INSTANTIATE_TEST_SUITE_P(
+    Files, McapLayouts,
+    ::testing::Combine(::testing::Values(std::string("zstd"), std::string("lz4"), std::string("none")),
+                       ::testing::Values(std::string("indexed"), std::string("no-summary"),
+                                         std::string("no-message-index"))),
+    layoutName);
 
 // A recorder killed before it ended the file: no summary, no footer. The
 // complete chunks are read, with a warning (hba refused such a file before).
