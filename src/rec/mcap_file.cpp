@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstring>
 #include <mutex>
+#include <set>
 
 #include "hba/core/error.hpp"
 #include "mcap_format.hpp"
@@ -29,6 +30,7 @@ class McapFile : public MessageStore {
     if (!mcap::readFromSummary(source, contents_, why)) {
       contents_ = mcap::Contents();
       mcap::scanDataSection(source, contents_);
+      for (const StoredMessage& m : contents_.messages()) verified_.insert(m.chunk);  // checked by the scan
       warnings_.push_back(path_.string() + ": " + why + "; every chunk was read to find the messages");
     }
   }
@@ -88,9 +90,17 @@ class McapFile : public MessageStore {
     if (source.head(pos).op != mcap::kChunk) {
       failAt(path_, "chunk at byte " + std::to_string(pos) + ": no chunk record there (its index says so)");
     }
+    // A chunk's CRC is checked the first time it is decompressed (at open,
+    // when the file was scanned): the CRC costs about as much as zstd.
+    bool verified = false;
+    {
+      const std::lock_guard<std::mutex> lock(cache_mutex_);
+      verified = verified_.count(pos) > 0;
+    }
     auto records = std::make_shared<const std::vector<std::uint8_t>>(
-        mcap::chunkRecords(path_, pos, source.content(pos)));
+        mcap::chunkRecords(path_, pos, source.content(pos), !verified));
     const std::lock_guard<std::mutex> lock(cache_mutex_);
+    verified_.insert(pos);
     cached_chunk_ = pos;
     cached_ = records;
     return records;
@@ -102,6 +112,7 @@ class McapFile : public MessageStore {
   mutable std::mutex cache_mutex_;
   mutable std::uint64_t cached_chunk_ = 0;
   mutable std::shared_ptr<const std::vector<std::uint8_t>> cached_;
+  mutable std::set<std::uint64_t> verified_;  // chunks whose CRC was checked
 };
 
 }  // namespace

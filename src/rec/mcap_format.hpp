@@ -58,10 +58,10 @@ class Source {
                           std::uint32_t computed);
 
 // The records of a chunk (its record's content `content`, the record at file
-// offset `pos`), decompressed and checked against the chunk's CRC when it
-// gives one.
+// offset `pos`), decompressed and, with `check_crc`, checked against the
+// chunk's CRC when it gives one.
 std::vector<std::uint8_t> chunkRecords(const std::filesystem::path& path, std::uint64_t pos,
-                                       const std::vector<std::uint8_t>& content);
+                                       const std::vector<std::uint8_t>& content, bool check_crc = true);
 
 // What opening a file learns: its schemas, channels and where each message lies.
 class Contents {
