@@ -49,6 +49,7 @@ void feedRosMessage(const std::filesystem::path& input);
 // named, and keyframes). A target for another container format calls this on
 // its input (fuzz/CMakeLists.txt says how to add a target).
 void feedRecordingFile(const std::filesystem::path& input);
+void feedMcap(const std::filesystem::path& input);  // harness_mcap.cpp
 
 // Every target, in the order scripts/fuzz.sh runs them.
 const std::vector<Target>& allTargets();

@@ -20,6 +20,7 @@ const std::vector<Target>& allTargets() {
     {"fuzz_db3", feedDb3},
     {"fuzz_rosbag2_metadata", feedRosbag2Metadata},
     {"fuzz_ros_message", feedRosMessage},
+    {"fuzz_mcap", feedMcap},
 #endif
   };
   return targets;

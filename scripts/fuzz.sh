@@ -17,7 +17,7 @@ jobs="${HBA_JOBS:-$(nproc)}"
 build=build-fuzz
 all_targets=(fuzz_pcd fuzz_ply fuzz_kitti_bin fuzz_las fuzz_pose_hba fuzz_pose_kitti fuzz_pose_tum
              fuzz_loop_file fuzz_prior_file fuzz_settings_yaml fuzz_report_json
-             fuzz_ros1_bag fuzz_db3 fuzz_rosbag2_metadata fuzz_ros_message)
+             fuzz_ros1_bag fuzz_db3 fuzz_rosbag2_metadata fuzz_ros_message fuzz_mcap)
 targets=("$@")
 if [ "${#targets[@]}" -eq 0 ]; then targets=("${all_targets[@]}"); fi
 

@@ -42,6 +42,8 @@ class MessageStore {
   virtual std::vector<StoredMessage> messages(const std::string& topic) const = 0;
   // A message's serialized bytes. Thread-safe.
   virtual std::vector<std::uint8_t> read(const StoredMessage& message) const = 0;
+  // What opening found that the user should know (the recording shows them).
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 // The container at `path`, a file told by its first bytes or a rosbag2

@@ -357,6 +357,7 @@ Recording Recording::open(const fs::path& path, const RecordingOptions& options)
   recording.clouds_ = std::make_unique<Clouds>(Clouds{openMessageStore(path), {}});
   const MessageStore& bag = *recording.clouds_->store;
   recording.format_ = bag.format();
+  recording.warnings_ = bag.warnings();
 
   std::map<std::string, RecordingTopic> by_topic;
   for (const StoredChannel& c : bag.channels()) {

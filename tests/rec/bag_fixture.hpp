@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <string>
@@ -72,12 +73,13 @@ inline int writeBag(const std::filesystem::path& folder, const std::filesystem::
 }
 
 // Runs the MCAP writer (npm's @mcap/core + @foxglove/rosmsg2-serialization);
-// 77 means node, npm or the registry is missing.
+// 77 means node, npm or the registry is missing. `layout`: see write_mcap.mjs.
 inline int writeMcap(const std::filesystem::path& folder, const std::filesystem::path& mcap,
-                     const std::string& compression = "zstd", std::size_t scans = 0) {
+                     const std::string& compression = "zstd", std::size_t scans = 0,
+                     const std::string& layout = "indexed") {
   const CommandResult result =
       runCommand("bash " + std::string(HBA_MCAP_WRITER) + " " + folder.string() + " " + mcap.string() + " " +
-                 compression + " " + std::to_string(scans));
+                 compression + " " + std::to_string(scans) + " " + layout);
   if (result.exit_code != 0 && result.exit_code != 77) ADD_FAILURE() << result.output;
   return result.exit_code;
 }
@@ -96,6 +98,20 @@ inline int writeDb3(const std::filesystem::path& folder, const std::filesystem::
                  " --split " + std::to_string(split) + " " + flags);
   if (result.exit_code != 0) ADD_FAILURE() << result.output;
   return result.exit_code;
+}
+
+// An MCAP file's bytes with its chunks' compression `from` named `to`, in
+// its data section only (up to the summary the footer places, or the end).
+inline std::string renamedChunkCompression(std::string bytes, const std::string& from,
+                                           const std::string& to) {
+  std::uint64_t summary_start = 0;
+  if (bytes.size() >= 37) std::memcpy(&summary_start, bytes.data() + bytes.size() - 37 + 9, 8);
+  const std::size_t end = summary_start > 0 && summary_start < bytes.size() ? summary_start : bytes.size();
+  for (std::size_t at = bytes.find(from); at != std::string::npos && at < end;
+       at = bytes.find(from, at + 1)) {
+    bytes.replace(at, from.size(), to);
+  }
+  return bytes;
 }
 
 inline double angleBetween(const Pose& a, const Pose& b) {

@@ -57,11 +57,7 @@ TEST(McapErrors, TruncatedOrUnknownCompression) {
   test::writeText(dir / "cut.mcap", bytes.substr(0, bytes.size() / 2));
   const std::string cut = openError(dir / "cut.mcap");
   EXPECT_NE(cut.find("truncated"), std::string::npos) << cut;
-  std::string other = bytes;
-  for (std::size_t at = other.find("zstd"); at != std::string::npos; at = other.find("zstd", at + 4)) {
-    other.replace(at, 4, "lzma");
-  }
-  test::writeText(dir / "lzma.mcap", other);
+  test::writeText(dir / "lzma.mcap", test::renamedChunkCompression(bytes, "zstd", "lzma"));
   const std::string lzma = openError(dir / "lzma.mcap");
   EXPECT_NE(lzma.find("unknown chunk compression 'lzma'"), std::string::npos) << lzma;
 }

@@ -3,17 +3,25 @@
 // (the container) and @foxglove/rosmsg2-serialization (CDR), not with hba:
 // /cloud_registered_body (sensor_msgs/msg/PointCloud2, PCL's PointXYZINormal
 // layout) and /Odometry (nav_msgs/msg/Odometry).
-// usage: node write_mcap.mjs FOLDER OUT.mcap [zstd|none|cdr] [N]
+// usage: node write_mcap.mjs FOLDER OUT.mcap [zstd|lz4|none|cdr] [N] [LAYOUT]
 // "cdr" writes no MCAP but the CDR messages themselves, as JSON lines
 // (topic, type, time in ns, base64 data) for write_db3.py to store.
+// LAYOUT: "indexed" (the writer's defaults: a summary with chunk indexes and
+// statistics, message indexes after each chunk, CRCs), "no-summary" (the
+// same data section, no summary), "no-message-index" (chunk indexes but no
+// message indexes) or "unfinished" (the writer never ended: the chunks
+// written so far, no summary, no footer, as a recorder that was killed
+// leaves it).
 import fs from "node:fs";
 import path from "node:path";
 import { McapWriter } from "@mcap/core";
 import { parse } from "@foxglove/rosmsg";
 import { MessageWriter } from "@foxglove/rosmsg2-serialization";
 import zstd from "@foxglove/wasm-zstd";
+import lz4 from "lz4js";
 
-const [folder, out, compression = "zstd", limit = "0"] = process.argv.slice(2);
+const [folder, out, compression = "zstd", limit = "0", layout = "indexed"] = process.argv.slice(2);
+if (!["indexed", "no-summary", "no-message-index", "unfinished"].includes(layout)) throw new Error(`layout ${layout}`);
 
 const header = `
 ================================================================================
@@ -125,11 +133,26 @@ const writable = {
     position += BigInt(buffer.byteLength);
   },
 };
+const compressors = {
+  zstd: (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }),
+  lz4: (data) => ({ compression: "lz4", compressedData: lz4.compress(data) }),
+};
+const noSummary = layout === "no-summary";
 const writer = new McapWriter({
   writable,
   useChunks: true,
-  chunkSize: 1024 * 1024,
-  compressChunk: compression === "zstd" ? (data) => ({ compression: "zstd", compressedData: zstd.compress(data, 3) }) : undefined,
+  // Small chunks, so that even the tests' small folders span several
+  // (MCAP_CHUNK_BYTES sets another size: the benchmark takes the writer's 1 MiB).
+  chunkSize: Number(process.env.MCAP_CHUNK_BYTES || 32 * 1024),
+  compressChunk: compressors[compression],
+  useMessageIndex: layout !== "no-message-index",
+  useStatistics: !noSummary,
+  useSummaryOffsets: !noSummary,
+  repeatSchemas: !noSummary,
+  repeatChannels: !noSummary,
+  useAttachmentIndex: !noSummary,
+  useMetadataIndex: !noSummary,
+  useChunkIndex: !noSummary,
 });
 if (!cdrLines) await writer.start({ profile: "ros2", library: "hba tests (@mcap/core)" });
 const cloudSchema = cdrLines ? 0 : await writer.registerSchema({ name: "sensor_msgs/msg/PointCloud2", encoding: "ros2msg", data: new TextEncoder().encode(cloudDefinition) });
@@ -184,5 +207,5 @@ for (let n = 0; n < count; n++) {
     await writer.addMessage({ channelId: odometryChannel, sequence: n, logTime: time, publishTime: time, data: odometryBytes });
   }
 }
-if (!cdrLines) await writer.end();
+if (!cdrLines && layout !== "unfinished") await writer.end();
 fs.closeSync(fd);

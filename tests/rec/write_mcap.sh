@@ -9,9 +9,9 @@ command -v node > /dev/null && command -v npm > /dev/null || { echo "SKIP: node 
 mkdir -p "$cache"
 (
   flock 9
-  if [ ! -d "$cache/node_modules/@foxglove/rosmsg2-serialization" ]; then
+  if [ ! -d "$cache/node_modules/@foxglove/rosmsg2-serialization" ] || [ ! -d "$cache/node_modules/lz4js" ]; then
     (cd "$cache" && timeout 300 npm install --silent --no-audit --no-fund --no-save @mcap/core@2 \
-       @foxglove/rosmsg2-serialization@3 @foxglove/rosmsg@5 @foxglove/wasm-zstd@1 > npm.log 2>&1) ||
+       @foxglove/rosmsg2-serialization@3 @foxglove/rosmsg@5 @foxglove/wasm-zstd@1 lz4js@0.2 > npm.log 2>&1) ||
       { echo "SKIP: npm could not install the MCAP writer"; cat "$cache/npm.log"; exit 77; }
   fi
 ) 9> "$cache/.lock"
