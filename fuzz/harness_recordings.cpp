@@ -34,8 +34,15 @@ std::vector<std::uint8_t> readBytes(const fs::path& input) {
 }
 
 void checkPoses(const std::vector<rec::StampedPose>& poses) {
-  // NaN positions are not checked here: issue #57 item 5 is fixed apart.
   for (const rec::StampedPose& pose : poses) checkRotation(pose.pose.q);
+}
+
+// A trajectory message's positions are finite (a NaN is refused when read).
+void checkTrajectory(const std::vector<rec::StampedPose>& poses) {
+  checkPoses(poses);
+  for (const rec::StampedPose& pose : poses) {
+    if (!pose.pose.t.allFinite()) std::abort();
+  }
 }
 
 // One message decoded as its type says, as the recording does.
@@ -46,7 +53,7 @@ void decodeMessage(const std::string& type, const std::vector<std::uint8_t>& mes
     rejectOnlyWithError([&] { rec::decodeCloudHeader(type, message, serialization, what); });
     rejectOnlyWithError([&] { checkCloud(rec::decodeCloud(type, message, serialization, what)); });
   } else if (rec::isTrajectoryType(type)) {
-    rejectOnlyWithError([&] { checkPoses(rec::decodePoses(type, message, serialization, what)); });
+    rejectOnlyWithError([&] { checkTrajectory(rec::decodePoses(type, message, serialization, what)); });
   } else if (type == rec::kTfMessage) {
     rejectOnlyWithError([&] { checkPoses(rec::decodeTransforms(message, serialization, what)); });
   }

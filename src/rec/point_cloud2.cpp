@@ -115,7 +115,9 @@ PointCloud toPointCloud(const PointCloud2View& cloud, const std::string& what) {
   PointCloud out;
   out.reserve(std::size_t{cloud.height} * cloud.width, intensity != nullptr);
   if (time) out.time.reserve(std::size_t{cloud.height} * cloud.width);
-  for (std::uint32_t row = 0; row < cloud.height; ++row) {
+  // Rows of no points: a width of 0 with a height of 4e9 would loop for seconds.
+  const std::uint32_t rows = cloud.width == 0 ? 0 : cloud.height;
+  for (std::uint32_t row = 0; row < rows; ++row) {
     const std::uint8_t* start = cloud.data + std::size_t{row} * cloud.row_step;
     for (std::uint32_t col = 0; col < cloud.width; ++col) {
       const std::uint8_t* point = start + std::size_t{col} * cloud.point_step;
