@@ -20,6 +20,7 @@ if(HBA_WITH_RECORDINGS)
   pkg_check_modules(ZSTD REQUIRED IMPORTED_TARGET libzstd)
   find_package(BZip2 REQUIRED)
   find_package(SQLite3 REQUIRED)
+  find_package(ZLIB REQUIRED)  # MCAP's CRC-32 (zlib1g-dev)
 endif()
 
 find_package(PNG REQUIRED)      # the pictures' encoding (libpng-dev)
