@@ -18,8 +18,18 @@ class SplitStore : public MessageStore {
  public:
   SplitStore(fs::path folder, std::vector<std::unique_ptr<MessageStore>> parts)
       : folder_(std::move(folder)), parts_(std::move(parts)) {
+    if (parts_.size() > kMostParts) {
+      failAt(folder_, "names " + std::to_string(parts_.size()) + " storage files; hba reads at most " +
+                          std::to_string(kMostParts) + " in one folder");
+    }
     for (std::size_t k = 0; k < parts_.size(); ++k) {
       for (StoredChannel channel : parts_[k]->channels()) {
+        // The id shares 32 bits with the part's index (see idOf).
+        if (channel.id >= kPart) {
+          failAt(parts_[k]->path(), "topic id " + std::to_string(channel.id) + " is beyond " +
+                                        std::to_string(kPart - 1) +
+                                        ", the largest hba reads in a split recording");
+        }
         channel.id = idOf(k, channel.id);
         channels_.push_back(channel);
       }
@@ -49,6 +59,7 @@ class SplitStore : public MessageStore {
 
  private:
   static constexpr std::uint32_t kPart = 1u << 20;
+  static constexpr std::size_t kMostParts = 4096;  // 4096 x 2^20 ids fill 32 bits
   static std::uint32_t idOf(std::size_t part, std::uint32_t id) {
     return static_cast<std::uint32_t>(part) * kPart + id;
   }

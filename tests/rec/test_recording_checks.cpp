@@ -93,6 +93,25 @@ TEST(RecordingChecks, AStorageFileNamedTwiceIsRefused) {
   EXPECT_HAS(openError(dir / "bag"), "names the storage file run_0.db3 twice");
 }
 
+// A split folder's channel ids carry the file's index above bit 20: a topic
+// id beyond that is refused by name, not read from the wrong file (found by
+// reading the code behind fuzz_rosbag2_metadata).
+TEST(RecordingChecks, ATopicIdTooLargeForASplitFolderIsRefused) {
+  test::TempDir dir;
+  test::writeScanFolder(dir / "folder", 4);
+  WRITE_DB3_OR_SKIP(dir / "folder", dir / "bag", 2);
+  const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  const test::CommandResult renumbered =
+      test::runCommand(python +
+                       " -c \"import sqlite3, sys; c = sqlite3.connect(sys.argv[1]); "
+                       "c.execute('UPDATE messages SET topic_id = topic_id + 1048576'); "
+                       "c.execute('UPDATE topics SET id = id + 1048576'); c.commit()\" " +
+                       quoted(dir / "bag" / "run_1.db3"));
+  ASSERT_EQ(renumbered.exit_code, 0) << renumbered.output;
+  EXPECT_HAS(openError(dir / "bag"), "run_1.db3: topic id 104857");
+  EXPECT_HAS(openError(dir / "bag"), "is beyond 1048575, the largest hba reads in a split recording");
+}
+
 // A recorder killed while writing leaves its messages in run_0.db3-wal,
 // indexed by run_0.db3-shm: read as they are, nothing written beside them.
 TEST(RecordingChecks, ABagLeftInWalModeIsReadWithoutWritingBesideIt) {
