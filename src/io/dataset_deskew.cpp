@@ -49,6 +49,43 @@ bool sameReading(const PointTimeReading& a, const PointTimeReading& b) {
   return a.scale == b.scale && a.absolute == b.absolute;
 }
 
+// What the sampled scans say of their point times: the readings, most
+// scans' first; the scans without times, and those whose times fit no unit.
+struct TimeVotes {
+  std::vector<TimeReadingVote> votes;
+  std::vector<std::size_t> untimed, unread;
+};
+
+// `scans` are (index, scan) pairs, absent where a scan could not be read.
+TimeVotes countTimeVotes(const std::vector<std::pair<std::size_t, std::optional<PointCloud>>>& scans,
+                         const std::vector<double>& stamps, double clock_offset) {
+  TimeVotes result;
+  for (const auto& [i, read] : scans) {
+    if (!read) continue;
+    if (!read->hasTime()) {
+      result.untimed.push_back(i);
+      continue;
+    }
+    const std::optional<PointTimeReading> reading = readPointTimes(read->time, stamps[i] - clock_offset);
+    if (!reading) {
+      result.unread.push_back(i);
+      continue;
+    }
+    const auto same = std::find_if(result.votes.begin(), result.votes.end(), [&](const TimeReadingVote& v) {
+      return sameReading(v.reading, *reading);
+    });
+    if (same == result.votes.end()) {
+      result.votes.push_back({*reading, {i}});
+    } else {
+      same->scans.push_back(i);
+    }
+  }
+  std::stable_sort(
+      result.votes.begin(), result.votes.end(),
+      [](const TimeReadingVote& a, const TimeReadingVote& b) { return a.scans.size() > b.scans.size(); });
+  return result;
+}
+
 double medianGap(const std::vector<double>& stamps) {
   std::vector<double> gaps;
   for (std::size_t i = 1; i < stamps.size(); ++i) gaps.push_back(stamps[i] - stamps[i - 1]);
@@ -130,38 +167,16 @@ void Dataset::prepareDeskew(DeskewMode mode) {
   const double clock_offset = recording_ ? recording_->timeOffset() : 0.0;
   // The unit the sampled scans agree on; the scans without times or whose
   // times do not spread tell nothing.
-  std::vector<TimeReadingVote> votes;
-  std::vector<std::size_t> untimed, unread;
-  for (std::size_t k = next - 1; k < sampled.size(); ++k) {
-    const std::size_t i = sampled[k];
-    std::optional<PointCloud> read = k + 1 == next ? std::move(first) : loadRaw(i);
-    if (!read) continue;
-    const PointCloud& scan = *read;
-    if (!scan.hasTime()) {
-      untimed.push_back(i);
-      continue;
-    }
-    const std::optional<PointTimeReading> reading =
-        readPointTimes(scan.time, trajectory_.stamps[i] - clock_offset);
-    if (!reading) {
-      unread.push_back(i);
-      continue;
-    }
-    const auto same = std::find_if(votes.begin(), votes.end(), [&](const TimeReadingVote& v) {
-      return sameReading(v.reading, *reading);
-    });
-    if (same == votes.end()) {
-      votes.push_back({*reading, {i}});
-    } else {
-      same->scans.push_back(i);
-    }
-  }
+  std::vector<std::pair<std::size_t, std::optional<PointCloud>>> scans;
+  for (std::size_t k = next - 1; k < sampled.size(); ++k)
+    scans.emplace_back(sampled[k], k + 1 == next ? std::move(first) : loadRaw(sampled[k]));
+  const TimeVotes counted = countTimeVotes(scans, trajectory_.stamps, clock_offset);
+  const std::vector<TimeReadingVote>& votes = counted.votes;
+  const std::vector<std::size_t>& untimed = counted.untimed;
   if (votes.empty()) {
-    return cannot("the point times of " + scanList(unread) + " are all equal or fit no unit (s, ms, us, ns)");
+    return cannot("the point times of " + scanList(counted.unread) +
+                  " are all equal or fit no unit (s, ms, us, ns)");
   }
-  std::stable_sort(votes.begin(), votes.end(), [](const TimeReadingVote& a, const TimeReadingVote& b) {
-    return a.scans.size() > b.scans.size();
-  });
   if (votes.size() > 1 && votes[1].scans.size() == votes[0].scans.size()) {
     return cannot(
         fmt::format("the point times of {} read as {}, those of {} as {}: no unit most scans agree on",

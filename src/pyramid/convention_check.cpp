@@ -97,6 +97,54 @@ void addVoxels(const PointCloud& scan, const Pose& pose, double voxel, KeySet& k
   }
 }
 
+// From the scores: the verdict and the message that says it, unless the
+// poses as given are clearly best.
+void judgeConventions(ConventionCheck& check, const GivenConventions& given, const ConventionSettings& s) {
+  const double best_other = std::min({check.inverted, check.in_world, check.turned,
+                                      given.scans_in_world ? check.as_stored : check.as_given});
+  if (best_other > s.decisive_ratio * check.as_given) return;
+  const std::string scores = fmt::format(
+      "merged over {} stretches of the path, the map occupies {:.2f} scans' worth of {} m voxels with the "
+      "poses as given, {:.2f} with each pose inverted, {:.2f} with no poses at all, {:.2f} with the poses "
+      "of a body turned against the sensor",
+      check.stretches, check.as_given, s.voxel, check.inverted, check.in_world, check.turned);
+  const std::string on_top = given.extrinsic ? " (on top of the --extrinsic or calibration given)" : "";
+  if (given.scans_in_world && check.as_stored == best_other) {
+    check.verdict = ConventionVerdict::ScansNotInWorld;
+    check.message =
+        "the scans line up as stored, in the sensor frame, not moved into the world: " + scores +
+        fmt::format(", {:.2f} with the scans as stored. Run again without --scans-in-world", check.as_stored);
+  } else if (check.turned == best_other) {
+    check.verdict = ConventionVerdict::TurnedBody;
+    const std::string turn = extrinsicText(check.turn);
+    check.message =
+        isCameraAxes(check.turn)
+            ? "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " + scores +
+                  ". hba needs poses of the scans' sensor: give the sensor-to-camera "
+                  "transform with --calib calib.txt (KITTI's Tr) or --extrinsic"
+            : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
+              "against the scans' sensor: " +
+                  scores +
+                  ". hba needs poses of the scans' sensor: give "
+                  "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
+                  "fits best is --extrinsic '" +
+                  turn + "' (add your lever arm)" + on_top;
+  } else if (check.inverted == best_other) {
+    check.verdict = ConventionVerdict::PosesInverted;
+    check.message =
+        "the poses look inverted (world-to-sensor): " + scores +
+        ". hba expects sensor-to-world poses (p_world = R p + t); " +
+        (given.invert_poses ? "run again without --invert-poses" : "run again with --invert-poses");
+  } else {
+    check.verdict = ConventionVerdict::ScansInWorld;
+    check.message = "the scans look already moved into the world frame: " + scores +
+                    ". hba expects scans in the sensor frame; run again with --scans-in-world";
+    if (given.scans_in_world)
+      check.message = "the scans still look moved into the world frame after --scans-in-world: " + scores;
+  }
+  check.message += " (or --no-convention-check to run as given)";
+}
+
 }  // namespace
 
 ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<Pose>& poses,
@@ -159,49 +207,7 @@ ConventionCheck checkConventions(const io::ScanSource& scans, const std::vector<
   check.inverted = inverted / single;
   check.in_world = world / single;
   check.as_stored = stored / single;
-  const double best_other = std::min({check.inverted, check.in_world, check.turned,
-                                      given.scans_in_world ? check.as_stored : check.as_given});
-  if (best_other > s.decisive_ratio * check.as_given) return check;
-  const std::string scores = fmt::format(
-      "merged over {} stretches of the path, the map occupies {:.2f} scans' worth of {} m voxels with the "
-      "poses as given, {:.2f} with each pose inverted, {:.2f} with no poses at all, {:.2f} with the poses "
-      "of a body turned against the sensor",
-      check.stretches, check.as_given, s.voxel, check.inverted, check.in_world, check.turned);
-  const std::string on_top = given.extrinsic ? " (on top of the --extrinsic or calibration given)" : "";
-  if (given.scans_in_world && check.as_stored == best_other) {
-    check.verdict = ConventionVerdict::ScansNotInWorld;
-    check.message =
-        "the scans line up as stored, in the sensor frame, not moved into the world: " + scores +
-        fmt::format(", {:.2f} with the scans as stored. Run again without --scans-in-world", check.as_stored);
-  } else if (check.turned == best_other) {
-    check.verdict = ConventionVerdict::TurnedBody;
-    const std::string turn = extrinsicText(check.turn);
-    check.message =
-        isCameraAxes(check.turn)
-            ? "the poses look like a camera's (x right, y down, z forward, as KITTI's camera 0): " + scores +
-                  ". hba needs poses of the scans' sensor: give the sensor-to-camera "
-                  "transform with --calib calib.txt (KITTI's Tr) or --extrinsic"
-            : "the poses look like those of a body (an IMU, a vehicle frame) whose axes are turned "
-              "against the scans' sensor: " +
-                  scores +
-                  ". hba needs poses of the scans' sensor: give "
-                  "the body-to-sensor transform with --extrinsic 'tx ty tz qx qy qz qw'; the turn that "
-                  "fits best is --extrinsic '" +
-                  turn + "' (add your lever arm)" + on_top;
-  } else if (check.inverted == best_other) {
-    check.verdict = ConventionVerdict::PosesInverted;
-    check.message =
-        "the poses look inverted (world-to-sensor): " + scores +
-        ". hba expects sensor-to-world poses (p_world = R p + t); " +
-        (given.invert_poses ? "run again without --invert-poses" : "run again with --invert-poses");
-  } else {
-    check.verdict = ConventionVerdict::ScansInWorld;
-    check.message = "the scans look already moved into the world frame: " + scores +
-                    ". hba expects scans in the sensor frame; run again with --scans-in-world";
-    if (given.scans_in_world)
-      check.message = "the scans still look moved into the world frame after --scans-in-world: " + scores;
-  }
-  check.message += " (or --no-convention-check to run as given)";
+  judgeConventions(check, given, s);
   return check;
 }
 
