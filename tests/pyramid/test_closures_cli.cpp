@@ -262,12 +262,16 @@ TEST_F(ClosuresSimulated, BadClosureInputFailsBeforeAnyWork) {
   fails("--priors " + (dir / "gnss.txt").string(), {"gnss.txt", "line 1", "sigma must be positive"});
   test::writeText(dir / "late.txt", "900 1 2 3 0.5\n");
   fails("--priors " + (dir / "late.txt").string(), {"late.txt", "no prior falls within"});
-  fails(data().string() + " --poses " + (data() / "pose.json").string(), {"several sessions"});
+  // A second session: a copy of the first (the same folder twice is refused
+  // as such, MapCli.OneSessionGivenTwiceIsRefused).
+  const fs::path copy = dir / "copy";
+  fs::copy(data(), copy, fs::copy_options::recursive);
+  fails(copy.string() + " --poses " + (data() / "pose.json").string(), {"several sessions"});
   test::writeText(dir / "align.txt", "1 2 3 0 0 0 1\n1 2 3 0 0 0 1\n");
-  fails(data().string() + " --align " + (dir / "align.txt").string(), {"align.txt", "2 transforms for 1"});
-  // One session given twice: its priors fall among the scans of both.
+  fails(copy.string() + " --align " + (dir / "align.txt").string(), {"align.txt", "2 transforms for 1"});
+  // Two sessions recorded at the same time: a prior falls among the scans of both.
   test::writeText(dir / "within.txt", "1.0 1 2 3 0.5\n");
-  fails(data().string() + " --priors " + (dir / "within.txt").string(),
+  fails(copy.string() + " --priors " + (dir / "within.txt").string(),
         {"within.txt", "line 1", "sessions 0 and 1", "overlap"});
 }
 
