@@ -79,6 +79,8 @@ void requireFolder(const fs::path& path, const std::string& what) {
   if (status.type() == fs::file_type::not_found || status.type() == fs::file_type::none) {
     failAt(path, absence(path, ec, what + " not found"));
   }
+  // A FIFO, socket or device: said what it is, as for every file read.
+  if (status.type() != fs::file_type::regular) requireRegularFile(path);
   failAt(path, "is not a folder (expected a " + what + ")");
 }
 

@@ -258,14 +258,6 @@ Dataset Dataset::open(const fs::path& dir, const DatasetOverrides& overrides) {
            "--cloud-topic, --pose-topic, --time-offset and --keyframe-distance/-angle are for recordings "
            "(a bag, an MCAP file, a rosbag2 folder), not for a folder of scans");
   }
-  // A FIFO or a device (one named run.bag, say) is neither a folder nor a
-  // recording: say what it is, as every reader does, not "not a folder".
-  std::error_code ec;
-  const fs::file_type type = fs::status(dir, ec).type();
-  if (type != fs::file_type::directory && type != fs::file_type::regular &&
-      type != fs::file_type::not_found && type != fs::file_type::none) {
-    requireRegularFile(dir);
-  }
   requireFolder(dir, "dataset folder");
   Dataset dataset;
   dataset.root_ = dir;
