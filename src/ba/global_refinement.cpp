@@ -16,15 +16,53 @@ namespace hba::ba {
 
 namespace {
 
+// A problem's size, of every member's planes when spread.
+struct PlaneTotals {
+  double planes = 0.0;
+  double observations = 0.0;
+  double points = 0.0;
+};
+
+PlaneTotals planeTotals(const PlaneProblem& problem) {
+  PlaneTotals totals;
+  totals.planes = static_cast<double>(problem.numPlanes());
+  for (const PlaneObservation& plane : problem.planes()) {
+    totals.observations += static_cast<double>(plane.clusters.size());
+    totals.points += plane.pointCount();
+  }
+  if (problem.spread().spread()) {  // every member's planes (whole numbers: exact)
+    totals.planes = static_cast<double>(problem.spread().allPlanes());
+    const std::vector<std::vector<double>> all =
+        gatherPerMember(*problem.spread().group, {totals.observations, totals.points});
+    totals.observations = totals.points = 0.0;
+    for (const std::vector<double>& theirs : all) {
+      totals.observations += theirs.at(0);
+      totals.points += theirs.at(1);
+    }
+  }
+  return totals;
+}
+
+// What moving `frames` poses (the first held) gains on `plane_cost` by
+// fitting the points' noise alone, in expectation: sigma^2 per degree of
+// freedom, sigma^2 the residual per point left after each plane's own fit.
+double noiseFittingGain(double plane_cost, const PlaneTotals& totals, std::size_t frames) {
+  const double residual_points = totals.points - 3.0 * totals.planes;
+  if (!(residual_points > 0.0) || frames < 2) return 0.0;
+  return plane_cost / residual_points * 6.0 * static_cast<double>(frames - 1);
+}
+
 // Associations, each followed by an LM, from `initial` until a round gains
 // little; the first round's figures go to `result`, the time and
-// iterations add up over calls.
+// iterations add up over calls. A round that gains no more than fitting
+// the noise would is not taken, and ends them (`converged`).
 // `at_initial`: the first round's association, when made already (moved
 // from, then null).
 void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& initial,
                  const RefinementSettings& settings, const MotionPrior& prior,
                  const PositionPriors& positions, Association*& at_initial, RefinementResult& result) {
   result.poses = initial;
+  result.converged = result.converged_at_start = false;
   // At most this many rounds: the ETA is an upper bound.
   Progress progress("refinement", static_cast<std::size_t>(settings.association_rounds), "rounds");
   for (int round = 0; round < settings.association_rounds; ++round, progress.advance()) {
@@ -43,30 +81,28 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     result.iterations += summary.iterations;
     result.cg_products += summary.cg_products;
     result.rounds = round + 1;
-    if (round == 0) {
-      double observations = 0.0;
-      double plane_points = 0.0;
-      for (const PlaneObservation& plane : problem.planes()) {
-        observations += static_cast<double>(plane.clusters.size());
-        plane_points += plane.pointCount();
-      }
-      result.planes = problem.numPlanes();
-      if (problem.spread().spread()) {  // every member's planes (whole numbers: exact)
-        result.planes = problem.spread().allPlanes();
-        const std::vector<std::vector<double>> all =
-            gatherPerMember(*problem.spread().group, {observations, plane_points});
-        observations = plane_points = 0.0;
-        for (const std::vector<double>& theirs : all) {
-          observations += theirs.at(0);
-          plane_points += theirs.at(1);
-        }
-      }
-      result.observations = static_cast<std::size_t>(observations);
-      result.plane_points = static_cast<std::size_t>(plane_points);
-      result.cost_before = association.cost();  // found at `before`
-      result.cost_after = problem.cost(result.poses);
+    const PlaneTotals totals = planeTotals(problem);
+    const double plane_cost_after = problem.cost(result.poses);
+    // The LM's objective (planes, motion prior, position priors) is what
+    // a round must lower: with priors a round may pay in plane cost to
+    // reach them.
+    const double gain = summary.initial_cost - summary.final_cost;
+    const double noise = noiseFittingGain(plane_cost_after, totals, initial.size());
+    result.last_gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
+    const bool significant = summary.accepted_steps > 0 && gain > settings.significant_gain * noise;
+    if (!significant) {
+      result.poses = before;
+      result.converged = true;
+      result.converged_at_start = round == 0;
     }
-    if (summary.accepted_steps == 0) break;
+    if (round == 0) {
+      result.planes = static_cast<std::size_t>(totals.planes);
+      result.observations = static_cast<std::size_t>(totals.observations);
+      result.plane_points = static_cast<std::size_t>(totals.points);
+      result.cost_before = association.cost();  // found at `before`
+      result.cost_after = significant ? plane_cost_after : result.cost_before;
+    }
+    if (!significant) break;
     // A round that barely moved the cost has converged the association.
     if (summary.initial_cost - summary.final_cost < settings.round_gain * summary.initial_cost) break;
   }
@@ -108,6 +144,7 @@ RefinementResult refineGlobally(const std::vector<const PointCloud*>& scans, con
   }
   if (settings.association_rounds < 1) throw Error("refinement: association_rounds must be >= 1");
   if (!(settings.round_gain >= 0.0)) throw Error("refinement: round_gain must be >= 0");
+  if (!(settings.significant_gain >= 0.0)) throw Error("refinement: significant_gain must be >= 0");
   RefinementResult result;
   if (!reference.empty() && reference.size() != initial.size()) {
     throw Error("refinement: " + std::to_string(reference.size()) + " reference poses for " +

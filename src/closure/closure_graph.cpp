@@ -166,6 +166,17 @@ ClosureGraphResult solveClosureGraph(const std::vector<Pose>& input,
   result.loop_kept.assign(loops.size(), true);
   result.prior_kept.assign(priors.size(), true);
   if (input.size() < 2 || (loops.empty() && priors.empty())) return result;
+  // A graph solved where every factor already holds would move the poses
+  // by the loops' own noise only, and a closed map would never be left
+  // alone: keep the input.
+  const Verdicts at_input = judge(input, loops, priors, settings);
+  if (std::none_of(at_input.loop_beyond.begin(), at_input.loop_beyond.end(), [](bool b) { return b; }) &&
+      std::none_of(at_input.prior_beyond.begin(), at_input.prior_beyond.end(), [](bool b) { return b; })) {
+    result.loop_chi2 = at_input.loop_chi2;
+    result.prior_chi2 = at_input.prior_chi2;
+    result.held_at_input = true;
+    return result;
+  }
 
   const std::vector<std::size_t> session = sessionOfFrames(input.size(), session_starts);
   std::vector<graph::RelativePoseFactor> steps;

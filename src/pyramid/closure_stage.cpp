@@ -181,6 +181,7 @@ void closeVerified(const std::vector<Pose>& initial, const ClosureInputs& closur
   report.priors_used = out.priors.size();
   report.priors_dropped = closures.priors.size() - out.priors.size();
   out.start = solved.poses;
+  report.held_at_input = solved.held_at_input;
   report.largest_move_m = largestChange(initial, out.start).translation_m;
 }
 
@@ -190,6 +191,9 @@ void logClosures(const ClosureReport& report, std::size_t candidates, std::size_
       "used of {}; poses moved up to {:.3f} m, {:.2f} s",
       candidates, report.loops_given, searched, report.verified, report.loops_used, report.priors_used,
       report.priors_given, report.largest_move_m, report.seconds);
+  if (report.held_at_input) {
+    spdlog::info("  every loop and prior already holds at the input poses: nothing to close, none moved");
+  }
   if (report.rejected_by_planes > 0) {
     spdlog::info("  {} loop candidates not supported by the planes (report.json: closure.loops)",
                  report.rejected_by_planes);

@@ -52,6 +52,9 @@ struct BlockSums {
     out.notes.add(b.notes);
     if (!b.refined) return;
     const ba::RefinementResult& refined = b.refinement;
+    r.converged = (!r.ran || r.converged) && refined.converged;
+    r.converged_at_start = (!r.ran || r.converged_at_start) && refined.converged_at_start;
+    r.gain_over_noise = std::max(r.gain_over_noise, refined.last_gain_over_noise);
     r.ran = true;
     r.planes += refined.planes;
     r.observations += refined.observations;
@@ -115,6 +118,17 @@ void logSummary(const RefineOutcome& out, std::size_t frames) {
         "{:.4f} -> {:.4f} m (first association), {} associations, {} LM iterations",
         frames, r.scan_points, r.blocks, r.planes, r.observations, r.rms_before, r.rms_after, r.rounds,
         r.iterations);
+    if (r.converged_at_start) {
+      spdlog::info(
+          "refinement: converged at its start (the first association gained {:.2f} times what fitting "
+          "the points' noise would): its start kept",
+          r.gain_over_noise);
+    } else if (r.converged) {
+      spdlog::info(
+          "refinement: converged (the last association gained {:.2f} times what fitting the points' "
+          "noise would, and was not taken)",
+          r.gain_over_noise);
+    }
     if (r.held_pairs > 0) {
       spdlog::info(
           "refinement: {} pairs of neighbouring frames slid beyond the motion prior and "

@@ -3,6 +3,7 @@
 // groups' judge) is taken as its first round's instead of being made again.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "hba/ba/association.hpp"
@@ -59,6 +60,32 @@ TEST(GlobalRefinement, AnAssociationMadeAtTheStartIsTheFirstRoundsOwn) {
   const RefinementResult from_other = refineGlobally(scans, window.initial, settings, {}, {}, {}, &other);
   EXPECT_EQ(from_other.planes, other_planes);
   EXPECT_NE(from_other.cost_before, fresh.cost_before);
+}
+
+TEST(GlobalRefinement, ItsOwnResultRefinedAgainStaysPut) {
+  const test::SyntheticWindow window = refinementWindow();
+  const std::vector<const PointCloud*> scans = window.scanPointers();
+  const RefinementSettings settings = settingsFor();
+  const RefinementResult first = refineGlobally(scans, window.initial, settings);
+  // From the perturbed start, a round gains far more than fitting the
+  // points' noise would.
+  EXPECT_FALSE(first.converged_at_start);
+  EXPECT_LT(first.cost_after, first.cost_before);
+  const RefinementResult again = refineGlobally(scans, first.poses, settings);
+  EXPECT_TRUE(again.converged_at_start);
+  EXPECT_LE(again.last_gain_over_noise, settings.significant_gain);
+  test::expectSamePoses(again.poses, first.poses);
+  EXPECT_EQ(again.cost_after, again.cost_before);
+  // With the gate off, the same call moves the poses: the fixed point is
+  // the gate's doing, not a solver that found nothing to do.
+  RefinementSettings ungated = settings;
+  ungated.significant_gain = 0.0;
+  const RefinementResult moved = refineGlobally(scans, first.poses, ungated);
+  EXPECT_FALSE(moved.converged_at_start);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < moved.poses.size(); ++k)
+    largest = std::max(largest, (moved.poses[k].t - first.poses[k].t).norm());
+  EXPECT_GT(largest, 0.0);
 }
 
 }  // namespace

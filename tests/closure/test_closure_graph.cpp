@@ -84,6 +84,27 @@ TEST_F(ClosureGraph, PriorsSetTheFrameAndOutliersAreDropped) {
   EXPECT_LT(test::largestError(r.poses, truth_in_world), 1.0);
 }
 
+TEST_F(ClosureGraph, ACircleItClosedIsLeftAlone) {
+  const std::vector<graph::LoopClosureFactor> loops{trueLoop(truth, 0, 399), trueLoop(truth, 10, 390)};
+  const ClosureGraphResult first = solveClosureGraph(odometry, loops, {}, ClosureGraphSettings{});
+  ASSERT_FALSE(first.held_at_input);
+  ASSERT_GT(first.rounds, 0);
+  // Its own output given again: every loop holds there, nothing is solved
+  // and nothing moves (solved again, the poses would creep by the loops'
+  // and steps' disagreement).
+  const ClosureGraphResult again = solveClosureGraph(first.poses, loops, {}, ClosureGraphSettings{});
+  EXPECT_TRUE(again.held_at_input);
+  EXPECT_EQ(again.rounds, 0);
+  EXPECT_EQ(test::largestError(again.poses, first.poses), 0.0);
+  // A loop 10 cm off at the input (beyond the 5 cm tolerance) is closed.
+  std::vector<Pose> opened = first.poses;
+  for (std::size_t k = 200; k < opened.size(); ++k) opened[k].t += Vec3(0.0, 0.0, 0.1 * (k - 200) / 199.0);
+  const ClosureGraphResult reopened = solveClosureGraph(opened, loops, {}, ClosureGraphSettings{});
+  EXPECT_FALSE(reopened.held_at_input);
+  EXPECT_LT((relative(reopened.poses[0], reopened.poses[399]).t - relative(truth[0], truth[399]).t).norm(),
+            0.01);
+}
+
 TEST_F(ClosureGraph, NothingToCloseReturnsTheInput) {
   const ClosureGraphResult r = solveClosureGraph(odometry, {}, {}, ClosureGraphSettings{});
   EXPECT_EQ(r.rounds, 0);

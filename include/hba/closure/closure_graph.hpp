@@ -54,6 +54,10 @@ struct ClosureGraphResult {
   std::vector<double> loop_chi2;  // e^T Omega e at `poses`
   std::vector<double> prior_chi2;
   int rounds = 0;  // solves
+  // Every loop and prior already held at the input (none beyond its gate
+  // and tolerance): nothing was solved and `poses` is the input, so a
+  // map whose loops are closed stays where it is.
+  bool held_at_input = false;
 };
 
 // `input` is the trajectory to correct (its steps become the soft factors,

@@ -81,6 +81,9 @@ struct ClosureReport {
   std::size_t priors_dropped = 0;  // disagree with the rest beyond their sigma
   std::size_t priors_used = 0;
   double largest_move_m = 0.0;  // of a pose, by the closure graph
+  // Every loop and prior used already held at the input poses: the graph
+  // was not solved and the start is the input (a closed map stays put).
+  bool held_at_input = false;
   // With priors: how far the final re-anchoring on them moved a pose.
   double anchoring_move_m = 0.0;
   std::size_t anchoring_priors_dropped = 0;  // kept by the closure graph, contradicted by the final shape

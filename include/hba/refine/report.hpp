@@ -39,6 +39,14 @@ struct RefinementReport {
   std::size_t held_pairs = 0;       // neighbouring pairs that slid and were held (summed over blocks)
   std::size_t still_sliding = 0;    // of those, pairs beyond the limit even when held
   std::size_t position_priors = 0;  // held by the blocks' LM, summed over blocks (overlaps count twice)
+  // Every block's last association gained no more than fitting the points'
+  // noise would (ba::RefinementSettings::significant_gain), so its poses were
+  // not taken: converged. `converged_at_start`: already every block's first
+  // did, and the refinement returned its start. `gain_over_noise`: the
+  // largest last-round gain of a block, in those units.
+  bool converged = false;
+  bool converged_at_start = false;
+  double gain_over_noise = 0.0;
   double seconds = 0.0;
 };
 
