@@ -96,6 +96,10 @@ void finish(Run& run) {
   report.largest_rotation_update = total.rotation_deg;
   spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation_m,
                total.rotation_deg);
+  // A converged input is a fixed point: say so, as the reason nothing moved.
+  if (total.translation_m == 0.0 && total.rotation_deg == 0.0 && report.refinement.converged_at_start) {
+    spdlog::info("the input is converged: its poses are returned unchanged");
+  }
   std::size_t planes = 0;
   for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;
   if (planes == 0) {
