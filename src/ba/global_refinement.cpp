@@ -43,15 +43,6 @@ PlaneTotals planeTotals(const PlaneProblem& problem) {
   return totals;
 }
 
-// What moving `frames` poses (the first held) gains on `plane_cost` by
-// fitting the points' noise alone, in expectation: sigma^2 per degree of
-// freedom, sigma^2 the residual per point left after each plane's own fit.
-double noiseFittingGain(double plane_cost, const PlaneTotals& totals, std::size_t frames) {
-  const double residual_points = totals.points - 3.0 * totals.planes;
-  if (!(residual_points > 0.0) || frames < 2) return 0.0;
-  return plane_cost / residual_points * 6.0 * static_cast<double>(frames - 1);
-}
-
 // Associations, each followed by an LM, from `initial` until a round gains
 // little; the first round's figures go to `result`, the time and
 // iterations add up over calls. A round that gains no more than fitting
@@ -87,7 +78,7 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     // a round must lower: with priors a round may pay in plane cost to
     // reach them.
     const double gain = summary.initial_cost - summary.final_cost;
-    const double noise = noiseFittingGain(plane_cost_after, totals, initial.size());
+    const double noise = noiseFittingGain(plane_cost_after, totals.points, totals.planes, initial.size());
     result.last_gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
     const bool significant = summary.accepted_steps > 0 && gain > settings.significant_gain * noise;
     if (!significant) {
@@ -122,6 +113,12 @@ std::vector<std::size_t> widen(const std::vector<std::size_t>& slid, std::size_t
 }
 
 }  // namespace
+
+double noiseFittingGain(double plane_cost, double points, double planes, std::size_t frames) {
+  const double residual_points = points - 3.0 * planes;
+  if (!(residual_points > 0.0) || frames < 2) return 0.0;
+  return plane_cost / residual_points * 6.0 * static_cast<double>(frames - 1);
+}
 
 Association refinementAssociation(const std::vector<const PointCloud*>& scans, const std::vector<Pose>& poses,
                                   const RefinementSettings& settings) {

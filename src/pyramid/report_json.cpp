@@ -121,6 +121,7 @@ nlohmann::json consistencyJson(const ConsistencyReport& c) {
           {"hierarchy_rms_m", c.hierarchy_rms},
           {"final_rms_m", c.final_rms},
           {"hierarchy_rejected", c.hierarchy_rejected},
+          {"hierarchy_insignificant", c.hierarchy_insignificant},
           {"final_rejected", c.final_rejected},
           {"regions", regions}};
 }

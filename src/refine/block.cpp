@@ -90,6 +90,21 @@ Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_
   return block;
 }
 
+namespace {
+
+// The hierarchy lowered the cost of the input's planes by more than
+// `significant_gain` times what `frames` poses gain by fitting the noise.
+bool hierarchyGainsBeyondNoise(const BlockOutcome& out, std::size_t frames, double significant_gain) {
+  const double points = out.map.points();
+  const double input_cost = out.input_rms * out.input_rms * points;
+  const double gain = input_cost - out.hierarchy_rms * out.hierarchy_rms * points;
+  const double noise =
+      ba::noiseFittingGain(input_cost, points, static_cast<double>(out.map.planes()), frames);
+  return gain > significant_gain * noise;
+}
+
+}  // namespace
+
 BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
                          const std::vector<Pose>& result, const std::vector<double>& steps,
                          const std::vector<graph::PositionPriorFactor>& priors,
@@ -122,8 +137,18 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
                     refines ? "refining from the input"
                             : "keeping the input poses (with the closure stage's loops), "
                               "unrefined"));
+  } else if (!hierarchyGainsBeyondNoise(out, input.size(), settings.ba.significant_gain)) {
+    // Not worse, but no more consistent than fitting the points' noise
+    // would make it: at a converged input the hierarchy only perturbs it.
+    out.hierarchy_insignificant = true;
+    out.poses = input;
+    spdlog::info(
+        "frames {}-{}: the hierarchy's poses are not significantly more consistent than the input's "
+        "(plane RMS {:.5f} -> {:.5f} m on the input's planes): {}",
+        block.first, block.end - 1, out.input_rms, out.hierarchy_rms,
+        refines ? "refining from the input" : "keeping the input poses (with the closure stage's loops)");
   }
-  const bool from_input = refines && out.hierarchy_rejected;
+  const bool from_input = refines && (out.hierarchy_rejected || out.hierarchy_insignificant);
   if (!from_input) {
     // The plane problem the map was made from (hundreds of MB in small
     // pieces): returned, so that the refinement's association does not

@@ -45,6 +45,7 @@ struct BlockOutcome {
   std::vector<double> region_input_rms;
   std::vector<double> region_final_rms;
   bool hierarchy_rejected = false;
+  bool hierarchy_insignificant = false;  // not worse, but no gain beyond fitting the noise
   bool final_rejected = false;
   bool refined = false;
   ba::RefinementResult refinement;  // when refined (its poses moved to `poses`)

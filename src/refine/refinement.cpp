@@ -46,6 +46,7 @@ struct BlockSums {
     hierarchy.add(b.hierarchy_rms, b.map.points());
     final.add(b.final_rms, b.map.points());
     c.hierarchy_rejected = c.hierarchy_rejected || b.hierarchy_rejected;
+    c.hierarchy_insignificant = c.hierarchy_insignificant || b.hierarchy_insignificant;
     c.final_rejected = c.final_rejected || b.final_rejected;
     addRegions(b.map, b.region_input_rms, b.region_final_rms, block.first, regions);
     r.position_priors += b.position_priors;

@@ -64,6 +64,12 @@ struct RefinementSettings {
   }
 };
 
+// What moving `frames` poses (the first held) lowers a plane cost by when
+// they only fit the points' noise, in expectation: sigma^2 per degree of
+// freedom, 6 (frames - 1), sigma^2 the cost per point left after each of
+// `planes` planes' own fit (3 per plane). 0 without such points.
+double noiseFittingGain(double plane_cost, double points, double planes, std::size_t frames);
+
 struct RefinementResult {
   std::vector<Pose> poses;
   // Plane cost (sum of squared point-to-plane distances, m^2) of the first

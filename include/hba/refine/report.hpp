@@ -60,7 +60,10 @@ struct ConsistencyReport {
   double hierarchy_rms = 0.0;
   double final_rms = 0.0;
   bool hierarchy_rejected = false;  // less consistent than the input: refined from the input
-  bool final_rejected = false;      // less consistent than the input: input poses returned
+  // Not less consistent, but gaining no more than fitting the points' noise
+  // would: the input is refined instead (a converged input stays put).
+  bool hierarchy_insignificant = false;
+  bool final_rejected = false;  // less consistent than the input: input poses returned
   std::vector<std::size_t> region_first_frame;
   std::vector<double> region_input_rms;
   std::vector<double> region_final_rms;
