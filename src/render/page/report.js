@@ -557,8 +557,11 @@ function buildTables() {
   ].filter((r) => r[1] !== ''));
   table('Consistency (plane RMS on the input\u2019s planes, lower is crisper)', ['poses', 'RMS (m)', 'note'], [
     ['input', fmt(c.input_rms_m, 4), ''],
-    ['hierarchy', fmt(c.hierarchy_rms_m, 4), c.hierarchy_rejected ? 'rejected: refined from the input' : ''],
-    ['final', fmt(c.final_rms_m, 4), c.final_rejected ? 'rejected: input returned' : ''],
+    ['hierarchy', fmt(c.hierarchy_rms_m, 4), c.hierarchy_rejected ? 'rejected: refined from the input'
+      : c.hierarchy_insignificant ? 'no gain beyond the noise: refined from the input' : ''],
+    ['final', fmt(c.final_rms_m, 4), c.final_rejected ? 'rejected: input returned'
+      : (report.refinement || {}).converged_at_start && update && update.translation_m === 0
+        ? 'the input was converged: returned unchanged' : ''],
   ].filter((r) => r[1] !== ''));
   const warnings = report.warnings || [];
   if (warnings.length) table('Warnings', null, warnings.map((w) => [fmt(w)]));
