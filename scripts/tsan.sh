@@ -72,8 +72,10 @@ if [ "$tbb_loaded" != "$deps/prefix/lib/libtbb.so.12" ]; then
 fi
 # CHOLMOD (under Ceres) runs OpenMP loops; libgomp is not instrumented, so
 # TSan cannot see its barriers and reports the loop's writes as racing with
-# the caller's. One OpenMP thread keeps that code serial.
-export OMP_NUM_THREADS=1
+# the caller's. One OpenMP thread keeps that code serial: OMP_THREAD_LIMIT,
+# since CHOLMOD asks for its threads with num_threads(), which overrides
+# OMP_NUM_THREADS.
+export OMP_THREAD_LIMIT=1
 # halt_on_error: a race must fail the test, not scroll past in a log.
 export TSAN_OPTIONS="${TSAN_OPTIONS:-halt_on_error=1:second_deadlock_stack=1:suppressions=$PWD/scripts/tsan.supp}"
 cd "$build"
