@@ -34,7 +34,7 @@ function(hba_add_test name)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} hba_test_support GTest::gtest GTest::gtest_main
                                         hba_warnings)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 600)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${HBA_TEST_TIMEOUT})
 endfunction()
 
 # hba_add_benchmark(<name> SOURCES ... DEPS ...)
