@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <string>
 #include <utility>
 
 #include "core/release_memory.hpp"
@@ -130,13 +131,13 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
     out.poses = input;
     // Said as it is: without the refinement the hierarchy's work is simply
     // lost here (--no-refine returns the input, loops closed).
-    out.notes.warn(
-        fmt::format("frames {}-{}: the hierarchy made the map less consistent than the "
-                    "input (plane RMS {:.4f} -> {:.4f} m on the input's planes): {}",
-                    block.first, block.end - 1, out.input_rms, out.hierarchy_rms,
-                    refines ? "refining from the input"
-                            : "keeping the input poses (with the closure stage's loops), "
-                              "unrefined"));
+    if (!refines) {
+      out.notes.warn(fmt::format(
+          "frames {}-{}: the hierarchy made the map less consistent than the input (plane RMS {:.4f} -> "
+          "{:.4f} m on the input's planes): keeping the input poses (with the closure stage's loops), "
+          "unrefined",
+          block.first, block.end - 1, out.input_rms, out.hierarchy_rms));
+    }
   } else if (!hierarchyGainsBeyondNoise(out, input.size(), settings.ba.significant_gain)) {
     // Not worse, but no more consistent than fitting the points' noise
     // would make it: at a converged input the hierarchy only perturbs it.
@@ -158,6 +159,20 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
   }
   if (refines)
     refineFrom(block, pointers, index, input, steps, priors, settings, from_input ? &found : nullptr, out);
+  if (refines && out.hierarchy_rejected) {
+    // A warning where the hierarchy's work is lost; where the refinement
+    // finds the input converged, nothing was: the hierarchy could only
+    // have perturbed it.
+    const std::string said = fmt::format(
+        "frames {}-{}: the hierarchy made the map less consistent than the input (plane RMS "
+        "{:.4f} -> {:.4f} m on the input's planes)",
+        block.first, block.end - 1, out.input_rms, out.hierarchy_rms);
+    if (out.refinement.converged_at_start) {
+      spdlog::info("{}; the input is converged (the refinement gains nothing from it): kept", said);
+    } else {
+      out.notes.warn(said + ": refining from the input");
+    }
+  }
   FixedPlaneMap::Figures at_final = out.map.figures(out.poses);
   out.final_rms = at_final.rms;
   if (!(out.final_rms <= out.input_rms * kEqualMapMargin)) {

@@ -328,6 +328,10 @@ void expectAFixedPoint(const fs::path& data, const test::TempDir& dir) {
   EXPECT_TRUE(report.at("refinement").at("converged_at_start").get<bool>());
   EXPECT_LE(report.at("refinement").at("gain_over_noise").get<double>(), 1.0);
   EXPECT_EQ(report.at("largest_update").at("translation_m").get<double>(), 0.0);
+  // Nothing the user must act on: the hierarchy's poses were not needed.
+  for (const auto& warning : report.at("warnings"))
+    EXPECT_EQ(warning.get<std::string>().find("less consistent"), std::string::npos) << warning;
+  EXPECT_EQ(r.output.find("[warning] frames 0-"), std::string::npos) << r.output;
 }
 
 // On a simulation the hierarchy run again is not less consistent, only no
