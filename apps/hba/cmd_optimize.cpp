@@ -118,6 +118,7 @@ void run(const Args& args) {
   }
   nlohmann::json report = reportJson(result, dataset, args.data, settings, conventions);
   report["memory_estimate"] = memory;
+  if (gt) report["window_errors"] = windowErrorsReport(result, dataset.trajectory().poses, *gt);
   if (dataset.pointTimes()) {
     report["deskew"] = {{"point_times", dataset.pointTimes()->describe()},
                         {"passes", deskew_passes.size() + 1},
@@ -174,7 +175,9 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_flag("--force", args->force, "Replace a non-empty output folder (as a whole, at the end)");
   command
       ->add_option("--gt", args->ground_truth,
-                   "Ground-truth trajectory to draw in the picture (default: DIR/gt.txt if present)")
+                   "Ground-truth trajectory: drawn in the picture and the page, and every window of the "
+                   "pyramid measured against it (report.json's window_errors; default: DIR/gt.txt if "
+                   "present)")
       ->check(inputFile());
   command
       ->add_option("--loops", args->loops,

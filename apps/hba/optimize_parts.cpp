@@ -36,16 +36,34 @@ double peakMemoryMiB() {
 }
 
 std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames) {
-  if (args.no_render && args.no_report_page) return std::nullopt;
   fs::path path = args.ground_truth;
   if (path.empty() && regularFileIsPresent(dataset.root() / "gt.txt")) path = dataset.root() / "gt.txt";
   if (path.empty()) return std::nullopt;
   Trajectory gt = io::readPoses(path);
   if (gt.size() != frames) {
-    spdlog::warn("{}: {} poses for {} scans; not drawn", path.string(), gt.size(), frames);
+    spdlog::warn("{}: {} poses for {} scans; not drawn nor compared", path.string(), gt.size(), frames);
     return std::nullopt;
   }
   return gt;
+}
+
+nlohmann::json windowErrorsReport(const pyramid::HbaResult& result, const std::vector<Pose>& input,
+                                  const Trajectory& gt) {
+  const std::vector<pyramid::LayerWindowErrors> rows = pyramid::windowErrors(
+      result.report.window_records, input, result.hierarchy_poses, result.poses, gt.poses);
+  spdlog::info("windows against the ground truth (RMS of each window's frames from its first: deg, m; "
+               "report.json's window_errors):");
+  spdlog::info("  {:>5} {:>6} {:>17} {:>17} {:>17} {:>17} {:>17}", "layer", "pairs", "input", "window start",
+               "window result", "hierarchy", "final");
+  auto cell = [](const pyramid::RelativeErrorRms& e) {
+    return fmt::format("{:.4f} {:.4f}", e.rotation_rms_deg, e.translation_rms_m);
+  };
+  for (const pyramid::LayerWindowErrors& row : rows) {
+    spdlog::info("  {:>5} {:>6} {:>17} {:>17} {:>17} {:>17} {:>17}",
+                 fmt::format("{}{}", row.layer, row.global ? "g" : ""), row.pairs, cell(row.input),
+                 cell(row.start), cell(row.window), cell(row.hierarchy), cell(row.final));
+  }
+  return pyramid::windowErrorsToJson(rows);
 }
 
 void announceReplacement(const StagingFolder& staging) {

@@ -67,10 +67,15 @@ nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& d
                           const nlohmann::json& conventions);
 // Returns what was written (with the peak memory so far).
 nlohmann::json writeReport(const std::filesystem::path& out, const nlohmann::json& report);
-// Ground truth for the picture and the page: --gt, or the simulator's gt.txt
-// beside the data; none with --no-render and --no-report-page, or when it has not `frames` poses (a warning).
+// Ground truth for the picture, the page and the windows' errors: --gt, or
+// the simulator's gt.txt beside the data; none when it has not `frames`
+// poses (a warning).
 // Read before any work: a bad file must not cost a finished run.
 std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& dataset, std::size_t frames);
+// report.json's window_errors: every pyramid window of `result` against
+// `gt` (pyramid/window_errors.hpp), also logged as a table.
+nlohmann::json windowErrorsReport(const pyramid::HbaResult& result, const std::vector<Pose>& input,
+                                  const Trajectory& gt);
 // before_after.png of `before` and `result.poses` (with `gt` when given).
 // The scans are read as the optimization kept them (parsed and downsampled
 // once, at `scan_voxel`) when it kept them at least as fine as the picture's

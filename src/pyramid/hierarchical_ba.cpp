@@ -151,6 +151,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   if (initial.size() == 1) {
     warn(report, "a single scan: nothing to align it with, pose returned unchanged");
     result.poses = initial;
+    result.hierarchy_poses = initial;
     report.seconds_total = secondsSince(start);
     return result;
   }
@@ -169,7 +170,13 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   arena.execute([&] { runStages(run); });
   result.report = std::move(run.report);
   result.report.seconds_total = secondsSince(start);
-  result.poses = translated(run.poses, run.origin + run.shift);
+  const Vec3 back = run.origin + run.shift;
+  result.poses = translated(run.poses, back);
+  result.hierarchy_poses = translated(run.hierarchy, back);
+  for (WindowRecord& record : result.report.window_records) {
+    record.start = translated(record.start, back);
+    record.optimized = translated(record.optimized, back);
+  }
   if (layer_one->kept())
     result.scans = std::shared_ptr<const io::ScanSource>(layer_one, &layer_one->source());
   return result;

@@ -36,6 +36,22 @@ void logLayer(const LayerReport& r) {
   }
 }
 
+// Each window of `layer` as it began and as its BA left it.
+void recordWindows(const Layer& layer, const LayerOutcome& outcome, HbaReport& report) {
+  for (const WindowOutcome& window : outcome.windows) {
+    WindowRecord record;
+    record.iteration = outcome.report.iteration;
+    record.layer = outcome.report.layer;
+    record.global = outcome.report.global;
+    const auto first = static_cast<long>(window.window.first);
+    const auto end = first + static_cast<long>(window.window.count);
+    record.nodes.assign(layer.nodes.begin() + first, layer.nodes.begin() + end);
+    record.start.assign(layer.poses.begin() + first, layer.poses.begin() + end);
+    record.optimized = window.optimized;
+    report.window_records.push_back(std::move(record));
+  }
+}
+
 // The BA settings of layer `level`'s windows: the top layer's one global BA
 // has its own, looser plane test; layer 1 may start finer.
 ba::BaSettings windowSettings(const HbaSettings& settings, int level, bool top) {
@@ -109,6 +125,7 @@ Pyramid bottomUp(Run& run, int iteration, StageTimes& times) {
     outcome.report.seconds = secondsSince(start);
     logLayer(outcome.report);
     run.report.layer_reports.push_back(outcome.report);
+    recordWindows(layer, outcome, run.report);
     if (top) {
       pyramid.top = std::move(outcome);
     } else {
@@ -181,6 +198,7 @@ void buildPyramid(Run& run) {
     run.poses = std::move(updated);
     if (rounds.stopAfter(iteration, u)) break;
   }
+  run.hierarchy = run.poses;
   report.rounds_stopped = toString(rounds.why());
   report.rounds_reason = rounds.reason();
   spdlog::info("{}", report.rounds_reason);

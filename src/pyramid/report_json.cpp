@@ -29,6 +29,13 @@ nlohmann::json layersJson(const HbaReport& r) {
   return layers;
 }
 
+nlohmann::json relativeErrorJson(const RelativeErrorRms& e) {
+  return {{"rotation_rms_deg", e.rotation_rms_deg},
+          {"translation_rms_m", e.translation_rms_m},
+          {"rotation_xyz_deg", e.rotation_deg},
+          {"translation_xyz_m", e.translation_m}};
+}
+
 nlohmann::json iterationsJson(const HbaReport& r) {
   nlohmann::json iterations = nlohmann::json::array();
   for (const auto& it : r.iterations) {
@@ -157,6 +164,23 @@ nlohmann::json reportToJson(const HbaReport& r) {
             {"pose_graph", r.seconds_graph},
             {"total", r.seconds_total}}},
           {"warnings", r.warnings}};
+}
+
+nlohmann::json windowErrorsToJson(const std::vector<LayerWindowErrors>& rows) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const LayerWindowErrors& row : rows) {
+    out.push_back({{"iteration", row.iteration},
+                   {"layer", row.layer},
+                   {"global", row.global},
+                   {"windows", row.windows},
+                   {"pairs", row.pairs},
+                   {"input", relativeErrorJson(row.input)},
+                   {"start", relativeErrorJson(row.start)},
+                   {"window", relativeErrorJson(row.window)},
+                   {"hierarchy", relativeErrorJson(row.hierarchy)},
+                   {"final", relativeErrorJson(row.final)}});
+  }
+  return out;
 }
 
 }  // namespace hba::pyramid

@@ -29,6 +29,7 @@ struct Run {
   std::vector<Pose> input;  // the input poses, near the origin
   ClosureOutcome closed;    // the closure stage's start, loops and priors
   std::vector<Pose> poses;  // the current poses, handed from stage to stage
+  std::vector<Pose> hierarchy;  // the pyramid's result, before the refinement
   HbaReport report;
   // Each stage run so far, in order, and its wall time (s).
   std::vector<std::pair<std::string, double>> stage_seconds;

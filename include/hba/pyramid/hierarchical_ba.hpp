@@ -18,6 +18,9 @@ namespace hba::pyramid {
 
 struct HbaResult {
   std::vector<Pose> poses;  // optimized layer-1 poses, same order as the input
+  // The poses the paper's method left (the top-down pose graph of the last
+  // round), before the refinement: what the hierarchy alone reached.
+  std::vector<Pose> hierarchy_poses;
   HbaReport report;
   // The scans as the run read them, at settings.scan_voxel, kept on disk (a
   // private folder in $TMPDIR, removed with the last copy of this pointer):

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "hba/core/pose.hpp"
 #include "hba/pyramid/window_size.hpp"
 #include "hba/refine/report.hpp"
 
@@ -35,6 +36,19 @@ struct LayerReport {
   double rms_before = 0.0;  // point-to-plane RMS over all plane points (m)
   double rms_after = 0.0;
   double seconds = 0.0;
+};
+
+// One window of the pyramid as it ran: the layer-1 scans its frames start
+// at, their poses as the window began (the layer's, chained from the
+// windows below) and as its BA left them (frame 0 held). Kept for a
+// diagnosis against a reference (window_errors.hpp): where error enters.
+struct WindowRecord {
+  int iteration = 0;
+  int layer = 0;
+  bool global = false;
+  std::vector<std::size_t> nodes;
+  std::vector<Pose> start;
+  std::vector<Pose> optimized;
 };
 
 struct IterationReport {
@@ -99,6 +113,7 @@ struct HbaReport {
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;
+  std::vector<WindowRecord> window_records;  // every window of every layer and round
   ClosureReport closure;
   RefinementReport refinement;
   ConsistencyReport consistency;
