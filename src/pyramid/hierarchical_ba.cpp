@@ -76,9 +76,18 @@ void warn(HbaReport& report, std::string message) {
 
 // The settings the stages run with: the window size chosen (automatic:
 // from the scans' density) and the thread count resolved.
-HbaSettings resolve(const HbaSettings& settings, const io::ScanSource& scans, WindowSize& window_size) {
+HbaSettings resolve(const HbaSettings& settings, const io::ScanSource& scans, WindowSize& window_size,
+                    FinalVoxel& final_voxel) {
   window_size = chooseWindowSize(settings, scans);
-  HbaSettings resolved = withWindowSize(settings, window_size);
+  final_voxel = chooseFinalVoxel(settings, scans);
+  HbaSettings resolved = withFinalVoxel(withWindowSize(settings, window_size), final_voxel);
+  if (final_voxel.coarsened) {
+    spdlog::info(
+        "sparse scans ({:.1f} points of a scan in a {:g} m voxel, fewer than {:g}): the windows' planes end "
+        "at {:g} m voxels ({:.1f} points), not {:g} m",
+        final_voxel.scan_points_at_setting, final_voxel.setting, settings.local.planes.min_points / 2.0,
+        final_voxel.chosen, final_voxel.scan_points_at_chosen, final_voxel.setting);
+  }
   resolved.threads = resolvedThreadCount(settings);
   if (window_size.automatic) {
     spdlog::info("windows of {} scans every {} (automatic: {:.0f} points a scan, {:.0f} a window at least)",
@@ -136,11 +145,13 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   validate(scans, initial, settings, closures);
   const auto start = Clock::now();
   WindowSize window_size;
-  const HbaSettings resolved = resolve(settings, scans, window_size);
+  FinalVoxel final_voxel;
+  const HbaSettings resolved = resolve(settings, scans, window_size, final_voxel);
   HbaResult result;
   HbaReport& report = result.report;
   report.threads = resolved.threads;
   report.windows = window_size;
+  report.final_voxel = final_voxel;
   report.processes = group.size();
   report.frames = initial.size();
   report.layers = layerCount(initial.size(), resolved);

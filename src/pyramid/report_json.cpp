@@ -148,6 +148,12 @@ nlohmann::json reportToJson(const HbaReport& r) {
             {"stride", r.windows.stride},
             {"automatic", r.windows.automatic},
             {"points_per_scan", r.windows.points_per_scan}}},
+          {"final_voxel",
+           {{"setting_m", r.final_voxel.setting},
+            {"chosen_m", r.final_voxel.chosen},
+            {"coarsened", r.final_voxel.coarsened},
+            {"scan_points_at_setting", r.final_voxel.scan_points_at_setting},
+            {"scan_points_at_chosen", r.final_voxel.scan_points_at_chosen}}},
           {"threads", r.threads},
           {"processes", r.processes},
           // "converged: false" read as a failure after the default single pass.

@@ -251,6 +251,11 @@ void addDensity(std::vector<Setting>& t) {
                               [](HbaSettings& h) -> double& { return h.scan_window_voxel; },
                               "root voxel of the layer-1 (scan) windows, m"),
                           {"scan_window_voxel"}));
+  t.push_back(onOff(
+      "adapt_final_voxel", "--no-adapt-final-voxel", true,
+      [](HbaSettings& h) -> bool& { return h.adapt_final_voxel; },
+      "end the windows' association at a coarser voxel where a scan puts fewer than half a plane's "
+      "points in one"));
 }
 
 // The top-down pose graph and the weights of its factors.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"
+#include "hba/pyramid/final_voxel.hpp"
 #include "hba/pyramid/window_size.hpp"
 #include "hba/refine/report.hpp"
 
@@ -108,6 +109,7 @@ struct ClosureReport {
 struct HbaReport {
   int layers = 0;
   WindowSize windows;  // the layer-1 windows used (window_size.hpp)
+  FinalVoxel final_voxel;  // where the windows' association ended (final_voxel.hpp)
   int threads = 0;     // that every parallel part ran on, the pose graph included
   int processes = 1;   // the group's members the windows were spread over (mpirun's ranks)
   std::size_t frames = 0;

@@ -56,6 +56,11 @@ struct HbaSettings {
   // local.planes.voxel_size.
   double scan_window_voxel{};
 
+  // Where a scan puts fewer than half a plane's minimum points in a voxel
+  // of local.final_voxel_size, the windows' and the top BA's association
+  // ends at a coarser voxel (final_voxel.hpp).
+  bool adapt_final_voxel{};
+
   ba::BaSettings local;   // the windows of every layer
   ba::BaSettings global;  // the top layer's one BA (a looser plane test: finds large divergences)
 
