@@ -6,10 +6,11 @@
 // sparse ones (nclt's HDL-32E keyframes, 2 900 points each after
 // downsampling; a Livox scan, 4 000) do not: their relative poses came out
 // further from the truth than the odometry's, and chained up the pyramid
-// they bent a 1.1 km loop by 30 m (BENCHMARKS.md, "The hierarchy on sparse
-// scans"). So an automatic window holds at least kWindowPoints points (as
-// the windows see them, after downsample_scans), never fewer than the
-// paper's ten frames. Not the default yet: see BENCHMARKS.md.
+// they bent a 1.1 km loop by 30 m (docs/history/benchmarks.md). So an
+// automatic window holds at least kWindowPoints points (as the windows see
+// them, after downsample_scans), never fewer than the paper's ten frames.
+// Not the default: it bends nclt by metres (docs/pyramid.md); the sparse
+// windows' worst failure is mended by the final voxel (final_voxel.hpp).
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
 
