@@ -2,6 +2,7 @@
 // pyramid of keyframes, top-down pose graph, repeated until the poses settle.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
@@ -53,11 +54,13 @@ void recordWindows(const Layer& layer, const LayerOutcome& outcome, HbaReport& r
 }
 
 // The BA settings of layer `level`'s windows: the top layer's one global BA
-// has its own, looser plane test; layer 1 may start finer.
+// has its own, looser plane test; layer 1 may start finer, but never below
+// the final voxel (coarsened for sparse scans: final_voxel.hpp).
 ba::BaSettings windowSettings(const HbaSettings& settings, int level, bool top) {
   if (top) return settings.globalBa();
   ba::BaSettings window = settings.localBa();
-  if (level == 1 && settings.scan_window_voxel > 0.0) window.planes.voxel_size = settings.scan_window_voxel;
+  if (level == 1 && settings.scan_window_voxel > 0.0)
+    window.planes.voxel_size = std::max(settings.scan_window_voxel, window.final_voxel_size);
   return window;
 }
 
