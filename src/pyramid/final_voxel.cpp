@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hba/pyramid/memory_estimate.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
@@ -49,16 +50,12 @@ FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
 }
 
 FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const io::ScanSource& scans) {
-  const std::size_t n = scans.size();
-  const std::size_t count = std::min(n, kSampledScans);
   std::vector<PointCloud> sample;
   // Read only when the choice depends on it.
   const bool measure = settings.adapt_final_voxel && settings.local.final_voxel_size > 0.0 &&
                        settings.local.final_voxel_size < settings.local.planes.voxel_size;
-  for (std::size_t k = 0; measure && k < count; ++k) {
-    const std::size_t i = count == 1 ? 0 : k * (n - 1) / (count - 1);
+  for (const std::size_t i : measure ? spreadSample(scans.size(), kSampledScans) : std::vector<std::size_t>{})
     sample.push_back(voxel::downsample(scans.load(i), settings.scan_voxel));
-  }
   return chooseFinalVoxel(settings, [&sample](double size) {
     double squares = 0.0, points = 0.0;
     for (const PointCloud& scan : sample) {

@@ -63,14 +63,22 @@ std::string millions(double points) { return fmt::format("{:.1f} M points", poin
 
 }  // namespace
 
+std::vector<std::size_t> spreadSample(std::size_t n, std::size_t samples) {
+  const std::size_t count = std::min(n, samples);
+  std::vector<std::size_t> indices;
+  indices.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) indices.push_back(count == 1 ? 0 : k * (n - 1) / (count - 1));
+  return indices;
+}
+
 ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& settings, std::size_t samples) {
   ScanDensity density;
   const std::size_t n = scans.size();
   if (n == 0 || samples == 0) return density;
-  const std::size_t count = std::min(n, samples);
+  const std::vector<std::size_t> sample = spreadSample(n, samples);
+  const std::size_t count = sample.size();
   double points = 0.0, refine_points = 0.0, sampled_hint = 0.0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::size_t i = count == 1 ? 0 : k * (n - 1) / (count - 1);
+  for (const std::size_t i : sample) {
     const PointCloud scan = voxel::downsample(scans.load(i), settings.scan_voxel);
     points += static_cast<double>(scan.size());
     refine_points += static_cast<double>(settings.refine_scan_voxel > 0.0

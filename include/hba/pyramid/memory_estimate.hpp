@@ -25,6 +25,10 @@ struct ScanDensity {
   double refine_points = 0.0;  // per scan, at the refinement's density
 };
 
+// The indices of up to `samples` scans spread evenly over `n`, first and
+// last included: the scans a run reads to learn the sequence's density.
+std::vector<std::size_t> spreadSample(std::size_t n, std::size_t samples);
+
 // Reads up to `samples` scans spread over `scans` (as given: sensor frame,
 // full density) and downsamples them as the run would. Scans whose source
 // tells their size (a file's bytes) are weighted by it, so that a sequence
