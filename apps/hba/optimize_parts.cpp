@@ -51,8 +51,9 @@ nlohmann::json windowErrorsReport(const pyramid::HbaResult& result, const std::v
                                   const Trajectory& gt) {
   const std::vector<pyramid::LayerWindowErrors> rows = pyramid::windowErrors(
       result.report.window_records, input, result.hierarchy_poses, result.poses, gt.poses);
-  spdlog::info("windows against the ground truth (RMS of each window's frames from its first: deg, m; "
-               "report.json's window_errors):");
+  spdlog::info(
+      "windows against the ground truth (RMS of each window's frames from its first: deg, m; "
+      "report.json's window_errors):");
   spdlog::info("  {:>5} {:>6} {:>17} {:>17} {:>17} {:>17} {:>17}", "layer", "pairs", "input", "window start",
                "window result", "hierarchy", "final");
   auto cell = [](const pyramid::RelativeErrorRms& e) {

@@ -26,9 +26,9 @@ struct Run {
   // the closure stage near its start's first pose (`origin + shift`).
   Vec3 origin = Vec3::Zero();
   Vec3 shift = Vec3::Zero();
-  std::vector<Pose> input;  // the input poses, near the origin
-  ClosureOutcome closed;    // the closure stage's start, loops and priors
-  std::vector<Pose> poses;  // the current poses, handed from stage to stage
+  std::vector<Pose> input;      // the input poses, near the origin
+  ClosureOutcome closed;        // the closure stage's start, loops and priors
+  std::vector<Pose> poses;      // the current poses, handed from stage to stage
   std::vector<Pose> hierarchy;  // the pyramid's result, before the refinement
   HbaReport report;
   // Each stage run so far, in order, and its wall time (s).

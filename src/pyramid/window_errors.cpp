@@ -60,8 +60,10 @@ void checkCounts(const std::vector<Pose>& input, const std::vector<Pose>& hierar
 }  // namespace
 
 std::vector<LayerWindowErrors> windowErrors(const std::vector<WindowRecord>& records,
-                                            const std::vector<Pose>& input, const std::vector<Pose>& hierarchy,
-                                            const std::vector<Pose>& final, const std::vector<Pose>& reference) {
+                                            const std::vector<Pose>& input,
+                                            const std::vector<Pose>& hierarchy,
+                                            const std::vector<Pose>& final,
+                                            const std::vector<Pose>& reference) {
   checkCounts(input, hierarchy, final, reference);
   std::vector<LayerWindowErrors> rows;
   std::vector<RowSums> sums;

@@ -13,7 +13,7 @@ namespace {
 TEST(FinalVoxel, PointsPerVoxelAreAveragedOverThePoints) {
   PointCloud scan;
   for (int i = 0; i < 8; ++i) scan.add(Vec3f(0.1f * static_cast<float>(i), 0.5f, 0.5f));  // one cell
-  scan.add(Vec3f(3.2f, 0.5f, 0.5f));                                                       // another
+  scan.add(Vec3f(3.2f, 0.5f, 0.5f));                                                      // another
   scan.add(Vec3f(3.7f, 0.5f, 0.5f));
   EXPECT_DOUBLE_EQ(scanPointsPerVoxel(scan, 1.0), (64.0 + 4.0) / 10.0);
   EXPECT_DOUBLE_EQ(scanPointsPerVoxel(scan, 4.0), 10.0);  // all in one 4 m cell
@@ -64,7 +64,7 @@ TEST(FinalVoxel, AppliedToTheWindowsAndTheTopBaBelowTheirRoots) {
   const HbaSettings applied = withFinalVoxel(settings, voxel);
   EXPECT_DOUBLE_EQ(applied.local.final_voxel_size, 4.0);
   EXPECT_DOUBLE_EQ(applied.global.final_voxel_size, 2.0);  // its root
-  voxel.chosen = 0.5;  // finer than a setting: the setting stays
+  voxel.chosen = 0.5;                                      // finer than a setting: the setting stays
   EXPECT_DOUBLE_EQ(withFinalVoxel(settings, voxel).local.final_voxel_size, 1.0);
 }
 

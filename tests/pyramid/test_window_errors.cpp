@@ -59,8 +59,8 @@ TEST(WindowErrors, ExactPosesHaveNoErrorAndLayersGetARowEach) {
 TEST(WindowErrors, AnErrorShowsOnItsAxisInTheFirstFramesCoordinates) {
   const std::vector<Pose> truth = referencePath();
   WindowRecord record = windowOf(1, {0, 1, 2}, truth);
-  record.optimized[2] = record.optimized[2] * Pose(Quat(Eigen::AngleAxisd(0.2 * M_PI / 180.0, Vec3::UnitX())),
-                                                   Vec3(0, 0, 0));
+  record.optimized[2] =
+      record.optimized[2] * Pose(Quat(Eigen::AngleAxisd(0.2 * M_PI / 180.0, Vec3::UnitX())), Vec3(0, 0, 0));
   record.start[1].t += Vec3(0.03, 0, 0);  // began 3 cm ahead on x
   const auto rows = windowErrors({record}, truth, truth, truth, truth);
   ASSERT_EQ(rows.size(), 1u);

@@ -39,7 +39,8 @@ double scanPointsPerVoxel(const PointCloud& scan, double size);
 // `points_per_voxel(size)` (scanPointsPerVoxel's measure): local.final_voxel_size
 // doubled while below `min_points / 2` and below the root voxel. Unchanged
 // when settings.adapt_final_voxel is off or the coarse-to-fine is (0).
-FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const std::function<double(double)>& points_per_voxel);
+FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
+                            const std::function<double(double)>& points_per_voxel);
 
 // The same, measured on up to 16 scans spread over `scans`, downsampled
 // to settings.scan_voxel as the windows see them.

@@ -108,10 +108,10 @@ struct ClosureReport {
 
 struct HbaReport {
   int layers = 0;
-  WindowSize windows;  // the layer-1 windows used (window_size.hpp)
+  WindowSize windows;      // the layer-1 windows used (window_size.hpp)
   FinalVoxel final_voxel;  // where the windows' association ended (final_voxel.hpp)
-  int threads = 0;     // that every parallel part ran on, the pose graph included
-  int processes = 1;   // the group's members the windows were spread over (mpirun's ranks)
+  int threads = 0;         // that every parallel part ran on, the pose graph included
+  int processes = 1;       // the group's members the windows were spread over (mpirun's ranks)
   std::size_t frames = 0;
   std::vector<LayerReport> layer_reports;
   std::vector<IterationReport> iterations;

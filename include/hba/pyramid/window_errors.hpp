@@ -33,7 +33,7 @@ struct LayerWindowErrors {
   int layer = 0;
   bool global = false;
   std::size_t windows = 0;
-  std::size_t pairs = 0;  // frames that are not their window's first
+  std::size_t pairs = 0;       // frames that are not their window's first
   RelativeErrorRms input;      // the input poses
   RelativeErrorRms start;      // the windows' poses as they began
   RelativeErrorRms window;     // as the windows' BAs left them
@@ -46,7 +46,9 @@ struct LayerWindowErrors {
 // only relative poses are compared, so any frames will do. Throws
 // hba::Error if their counts differ or a record names a scan beyond them.
 std::vector<LayerWindowErrors> windowErrors(const std::vector<WindowRecord>& records,
-                                            const std::vector<Pose>& input, const std::vector<Pose>& hierarchy,
-                                            const std::vector<Pose>& final, const std::vector<Pose>& reference);
+                                            const std::vector<Pose>& input,
+                                            const std::vector<Pose>& hierarchy,
+                                            const std::vector<Pose>& final,
+                                            const std::vector<Pose>& reference);
 
 }  // namespace hba::pyramid
