@@ -9,6 +9,7 @@
 #include "core/stopwatch.hpp"
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
+#include "hba/ba/offset_noise.hpp"
 #include "hba/ba/plane_problem.hpp"
 #include "hba/core/error.hpp"
 
@@ -28,11 +29,12 @@ void validate(const std::vector<const PointCloud*>& scans, const std::vector<Pos
       !(settings.reject_ratio >= 0.0 && settings.reject_ratio < 1.0) ||
       !(settings.relative_cost_tolerance >= 0.0) ||
       !(settings.planes.voxel_size > 0.0 && std::isfinite(settings.planes.voxel_size)) ||
-      !(settings.final_voxel_size >= 0.0 && std::isfinite(settings.final_voxel_size))) {
+      !(settings.final_voxel_size >= 0.0 && std::isfinite(settings.final_voxel_size)) ||
+      !(settings.significant_gain >= 0.0 && std::isfinite(settings.significant_gain))) {
     throw Error(
         "window BA: invalid settings (need max_iterations >= 0, association_rounds >= 1, "
         "0 <= reject_ratio < 1, relative_cost_tolerance >= 0, voxel_size > 0, "
-        "final_voxel_size >= 0)");
+        "final_voxel_size >= 0, significant_gain >= 0)");
   }
 }
 
@@ -42,6 +44,31 @@ std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> co
     costs[p] = std::sqrt(costs[p] / problem.planes()[p].pointCount());
   }
   return costs;
+}
+
+// The trust and settle checks of `result.poses` on `planes`, the finest
+// planes found at the input poses (`cost_at_input` there): sets the fixed
+// map's costs, `trusted`, `gain_over_noise` and `settled`.
+void checkAgainstInput(const PlaneProblem& planes, double cost_at_input, const std::vector<Pose>& initial,
+                       const std::vector<double>& path_m, const BaSettings& settings, BaResult& result) {
+  result.fixed_map_cost_initial = cost_at_input;
+  result.fixed_map_cost_final = planes.cost(result.poses);
+  // Not trusted: a blurrier map on the input's own planes, or neighbouring
+  // frames pulled apart far beyond what the prior allows (planes that
+  // merge unrelated surfaces can make a map look crisper while frames
+  // slide by metres).
+  const bool slid =
+      settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
+      !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior, settings.slide_sigmas)
+           .empty();
+  const double gain = result.fixed_map_cost_initial - result.fixed_map_cost_final;
+  result.trusted = !slid && gain >= 0.0;
+  if (!result.trusted) return;
+  // Settled: no more gained than fitting the frames to noise would.
+  const double noise = offsetNoiseGain(frameOffsets(planes, result.poses), initial.size());
+  result.gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
+  result.settled =
+      settings.significant_gain > 0.0 && noise > 0.0 && gain <= settings.significant_gain * noise;
 }
 
 }  // namespace
@@ -99,37 +126,27 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    result.fixed_map_cost_initial = fixed->cost();  // found at the input poses
-    result.fixed_map_cost_final = fixed->problem.cost(result.poses);
-    // Not trusted: a blurrier map on the input's own planes, or neighbouring
-    // frames pulled apart far beyond what the prior allows (planes that
-    // merge unrelated surfaces can make a map look crisper while frames
-    // slide by metres).
-    const bool slid =
-        settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
-        !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior, settings.slide_sigmas)
-             .empty();
-    if (slid || result.fixed_map_cost_final > result.fixed_map_cost_initial) {
-      result.trusted = false;
+    checkAgainstInput(fixed->problem, fixed->cost(), initial, path_m, settings, result);
+    if (!result.trusted || result.settled) {
       result.poses = initial;
       last = fixed;
       last_at_input = true;
     }
   }
+  const bool moved = result.trusted && !result.settled;
   const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;
   // Each plane's cost at the result and at the input, once for the totals
   // and the RMS figures (the association's own where it was found there).
   const std::vector<double> initial_costs =
       last_at_input ? last->plane_costs : last->problem.planeCosts(initial);
-  // Not trusted: the result is the input, and `last` the trust check's planes found there.
-  const std::vector<double> final_costs =
-      result.trusted ? last->problem.planeCosts(result.poses) : initial_costs;
+  // Not moved: the result is the input, and `last` the trust check's planes found there.
+  const std::vector<double> final_costs = moved ? last->problem.planeCosts(result.poses) : initial_costs;
   result.final_cost = PlaneProblem::total(final_costs);
   // The Hessian where the last round's solver settled: at the result, or
   // one step before it that gained at most the tolerance (the step is
   // taken; its Hessian is not made again for so small a move).
   Linearization final_lin;
-  if (result.trusted && last_lin.gradient.size() > 0) {
+  if (moved && last_lin.gradient.size() > 0) {
     final_lin = std::move(last_lin);
   } else {
     final_lin = last->problem.linearize(result.poses);

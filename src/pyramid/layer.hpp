@@ -21,6 +21,12 @@ struct Layer {
   // Path length (m) along the layer-1 poses from the first frame to each
   // frame: how far apart two frames are, for the motion prior.
   std::vector<double> distance_m;
+  // Each frame as the input made it: layer 1's scans, and above, keyframes
+  // of windows that kept their start poses and held only such frames. Only
+  // a window of such frames may settle (BaSettings::significant_gain):
+  // above frames that moved, a window's gain includes re-aligning what
+  // the windows below moved, which is no test of the input.
+  std::vector<bool> as_input;
   std::unique_ptr<io::CloudStore> keyframes;  // null for layer 1
   // The points of every keyframe, also of those stored by other processes
   // only (a group spreads the windows by them); empty for layer 1.
@@ -39,6 +45,7 @@ struct WindowOutcome {
   std::vector<graph::RelativePoseFactor> factors;
   std::vector<graph::WindowShapeFactor> shapes;  // one under FactorPairs::Joint, else none
   bool has_planes = false;
+  bool kept_start = false;  // optimized == its start poses (not trusted, or settled)
 };
 
 struct LayerOutcome {
@@ -46,6 +53,9 @@ struct LayerOutcome {
   LayerReport report;
   std::vector<std::size_t> keyframe_points;  // of each window's keyframe, when it made them
 };
+
+// Every frame of `window` is as the input made it (Layer::as_input).
+bool framesAsInput(const Layer& layer, const Window& window);
 
 // The plan a layer's windows followed.
 inline std::vector<Window> windowsOf(const LayerOutcome& outcome) {

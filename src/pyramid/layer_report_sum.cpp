@@ -20,6 +20,7 @@ LayerReport sumLayerReport(const std::vector<WindowSummary>& windows) {
     sq_after += w.sq_rms_after;
     if (!w.outcome.has_planes) ++report.windows_without_planes;
     if (!w.trusted) ++report.windows_untrusted;
+    if (w.settled) ++report.windows_settled;
   }
   if (report.planes > 0) {
     report.rms_before = std::sqrt(sq_before / static_cast<double>(report.planes));

@@ -31,6 +31,12 @@ void logLayer(const LayerReport& r) {
         "prior, and keep their input poses",
         r.layer, r.windows_untrusted, r.windows);
   }
+  if (r.windows_settled > 0) {
+    spdlog::info(
+        "  layer {}: {} of {} windows settled (gained no more than fitting noise would) and keep their "
+        "start poses",
+        r.layer, r.windows_settled, r.windows);
+  }
   if (r.windows_without_planes > 0) {
     spdlog::warn("  layer {}: {} of {} windows found no plane features", r.layer, r.windows_without_planes,
                  r.windows);

@@ -13,6 +13,7 @@ nlohmann::json layersJson(const HbaReport& r) {
                       {"windows", l.windows},
                       {"windows_without_planes", l.windows_without_planes},
                       {"windows_untrusted", l.windows_untrusted},
+                      {"windows_settled", l.windows_settled},
                       {"planes", l.planes},
                       {"plane_points", l.plane_points},
                       {"cloud_points", l.cloud_points},

@@ -142,6 +142,10 @@ void addBaSettings(std::vector<Setting>& table, const std::string& section, cons
   table.push_back(onOff(
       k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
       "windows that blur the map keep their input poses"));
+  table.push_back(real(
+      k + "significant_gain", "", 8.0, zeroOr("off", 0.0, 1e6),
+      [ba](HbaSettings& h) -> double& { return ba(h).significant_gain; },
+      "windows gaining at most this many times fitting noise keep their start poses"));
 }
 
 const Setting& inTable(const std::vector<Setting>& table, const std::string& key) {

@@ -16,6 +16,7 @@ Layer buildUpperLayer(const Layer& lower, const LayerOutcome& outcome,
   for (std::size_t j = 0; j < n; ++j) {
     upper.nodes.push_back(lower.nodes[plan[j].first]);
     upper.distance_m.push_back(lower.distance_m[plan[j].first]);
+    upper.as_input.push_back(outcome.windows[j].kept_start && framesAsInput(lower, plan[j]));
     if (j == 0) {
       upper.poses.push_back(outcome.windows[j].optimized.front());
     } else {

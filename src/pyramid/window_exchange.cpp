@@ -20,6 +20,7 @@ void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   putFactors(out, o.factors);
   putShapes(out, o.shapes);
   out.put<std::uint8_t>(o.has_planes);
+  out.put<std::uint8_t>(o.kept_start);
   out.put(s.cost_before);
   out.put(s.cost_after);
   out.put(s.sq_rms_before);
@@ -29,6 +30,7 @@ void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   out.put<std::int32_t>(s.iterations);
   out.put<std::int32_t>(s.rounds);
   out.put<std::uint8_t>(s.trusted);
+  out.put<std::uint8_t>(s.settled);
 }
 
 WindowSummary getSummary(dist::ByteReader& in) {
@@ -40,6 +42,7 @@ WindowSummary getSummary(dist::ByteReader& in) {
   o.factors = getFactors<graph::RelativePoseFactor>(in);
   o.shapes = getShapes(in);
   o.has_planes = in.get<std::uint8_t>() != 0;
+  o.kept_start = in.get<std::uint8_t>() != 0;
   s.cost_before = in.get<double>();
   s.cost_after = in.get<double>();
   s.sq_rms_before = in.get<double>();
@@ -49,6 +52,7 @@ WindowSummary getSummary(dist::ByteReader& in) {
   s.iterations = in.get<std::int32_t>();
   s.rounds = in.get<std::int32_t>();
   s.trusted = in.get<std::uint8_t>() != 0;
+  s.settled = in.get<std::uint8_t>() != 0;
   return s;
 }
 

@@ -14,7 +14,11 @@ ba::BaResult runWindowBa(const Layer& layer, const Window& window,
                          const std::vector<const PointCloud*>& clouds, const ba::BaSettings& settings) {
   const auto first_pose = layer.poses.begin() + static_cast<long>(window.first);
   const std::vector<Pose> initial(first_pose, first_pose + static_cast<long>(window.count));
-  return ba::optimizeWindow(clouds, initial, settings, pathBetweenFrames(layer, window));
+  if (framesAsInput(layer, window))
+    return ba::optimizeWindow(clouds, initial, settings, pathBetweenFrames(layer, window));
+  ba::BaSettings unsettled = settings;
+  unsettled.significant_gain = 0.0;
+  return ba::optimizeWindow(clouds, initial, unsettled, pathBetweenFrames(layer, window));
 }
 
 }  // namespace hba::pyramid

@@ -10,7 +10,8 @@ namespace hba::pyramid {
 // The plane BA of one window of `layer`: it starts from the current poses
 // of the window's frames (the first one is held: the gauge), and its motion
 // prior measures the path between neighbouring frames along the layer.
-// `clouds` are the window's frames' clouds, in order.
+// `clouds` are the window's frames' clouds, in order. Only a window of
+// frames as the input made them may settle (Layer::as_input).
 ba::BaResult runWindowBa(const Layer& layer, const Window& window,
                          const std::vector<const PointCloud*>& clouds, const ba::BaSettings& settings);
 

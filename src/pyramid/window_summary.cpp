@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include <spdlog/spdlog.h>
+
 #include "hba/graph/window_factors.hpp"
 
 namespace hba::pyramid {
@@ -12,6 +14,7 @@ WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba
   out.outcome.window = window;
   out.outcome.optimized = result.poses;
   out.outcome.has_planes = result.num_planes > 0;
+  out.outcome.kept_start = !result.trusted || result.settled;
   const auto first = layer.nodes.begin() + static_cast<long>(window.first);
   const std::vector<std::size_t> nodes(first, first + static_cast<long>(window.count));
   // Windows too large for one dense factor fall back to the paper's pairs.
@@ -34,6 +37,10 @@ WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba
   out.iterations = result.iterations;
   out.rounds = result.rounds;
   out.trusted = result.trusted;
+  out.settled = result.settled;
+  spdlog::debug("  window of frames {}-{}: gained {:.2f} times what fitting noise would{}", window.first,
+                window.first + window.count - 1, result.gain_over_noise,
+                result.settled ? ", settled" : (result.trusted ? "" : ", not trusted"));
   for (double r : result.plane_rms_initial) out.sq_rms_before += r * r;
   for (double r : result.plane_rms_final) out.sq_rms_after += r * r;
   return out;

@@ -20,6 +20,7 @@ struct WindowSummary {
   int iterations = 0;
   int rounds = 0;
   bool trusted = true;
+  bool settled = false;
 };
 
 // The summary of `window` of `layer` from its BA result. The BA's Hessian

@@ -50,6 +50,14 @@ struct BaSettings {
   // odometry glitch (a jump of half a metre) would never be corrected.
   // 0 = off.
   double slide_sigmas = 5.0;
+  // Settle check (with check_fixed_map): a result that lowers the cost of
+  // the planes found at the input poses by no more than this many times
+  // what fitting the frames to noise would gain (offset_noise.hpp) keeps
+  // the input poses: the window has nothing to correct. Without it, windows
+  // of a converged map move to an optimum of their own, seen from a few
+  // nearby places only. Measured at a converged map, windows gain 2-7 times
+  // that; from drifting odometry 6 to thousands (docs/pyramid.md). 0 = off.
+  double significant_gain = 8.0;
 };
 
 struct BaResult {
@@ -70,6 +78,11 @@ struct BaResult {
   double fixed_map_cost_initial = 0.0;
   double fixed_map_cost_final = 0.0;
   bool trusted = true;
+  // Settle check: the result gained no more than significant_gain times
+  // fitting noise, and `poses` are the input poses; the gain in units of
+  // fitting noise (measured whenever the trust check passed; 0 otherwise).
+  bool settled = false;
+  double gain_over_noise = 0.0;
   int rounds = 0;              // association rounds run
   std::size_t num_planes = 0;  // plane features used in the last round
   std::size_t num_plane_points = 0;

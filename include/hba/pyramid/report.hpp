@@ -23,6 +23,9 @@ struct LayerReport {
   // Windows whose BA made the planes found at their input poses blurrier:
   // they keep their input poses (trust check, docs/pyramid.md).
   std::size_t windows_untrusted = 0;
+  // Windows whose BA gained no more than fitting noise would: they keep
+  // their start poses (settle check, docs/pyramid.md).
+  std::size_t windows_settled = 0;
   std::size_t planes = 0;        // summed over windows
   std::size_t plane_points = 0;  // summed over windows
   std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
