@@ -424,6 +424,7 @@ TEST_F(OptimizeSimulated, TheHierarchyAloneLeavesItsOwnOutputAlone) {
   const nlohmann::json report = readJson(again / "report.json");
   std::size_t settled = 0;
   for (const auto& layer : report.at("layer_reports")) {
+    if (layer.at("global").get<bool>()) continue;  // the top layer's BA does not settle
     const auto windows = layer.at("windows").get<std::size_t>();
     EXPECT_EQ(
         layer.at("windows_settled").get<std::size_t>() + layer.at("windows_untrusted").get<std::size_t>(),
@@ -433,9 +434,11 @@ TEST_F(OptimizeSimulated, TheHierarchyAloneLeavesItsOwnOutputAlone) {
   }
   EXPECT_GT(settled, 0u);
   EXPECT_NE(r.output.find("windows settled"), std::string::npos) << r.output;
-  // The pose graph of factors that all measure the start returns it (to rounding).
-  EXPECT_NEAR(report.at("consistency").at("hierarchy_rms_m").get<double>(),
-              report.at("consistency").at("input_rms_m").get<double>(), 1e-9);
+  // What the top then moves is no more than fitting noise: the input is returned.
+  const nlohmann::json& consistency = report.at("consistency");
+  EXPECT_FALSE(consistency.at("hierarchy_rejected").get<bool>());
+  EXPECT_LE(consistency.at("hierarchy_rms_m").get<double>(),
+            consistency.at("input_rms_m").get<double>() * 1.001);
   EXPECT_EQ(report.at("largest_update").at("translation_m").get<double>(), 0.0);
   for (const auto& warning : report.at("warnings"))
     EXPECT_EQ(warning.get<std::string>().find("less consistent"), std::string::npos) << warning;
