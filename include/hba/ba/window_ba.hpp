@@ -55,8 +55,9 @@ struct BaSettings {
   // what fitting the frames to noise would gain (offset_noise.hpp) keeps
   // the input poses: the window has nothing to correct. Without it, windows
   // of a converged map move to an optimum of their own, seen from a few
-  // nearby places only. Measured at a converged map, windows gain 2-7 times
-  // that; from drifting odometry 6 to thousands (docs/pyramid.md). 0 = off.
+  // nearby places only. Measured at a converged map, windows gain 1-7 times
+  // that (18 on sparse scans); from drifting odometry 6 to thousands
+  // (docs/pyramid.md). 0 = off.
   double significant_gain = 8.0;
 };
 
