@@ -14,11 +14,10 @@ ba::BaResult runWindowBa(const Layer& layer, const Window& window,
                          const std::vector<const PointCloud*>& clouds, const ba::BaSettings& settings) {
   const auto first_pose = layer.poses.begin() + static_cast<long>(window.first);
   const std::vector<Pose> initial(first_pose, first_pose + static_cast<long>(window.count));
-  if (framesAsInput(layer, window))
-    return ba::optimizeWindow(clouds, initial, settings, pathBetweenFrames(layer, window));
-  ba::BaSettings unsettled = settings;
-  unsettled.significant_gain = 0.0;
-  return ba::optimizeWindow(clouds, initial, unsettled, pathBetweenFrames(layer, window));
+  ba::BaSettings window_settings = settings;
+  if (!framesAsInput(layer, window))
+    window_settings.significant_gain = 0.0;  // above moved frames: no settling
+  return ba::optimizeWindow(clouds, initial, window_settings, pathBetweenFrames(layer, window));
 }
 
 }  // namespace hba::pyramid
