@@ -104,8 +104,7 @@ void BM_OptimizeWindow(benchmark::State& state) {
   spec.points_per_patch = static_cast<int>(state.range(0));
   spec.noise_sigma = 0.01;
   const auto window = test::makeSyntheticWindow(spec);
-  BaSettings settings;
-  settings.planes.voxel_size = 8.0;
+  const BaSettings settings = test::patchBaSettings();
   for (auto _ : state) {
     benchmark::DoNotOptimize(optimizeWindow(window.scanPointers(), window.initial, settings));
   }

@@ -2,6 +2,11 @@
 // here and the code that uses it; the flag, YAML key, report.json, range
 // check and docs/settings.md follow (regenerate the docs with
 // HBA_UPDATE_DOCS=1 ctest -R SettingTable).
+//
+// One home per default: a setting whose field lives in a module's struct
+// (ba::BaSettings, ba::RefinementSettings, the pose graph's, the
+// revisits') takes its default from that struct, so a module used on its
+// own runs as the tool does; the others' defaults are written here.
 #include "hba/pyramid/setting_table.hpp"
 
 #include "hba/core/enum_names.hpp"
@@ -104,48 +109,64 @@ SettingRange zeroOr(const std::string& zero, double min, double max) {
 using BaSettingsOf = ba::BaSettings HbaSettings::*;
 
 // The settings of one plane BA (the windows' or the top layer's), in the
-// YAML map `section`; `which` names its flags (--voxel-local).
+// YAML map `section`, with the defaults in `d`; `which` names its flags
+// (--voxel-local).
 void addBaSettings(std::vector<Setting>& table, const std::string& section, const std::string& which,
-                   double eigen_ratio, double significant_gain, BaSettingsOf member) {
+                   const ba::BaSettings& d, BaSettingsOf member) {
   const auto ba = [member](HbaSettings& h) -> ba::BaSettings& { return h.*member; };
   const std::string k = section + ".";
-  table.push_back(withAliases(real(
-                                  k + "voxel_size", "--voxel-" + which, 4.0, between(0.01, 1000),
-                                  [ba](HbaSettings& h) -> double& { return ba(h).planes.voxel_size; },
-                                  "root voxel of the adaptive plane map, m"),
-                              {"voxel_" + which}));
+  table.push_back(
+      withAliases(real(
+                      k + "voxel_size", "--voxel-" + which, d.planes.voxel_size, between(0.01, 1000),
+                      [ba](HbaSettings& h) -> double& { return ba(h).planes.voxel_size; },
+                      "root voxel of the adaptive plane map, m"),
+                  {"voxel_" + which}));
   table.push_back(real(
-      k + "final_voxel_size", "", 1.0, zeroOr("off", 0.01, 1000),
+      k + "final_voxel_size", "", d.final_voxel_size, zeroOr("off", 0.01, 1000),
       [ba](HbaSettings& h) -> double& { return ba(h).final_voxel_size; },
       "coarse to fine down to this voxel, m"));
   table.push_back(
       withAliases(real(
-                      k + "eigen_ratio", "--theta-" + which, eigen_ratio, {0.0, 1.0, true, true, ""},
+                      k + "eigen_ratio", "--theta-" + which, d.planes.eigen_ratio, {0.0, 1.0, true, true, ""},
                       [ba](HbaSettings& h) -> double& { return ba(h).planes.eigen_ratio; },
                       "plane test lambda_min / lambda_max"),
                   {"theta_" + which}));
   table.push_back(integer(
-      k + "max_depth", "", 3, between(0, 8), [ba](HbaSettings& h) -> int& { return ba(h).planes.max_depth; },
-      "octree levels below the root voxel"));
+      k + "max_depth", "", d.planes.max_depth, between(0, 8),
+      [ba](HbaSettings& h) -> int& { return ba(h).planes.max_depth; }, "octree levels below the root voxel"));
   table.push_back(integer(
-      k + "min_points", "", 20, atLeast(3), [ba](HbaSettings& h) -> int& { return ba(h).planes.min_points; },
-      "fewest points of a plane"));
+      k + "min_points", "", d.planes.min_points, atLeast(3),
+      [ba](HbaSettings& h) -> int& { return ba(h).planes.min_points; }, "fewest points of a plane"));
   table.push_back(integer(
-      k + "max_iterations", "", 10, atLeast(0), [ba](HbaSettings& h) -> int& { return ba(h).max_iterations; },
-      "LM iterations per association"));
+      k + "max_iterations", "", d.max_iterations, atLeast(0),
+      [ba](HbaSettings& h) -> int& { return ba(h).max_iterations; }, "LM iterations per association"));
   table.push_back(integer(
-      k + "association_rounds", "", 1, atLeast(1),
+      k + "association_rounds", "", d.association_rounds, atLeast(1),
       [ba](HbaSettings& h) -> int& { return ba(h).association_rounds; }, "associations at the final voxel"));
   table.push_back(real(
-      k + "reject_ratio", "", 0.05, {0.0, 1.0, false, true, ""},
+      k + "reject_ratio", "", d.reject_ratio, {0.0, 1.0, false, true, ""},
       [ba](HbaSettings& h) -> double& { return ba(h).reject_ratio; }, "share of the worst planes dropped"));
   table.push_back(onOff(
-      k + "trust_check", "", true, [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
+      k + "trust_check", "", d.check_fixed_map,
+      [ba](HbaSettings& h) -> bool& { return ba(h).check_fixed_map; },
       "windows that blur the map keep their input poses"));
   table.push_back(real(
-      k + "significant_gain", "", significant_gain, zeroOr("off", 0.1, 1e6),
+      k + "significant_gain", "", d.significant_gain, zeroOr("off", 0.1, 1e6),
       [ba](HbaSettings& h) -> double& { return ba(h).significant_gain; },
       "windows gaining at most this many times fitting noise keep their start poses"));
+}
+
+// The top layer's BA: the windows' but for two settings.
+ba::BaSettings topLayerDefaults() {
+  ba::BaSettings top;
+  // A looser plane test: it finds the large divergences of a whole sequence.
+  top.planes.eigen_ratio = 0.1;
+  // Only windows settle: the top layer's BA sees every frame, so it is the
+  // whole problem rather than a partial view, and a real correction spread
+  // over a long sequence can gain only a few times fitting noise per
+  // degree of freedom (nclt's odometry, one global BA: 3.65).
+  top.significant_gain = 0.0;
+  return top;
 }
 
 const Setting& inTable(const std::vector<Setting>& table, const std::string& key) {
@@ -275,22 +296,22 @@ void addTopDown(std::vector<Setting>& t) {
                               "shape), or pairs of its frames: adjacent (the paper), all, from_first"),
                           {"factor_pairs"}));
   t.push_back(real(
-      "point_sigma", "--point-sigma", 0.02, {0.0, kInf, true, false, ""},
+      "point_sigma", "--point-sigma", graph::InformationSettings{}.point_sigma, {0.0, kInf, true, false, ""},
       [](HbaSettings& h) -> double& { return h.information.point_sigma; },
       "point-to-plane noise for the pose-graph weights, m"));
   Setting prior = onOff(
-      "motion_prior", "--no-motion-prior", true,
+      "motion_prior", "--no-motion-prior", ba::MotionPriorSettings{}.enabled,
       [](HbaSettings& h) -> bool& { return h.local.motion_prior.enabled; },
       "hold neighbours weakly at their input relative pose");
   // One switch for the prior of every BA.
   prior.set = [](HbaSettings& h, const SettingValue& v) { h.setMotionPrior(std::get<bool>(v)); };
   t.push_back(prior);
   t.push_back(integer(
-      "graph_max_iterations", "", 100, atLeast(1),
+      "graph_max_iterations", "", graph::PoseGraphSettings{}.max_iterations, atLeast(1),
       [](HbaSettings& h) -> int& { return h.graph.max_iterations; },
       "Levenberg-Marquardt iterations of the pose graph at most"));
   t.push_back(choice<graph::RobustLoss>(
-      "graph_robust_loss", "--graph-robust-loss", graph::RobustLoss::None,
+      "graph_robust_loss", "--graph-robust-loss", graph::PoseGraphSettings{}.robust_loss,
       [](HbaSettings& h) -> graph::RobustLoss& { return h.graph.robust_loss; },
       "robust loss on the pose graph's window factors (a window that went wrong "
       "pulls less)"));
@@ -302,15 +323,15 @@ void addClosures(std::vector<Setting>& t) {
       "revisits", "--no-revisits", true, [](HbaSettings& h) -> bool& { return h.revisits; },
       "find places the poses come back to, verify them with the plane BA and close them"));
   t.push_back(real(
-      "revisit_drift", "--revisit-drift", 0.05, between(0, 1),
+      "revisit_drift", "--revisit-drift", closure::RevisitSettings{}.drift, between(0, 1),
       [](HbaSettings& h) -> double& { return h.revisit.drift; },
       "how far the input may have drifted between two visits, share of the path driven"));
   t.push_back(real(
-      "revisit_reach", "", 10.0, between(0.5, 1000),
+      "revisit_reach", "", closure::RevisitSettings{}.reach_m, between(0.5, 1000),
       [](HbaSettings& h) -> double& { return h.revisit.reach_m; },
       "frames this close (beyond drift) may see the same place, m"));
   t.push_back(real(
-      "revisit_min_path", "", 50.0, between(1, 1e6),
+      "revisit_min_path", "", closure::RevisitSettings{}.min_separation_m, between(1, 1e6),
       [](HbaSettings& h) -> double& { return h.revisit.min_separation_m; },
       "less path than this between two frames is one pass, not a revisit, m"));
 }
@@ -321,7 +342,7 @@ void addRefinement(std::vector<Setting>& t) {
       "refine", "--no-refine", true, [](HbaSettings& h) -> bool& { return h.refine; },
       "the final sparse BA over every scan"));
   t.push_back(real(
-      "refine_voxel", "--refine-voxel", 1.0, between(0.05, 100),
+      "refine_voxel", "--refine-voxel", ba::RefinementSettings{}.planes.voxel_size, between(0.05, 100),
       [](HbaSettings& h) -> double& { return h.refinement.planes.voxel_size; },
       "the final sparse BA's root voxel, m"));
   t.push_back(real(
@@ -332,14 +353,14 @@ void addRefinement(std::vector<Setting>& t) {
       [](HbaSettings& h) -> std::size_t& { return h.refine_max_points; },
       "beyond this many points it runs in blocks"));
   t.push_back(integer(
-      "refine_iterations", "", 10, atLeast(0),
+      "refine_iterations", "", ba::RefinementSettings{}.lm.max_iterations, atLeast(0),
       [](HbaSettings& h) -> int& { return h.refinement.lm.max_iterations; },
       "its LM iterations per association"));
   t.push_back(integer(
-      "refine_rounds", "", 6, atLeast(1),
+      "refine_rounds", "", ba::RefinementSettings{}.association_rounds, atLeast(1),
       [](HbaSettings& h) -> int& { return h.refinement.association_rounds; }, "its associations at most"));
   t.push_back(real(
-      "refine_round_gain", "", 0.02, between(0, 1),
+      "refine_round_gain", "", ba::RefinementSettings{}.round_gain, between(0, 1),
       [](HbaSettings& h) -> double& { return h.refinement.round_gain; },
       "associate again while a round cuts the cost by this share"));
   t.push_back(onOff(
@@ -367,12 +388,8 @@ std::vector<Setting> makeTable() {
   addTopDown(t);
   addClosures(t);
   addRefinement(t);
-  // Only windows settle: the top layer's BA sees every frame, so it is the
-  // whole problem rather than a partial view, and a real correction spread
-  // over a long sequence can gain only a few times fitting noise per
-  // degree of freedom (nclt's odometry, one global BA: 3.65).
-  addBaSettings(t, "local", "local", 0.05, 8.0, &HbaSettings::local);
-  addBaSettings(t, "global", "global", 0.1, 0.0, &HbaSettings::global);
+  addBaSettings(t, "local", "local", ba::BaSettings{}, &HbaSettings::local);
+  addBaSettings(t, "global", "global", topLayerDefaults(), &HbaSettings::global);
   completeShorthands(t);
   return t;
 }

@@ -85,4 +85,12 @@ RelativeError relativePoseError(const std::vector<Pose>& estimate, const std::ve
   return error;
 }
 
+ba::BaSettings patchBaSettings(const SyntheticWindowSpec& spec) {
+  ba::BaSettings settings;
+  settings.planes.voxel_size = spec.grid;
+  settings.final_voxel_size = 0.0;
+  settings.association_rounds = 3;
+  return settings;
+}
+
 }  // namespace hba::test

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "hba/ba/window_ba.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 
@@ -29,6 +30,11 @@ struct SyntheticWindow {
 };
 
 SyntheticWindow makeSyntheticWindow(const SyntheticWindowSpec& spec);
+
+// BA settings that take each patch as one plane: the grid's cell as the root
+// voxel and one voxel size for every association (coarse to fine would cut
+// the patches), three associations.
+ba::BaSettings patchBaSettings(const SyntheticWindowSpec& spec = {});
 
 // Rotation (deg) and translation (m) error of frame i relative to frame 0,
 // compared with the same relative pose of `truth`: the BA gauge.

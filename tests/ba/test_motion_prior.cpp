@@ -143,8 +143,7 @@ TEST(MotionPrior, BarelyMovesAWellConstrainedWindow) {
   SyntheticWindowSpec spec;
   spec.noise_sigma = 0.02;
   const auto window = makeSyntheticWindow(spec);
-  BaSettings settings;
-  settings.planes.voxel_size = 8.0;
+  BaSettings settings = test::patchBaSettings();
   BaSettings without = settings;
   without.motion_prior.enabled = false;
   const BaResult with_prior = optimizeWindow(window.scanPointers(), window.initial, settings);
@@ -170,8 +169,7 @@ SparseLmCase sparseLmCase() {
   spec.frames = 8;
   spec.noise_sigma = 0.01;
   SparseLmCase c{makeSyntheticWindow(spec), {}, {}, {}, {}};
-  BaSettings settings;
-  settings.planes.voxel_size = 8.0;
+  const BaSettings settings = test::patchBaSettings();
   c.association = associate(c.window.scanPointers(), c.window.initial, settings.planes, 0.0);
   EXPECT_GT(c.association.problem.numPlanes(), 4u);
   c.prior = neighbourPrior(c.window.initial, {}, MotionPriorSettings{});

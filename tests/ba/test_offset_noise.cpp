@@ -69,8 +69,7 @@ TEST(FrameOffsets, PredictWhatFittingTheNoiseGains) {
     spec.frames = 4;
     spec.seed = static_cast<std::uint32_t>(seed);
     const test::SyntheticWindow window = test::makeSyntheticWindow(spec);
-    BaSettings settings;
-    settings.planes.voxel_size = 8.0;
+    BaSettings settings = test::patchBaSettings();
     settings.motion_prior.enabled = false;
     settings.significant_gain = 0.0;
     const BaResult fit = optimizeWindow(window.scanPointers(), window.truth, settings);
@@ -98,15 +97,9 @@ test::SyntheticWindow noisyWindow(double angle_deg, double translation) {
   return test::makeSyntheticWindow(spec);
 }
 
-BaSettings patchSettings() {
-  BaSettings settings;
-  settings.planes.voxel_size = 8.0;
-  return settings;
-}
-
 TEST(WindowBa, AWindowAtItsOptimumSettlesAndKeepsItsStart) {
   const test::SyntheticWindow window = noisyWindow(1.0, 0.2);
-  BaSettings settings = patchSettings();
+  BaSettings settings = test::patchBaSettings();
   const BaResult result = optimizeWindow(window.scanPointers(), window.truth, settings);
   EXPECT_TRUE(result.trusted);
   EXPECT_TRUE(result.settled);
@@ -126,7 +119,7 @@ TEST(WindowBa, AWindowAtItsOptimumSettlesAndKeepsItsStart) {
 
 TEST(WindowBa, AWindowWithSomethingToCorrectDoesNotSettle) {
   const test::SyntheticWindow window = noisyWindow(0.2, 0.03);
-  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, patchSettings());
+  const BaResult result = optimizeWindow(window.scanPointers(), window.initial, test::patchBaSettings());
   EXPECT_TRUE(result.trusted);
   EXPECT_FALSE(result.settled);
   EXPECT_GT(result.gain_over_noise, 100.0);

@@ -24,8 +24,7 @@ using test::relativePoseError;
 using test::SyntheticWindowSpec;
 
 BaSettings syntheticSettings() {
-  BaSettings settings;
-  settings.planes.voxel_size = 8.0;  // one patch per root voxel
+  BaSettings settings = test::patchBaSettings();
   // Each frame starts 0.2 m and 1 deg off on its own, further from its
   // neighbours than any odometry: the slide check (tested below) would
   // refuse the correction.

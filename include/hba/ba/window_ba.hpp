@@ -28,14 +28,14 @@ struct BaSettings {
   int max_iterations = 10;  // LM iterations per association round
   // Associations (voxel planes rebuilt from the updated poses) at the finest
   // voxel size; coarse-to-fine rounds below come on top of these.
-  int association_rounds = 3;
+  int association_rounds = 1;
   // Coarse to fine: the first association uses planes.voxel_size, each later
   // one halves it, down to this size (m); rounds stop only once it is reached
   // and the cost has settled (or association_rounds is spent beyond that).
   // Large voxels catch large divergences, small ones give crisp local planes
-  // and the Hessian is taken at the finest association. <= 0 or >=
-  // voxel_size: one size for all rounds (the paper).
-  double final_voxel_size = 0.0;
+  // and the Hessian is taken at the finest association. 0 or >= voxel_size:
+  // one size for all rounds (the paper).
+  double final_voxel_size = 1.0;
   double reject_ratio = 0.05;             // drop this fraction of planes, worst residuals first
   double relative_cost_tolerance = 1e-4;  // stop when the cost settles
   // Neighbouring frames are held weakly at their input relative pose.

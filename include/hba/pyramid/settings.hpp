@@ -24,13 +24,14 @@ enum class TopDownMode {
   DirectAssign,  // the paper's ablation: copy upper poses down the pyramid
 };
 
-// Which frame pairs of a BA window become pose-graph factors (adjacent by
-// default, as in the paper's factor graph).
+// How a BA window becomes pose-graph factors: one joint factor of its whole
+// shape (the default), or pairs of its frames (adjacent: the paper's).
 using graph::FactorPairs;
 
 // The fields that the setting table declares (setting_table.cpp) get their
-// defaults, ranges and help there, in one place; the comments here say what
-// the code does with them.
+// defaults, ranges and help there, in one place (the table takes those of
+// fields inside a module's struct, local, refinement, graph..., from that
+// struct); the comments here say what the code does with them.
 struct HbaSettings {
   int window{};  // w: frames per local window
   int stride{};  // s: frames between window starts (s < w: windows overlap)
@@ -66,7 +67,7 @@ struct HbaSettings {
 
   graph::InformationSettings information;
   TopDownMode top_down{};
-  FactorPairs factor_pairs = FactorPairs::Joint;
+  FactorPairs factor_pairs{};
   // The top-down pose graph's solver (its threads come from `threads`).
   graph::PoseGraphSettings graph;
 
