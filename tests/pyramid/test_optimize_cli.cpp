@@ -410,7 +410,9 @@ TEST_F(OptimizeSimulated, TheHierarchyAloneLeavesItsOwnOutputAlone) {
       data().string());
   const fs::path first = dir / "out";
   run(hba() + " -q optimize " + data().string() + " -o " + first.string() + " --no-render");
-  for (const auto& layer : readJson(first / "report.json").at("layer_reports")) {
+  // Held by name: a range-for over a temporary's member would read freed memory.
+  const nlohmann::json first_report = readJson(first / "report.json");
+  for (const auto& layer : first_report.at("layer_reports")) {
     if (layer.at("layer").get<int>() == 1) {
       EXPECT_EQ(layer.at("windows_settled").get<int>(), 0) << layer;
     }
