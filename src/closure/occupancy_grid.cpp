@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 
-#include "voxel/cell_table.hpp"
+#include "hba/voxel/key_table.hpp"
 
 namespace hba::closure {
 namespace {
@@ -44,15 +44,15 @@ long cellIndex(double v, double cell) { return static_cast<long>(std::floor(v / 
 
 std::vector<ColumnStats> structureColumns(const PointCloud& cloud, double cell, double height) {
   // Columns numbered as first met, each summing its points in point order.
-  voxel::CellTable<std::uint64_t> numbers(cloud.size() / 16);
+  voxel::KeyNumbers<std::uint64_t> numbers(cloud.size() / 16);
   std::vector<ColumnStats> columns;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const Vec3 p = cloud.world(i);
     const long ix = cellIndex(p.x(), cell);
     const long iy = cellIndex(p.y(), cell);
-    const auto next = static_cast<std::uint32_t>(columns.size());
-    const std::uint32_t number = numbers.find(static_cast<std::uint64_t>(cellKey(ix, iy)), next);
-    if (number == next) {
+    bool inserted = false;
+    const std::uint32_t number = numbers.insert(static_cast<std::uint64_t>(cellKey(ix, iy)), inserted);
+    if (inserted) {
       ColumnStats fresh;
       fresh.ix = ix;
       fresh.iy = iy;

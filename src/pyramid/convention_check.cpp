@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "hba/voxel/downsample.hpp"
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::pyramid {

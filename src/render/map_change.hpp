@@ -8,7 +8,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/render/map_picture.hpp"
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::render {

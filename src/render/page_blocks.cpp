@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 #include "map_change.hpp"
 #include "picture_points.hpp"
 

@@ -33,7 +33,7 @@ struct Chunk {
 // each one new. A key equal to the one before is not new (scans come ring
 // by ring).
 template <typename Keep>
-void insertNew(voxel::PackedVoxelSet& seen, const std::vector<std::uint64_t>& keys, Keep&& keep) {
+void insertNew(voxel::PackedKeySet& seen, const std::vector<std::uint64_t>& keys, Keep&& keep) {
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (i + kLookahead < keys.size()) seen.prefetch(keys[i + kLookahead]);
     if (keys[i] == kOutsidePackedRange || (i > 0 && keys[i] == keys[i - 1]) || !seen.insert(keys[i]))
@@ -85,7 +85,7 @@ class FirstHits {
   void thinTo(std::size_t budget) {
     if (kept_.size() <= budget) return;
     std::vector<std::uint64_t> ranks(kept_.size());
-    for (std::size_t i = 0; i < ranks.size(); ++i) ranks[i] = voxel::PackedKeyHash{}(i);
+    for (std::size_t i = 0; i < ranks.size(); ++i) ranks[i] = voxel::mixBits(i);
     std::vector<std::uint64_t> sorted = ranks;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(budget - 1), sorted.end());
     const std::uint64_t highest = sorted[budget - 1];
@@ -98,7 +98,7 @@ class FirstHits {
 
  private:
   double voxel_;
-  voxel::PackedVoxelSet index_;
+  voxel::PackedKeySet index_;
   std::vector<PagePoint> kept_;
   std::vector<std::uint64_t> keys_;  // a chunk's, reused
 };
@@ -129,7 +129,7 @@ class ChunkPool {
 // A reading thread's working memory, kept from chunk to chunk (its table
 // is emptied, not faulted in again) and freed with the call.
 struct Scratch {
-  voxel::PackedVoxelSet seen;
+  voxel::PackedKeySet seen;
   std::vector<std::uint64_t> keys;
   std::vector<Vec3f> world;
 };
@@ -140,7 +140,7 @@ void readChunk(const io::ScanSource& scans, const std::vector<Pose>& poses, std:
                double scans_voxel, const Vec3& origin, Scratch& scratch, Chunk& out) {
   const std::size_t first = chunk * kChunk;
   const std::size_t end = std::min(scans.size(), first + kChunk);
-  voxel::PackedVoxelSet& seen = scratch.seen;
+  voxel::PackedKeySet& seen = scratch.seen;
   std::vector<Vec3f>& world = scratch.world;
   seen.clear();
   for (std::size_t i = first; i < end; ++i) {

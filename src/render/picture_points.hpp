@@ -8,7 +8,7 @@
 
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 
 namespace hba::render {
 
@@ -44,8 +44,8 @@ class PicturePoints {
  private:
   double inverse_voxel_;
   Vec3 origin_;
-  voxel::PackedVoxelSet index_;  // packed voxel keys seen
-  std::vector<Vec3f> points_;    // relative to origin_, in the order first hit
+  voxel::PackedKeySet index_;  // packed voxel keys seen
+  std::vector<Vec3f> points_;  // relative to origin_, in the order first hit
 };
 
 }  // namespace hba::render

@@ -11,7 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "cell_table.hpp"
+#include "hba/voxel/key_table.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::voxel {
@@ -74,7 +74,7 @@ void forEachPoint(std::size_t points, const Body& body) {
 // first point into `first`. Keys are taken a chunk at a time, just before
 // they are numbered, so that they stay in the cache.
 template <typename Key, typename KeyOfPoint>
-void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, CellTable<Key>& table,
+void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, KeyNumbers<Key>& table,
                  std::vector<std::uint32_t>& cell_of_point, std::vector<std::uint32_t>& first) {
   constexpr std::size_t kLookahead = 16;                // points between a prefetch and its use
   constexpr std::size_t kChunk = std::size_t{1} << 16;  // keys held at once
@@ -95,9 +95,9 @@ void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, Ce
         continue;
       }
       if (i + kLookahead < end) table.prefetch(keys[i + kLookahead - from]);
-      const auto next = static_cast<std::uint32_t>(first.size());
-      const std::uint32_t cell = table.find(key, next);
-      if (cell == next) first.push_back(static_cast<std::uint32_t>(i));
+      bool inserted = false;
+      const std::uint32_t cell = table.insert(key, inserted);
+      if (inserted) first.push_back(static_cast<std::uint32_t>(i));
       cell_of_point[i] = cell;
       previous = key;
     }
@@ -131,27 +131,27 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
   out.cell_of_point.resize(n);
   const std::size_t ranges = rangesFor(n);
   if (ranges == 1) {  // scans and windows: thousands of calls, no task to start
-    CellTable<Key> table(n / per_cell);
+    KeyNumbers<Key> table(n / per_cell);
     numberRange(0, n, keyOf, table, out.cell_of_point, out.first_point_of_cell);
     return out;
   }
   const std::vector<std::size_t> start = rangeStarts(n, ranges);
-  std::vector<std::optional<CellTable<Key>>> tables(ranges);
+  std::vector<std::optional<KeyNumbers<Key>>> tables(ranges);
   std::vector<std::vector<std::uint32_t>> first(ranges);
   tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
     tables[k].emplace((start[k + 1] - start[k]) / per_cell);
     numberRange(start[k], start[k + 1], keyOf, *tables[k], out.cell_of_point, first[k]);
   });
   out.first_point_of_cell = std::move(first[0]);
-  CellTable<Key>& numbered = *tables[0];
+  KeyNumbers<Key>& numbered = *tables[0];
   std::vector<std::vector<std::uint32_t>> renumber(ranges);
   for (std::size_t k = 1; k < ranges; ++k) {
     tables[k].reset();
     renumber[k].resize(first[k].size());
     for (std::size_t c = 0; c < first[k].size(); ++c) {
-      const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
-      renumber[k][c] = numbered.find(keyOf(first[k][c]), next);
-      if (renumber[k][c] == next) out.first_point_of_cell.push_back(first[k][c]);
+      bool inserted = false;
+      renumber[k][c] = numbered.insert(keyOf(first[k][c]), inserted);
+      if (inserted) out.first_point_of_cell.push_back(first[k][c]);
     }
   }
   tbb::parallel_for(tbb::blocked_range<std::size_t>(start[1], n, 1 << 16),
@@ -202,13 +202,13 @@ std::optional<CellAssignment> coarsenCells(const CellAssignment& fine, const std
   if (!nested.load()) return std::nullopt;
   // Fine cells come in first-hit order, so numbering their coarse cells as
   // they come numbers those in first-hit order too, as assignCells would.
-  CellTable<VoxelKey> table(fine.cells());
+  KeyNumbers<VoxelKey> table(fine.cells());
   std::vector<std::uint32_t> coarse_of_fine(fine.cells());
   CellAssignment out;
   for (std::size_t c = 0; c < fine.cells(); ++c) {
-    const auto next = static_cast<std::uint32_t>(out.first_point_of_cell.size());
-    coarse_of_fine[c] = table.find(coarse_key[c], next);
-    if (coarse_of_fine[c] == next) out.first_point_of_cell.push_back(fine.first_point_of_cell[c]);
+    bool inserted = false;
+    coarse_of_fine[c] = table.insert(coarse_key[c], inserted);
+    if (inserted) out.first_point_of_cell.push_back(fine.first_point_of_cell[c]);
   }
   out.cell_of_point.resize(fine.cell_of_point.size());
   for (std::size_t i = 0; i < out.cell_of_point.size(); ++i) {

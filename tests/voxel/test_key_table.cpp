@@ -1,18 +1,19 @@
-// The flat voxel tables: the same answers as the standard containers,
-// through growth, collisions and the key that marks empty slots.
+// The one key table (key_table.hpp): the same answers as the standard
+// containers, through growth, collisions, clearing and the key that marks
+// a set's empty slots.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 
 namespace hba::voxel {
 namespace {
 
-TEST(PackedVoxelSet, AgreesWithAStandardSetThroughGrowth) {
-  PackedVoxelSet set;
+TEST(PackedKeySet, AgreesWithAStandardSetThroughGrowth) {
+  PackedKeySet set;
   std::unordered_set<std::uint64_t> reference;
   std::mt19937_64 random(5);
   for (int i = 0; i < 200000; ++i) {
@@ -24,8 +25,8 @@ TEST(PackedVoxelSet, AgreesWithAStandardSetThroughGrowth) {
   EXPECT_EQ(set.size(), reference.size());
 }
 
-TEST(PackedVoxelSet, TheEmptyMarkIsAKeyLikeAnother) {
-  PackedVoxelSet set;
+TEST(PackedKeySet, TheEmptyMarkIsAKeyLikeAnother) {
+  PackedKeySet set;
   const std::uint64_t mark = ~std::uint64_t{0};
   EXPECT_TRUE(set.insert(mark));
   EXPECT_FALSE(set.insert(mark));
@@ -39,8 +40,8 @@ TEST(PackedVoxelSet, TheEmptyMarkIsAKeyLikeAnother) {
   EXPECT_EQ(set.size(), 3u);
 }
 
-TEST(PackedVoxelSet, ClearedItForgetsEveryKeyAndServesAgain) {
-  PackedVoxelSet set;
+TEST(PackedKeySet, ClearedItForgetsEveryKeyAndServesAgain) {
+  PackedKeySet set;
   const std::uint64_t mark = ~std::uint64_t{0};
   for (std::uint64_t k = 0; k < 3000; ++k) set.insert(k * 977);
   set.insert(mark);
@@ -65,6 +66,27 @@ TEST(PackedVoxelIndex, NumbersKeysInFirstSeenOrder) {
     ASSERT_EQ(number, it->second);
   }
   EXPECT_EQ(index.size(), reference.size());
+}
+
+TEST(VoxelIndex, NumbersVoxelKeysInFirstSeenOrderAndServesAgainWhenCleared) {
+  VoxelIndex index(10);  // far too small: grows many times
+  std::mt19937 random(3);
+  std::uniform_int_distribution<long> coordinate(-40, 40);  // keys either side of 0
+  for (int round = 0; round < 2; ++round) {
+    std::unordered_map<VoxelKey, std::uint32_t, VoxelKeyHash> reference;
+    for (int i = 0; i < 50000; ++i) {
+      const VoxelKey key{coordinate(random), coordinate(random), coordinate(random) / 8};
+      if (i % 3 == 0) index.prefetch(key);
+      bool inserted = false;
+      const std::uint32_t number = index.insert(key, inserted);
+      const auto [it, fresh] = reference.emplace(key, static_cast<std::uint32_t>(reference.size()));
+      ASSERT_EQ(inserted, fresh) << round << " " << i;
+      ASSERT_EQ(number, it->second) << round << " " << i;
+    }
+    EXPECT_EQ(index.size(), reference.size());
+    index.clear();
+    EXPECT_EQ(index.size(), 0u);
+  }
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/io/scan_source.hpp"
-#include "hba/voxel/voxel_index.hpp"
+#include "hba/voxel/key_table.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::eval {
