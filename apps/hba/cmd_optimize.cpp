@@ -180,17 +180,17 @@ void registerOptimizeCommand(CLI::App& app) {
                    "present)")
       ->check(inputFile());
   command
-      ->add_option("--loops", args->loops,
+      ->add_option("--loops", args->closure_files.loops,
                    "Loop-closure pairs to verify and close: lines 'i j' or 'i j tx ty tz qx qy qz qw' "
                    "(docs/closure.md)")
       ->check(inputFile());
   command
-      ->add_option("--priors", args->priors,
+      ->add_option("--priors", args->closure_files.priors,
                    "Position priors (GNSS in a local metric frame): lines 't x y z sigma' or "
                    "'t x y z sx sy sz' (docs/closure.md)")
       ->check(inputFile());
   command
-      ->add_option("--prior-max-gap", args->prior_max_gap_s,
+      ->add_option("--prior-max-gap", args->closure_files.prior_max_gap_s,
                    "A prior further than this (s) from every scan's stamp is not used")
       ->check(positiveUpTo(3600.0, "s"))
       ->capture_default_str();

@@ -127,7 +127,7 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
         "without --map");
   }
   if (!args.map.empty() && !args.fixed.empty()) throw Error("give --map MAP or --fixed SESSION, not both");
-  if (!args.priors.empty()) {
+  if (!args.closure_files.priors.empty()) {
     throw Error("--priors with --map: the map fixes the frame the poses come out in; give one or the other");
   }
   std::error_code ec;

@@ -6,17 +6,13 @@
 #include <sys/resource.h>
 
 #include <chrono>
-#include <map>
 #include <optional>
 
 #include "core/input_file.hpp"
-#include "hba/closure/frame_priors.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/memory_budget.hpp"
-#include "hba/io/loop_file.hpp"
 #include "hba/io/pose_file.hpp"
-#include "hba/io/position_prior_file.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
 #include "hba/render/report_page.hpp"
@@ -175,53 +171,11 @@ std::vector<std::string> writeEveryScanPoses(const fs::path& out, const io::Data
   return written;
 }
 
-// The loop pairs and position priors of --loops and --priors, read before
-// any work so that a bad file fails at once.
 pyramid::ClosureInputs readClosureInputs(const Args& args, const std::vector<const io::Dataset*>& datasets,
                                          const std::vector<std::size_t>& starts, std::size_t frames) {
-  pyramid::ClosureInputs inputs;
-  if (!args.loops.empty()) {
-    for (const io::LoopRecord& record : io::readLoopFile(args.loops, frames)) {
-      inputs.loops.push_back({record.from, record.to, record.relative});
-    }
-    spdlog::info("{}: {} loop closure pairs", args.loops, inputs.loops.size());
-  }
-  if (args.priors.empty()) return inputs;
-  const std::vector<io::TimedPosition> timed = io::readPositionPriorFile(args.priors);
-  std::map<std::size_t, std::size_t> session_of_line;  // a prior's file line -> the session it went to
-  std::size_t outside = timed.size();
-  for (std::size_t k = 0; k < datasets.size(); ++k) {
-    closure::FramePriors attached;
-    try {
-      attached = closure::attachPriors(timed, datasets[k]->trajectory(), args.prior_max_gap_s);
-    } catch (const Error& e) {
-      throw Error(args.priors + ": " + e.what() +
-                  (datasets.size() > 1 ? " (session " + std::to_string(k) + ")" : std::string()));
-    }
-    for (std::size_t f = 0; f < attached.factors.size(); ++f) {
-      const auto [other, fresh] = session_of_line.emplace(attached.lines[f], k);
-      if (!fresh) {
-        throw Error(
-            fmt::format("{}: the prior on line {} falls among the scans of sessions {} and {}: their "
-                        "stamps overlap, so priors cannot tell them apart (give each session its own "
-                        "clock's stamps)",
-                        args.priors, attached.lines[f], other->second, k));
-      }
-      graph::PositionPriorFactor factor = attached.factors[f];
-      factor.node += starts.at(k);
-      inputs.priors.push_back(factor);
-    }
-    outside -= attached.factors.size();
-  }
-  spdlog::info("{}: {} position priors, {} attached to frames{}", args.priors, timed.size(),
-               inputs.priors.size(),
-               datasets.size() > 1 ? fmt::format(" of {} sessions", datasets.size()) : std::string());
-  if (outside > 0) {
-    spdlog::warn("{}: {} priors lie more than {:g} s from every scan and are not used", args.priors, outside,
-                 args.prior_max_gap_s);
-  }
-  if (inputs.priors.empty()) throw Error(args.priors + ": no prior falls within the scans' time span");
-  return inputs;
+  std::vector<const Trajectory*> sessions;
+  for (const io::Dataset* dataset : datasets) sessions.push_back(&dataset->trajectory());
+  return pyramid::readClosureFiles(args.closure_files, sessions, starts, frames);
 }
 
 // Defaults, then the YAML file, then the flags given on the command line.

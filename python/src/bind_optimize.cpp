@@ -1,7 +1,11 @@
-// hba.optimize: the whole method (runHierarchicalBa) on scans and poses from Python.
+// hba.optimize: the whole method (runHierarchicalBa) on scans and poses from
+// Python, with loop pairs and position priors read as the tool reads them.
 #include <pybind11/numpy.h>
 
 #include "bindings.hpp"
+#include "hba/core/error.hpp"
+#include "hba/io/dataset.hpp"
+#include "hba/pyramid/closure_files.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "json_to_python.hpp"
@@ -19,15 +23,49 @@ struct OptimizeResult {
   py::dict report;            // report.json's library part, settings included
 };
 
-OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::kwargs& kwargs) {
+// A file name from Python (str or os.PathLike), "" for None.
+std::string fileName(const py::object& name, const char* what) {
+  if (name.is_none()) return "";
+  if (!py::isinstance<py::str>(name) && !py::hasattr(name, "__fspath__")) {
+    throw Error(std::string(what) + ": expected a file name (str or os.PathLike)");
+  }
+  return py::str(py::module_::import("os").attr("fspath")(name)).cast<std::string>();
+}
+
+// --loops and --priors as the tool reads them; priors go to frames by their
+// stamps, which only a dataset has.
+pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<Pose>& initial,
+                                     const pyramid::ClosureFiles& files) {
+  if (files.loops.empty() && files.priors.empty()) return {};
+  Trajectory stamped;
+  stamped.poses = initial;
+  if (!files.priors.empty()) {
+    if (!py::isinstance<io::Dataset>(scans)) {
+      throw Error(
+          "priors: they go to frames by time, and arrays of scans have no stamps; pass "
+          "hba.open_dataset(folder) as scans");
+    }
+    stamped.stamps = scans.cast<const io::Dataset&>().trajectory().stamps;
+  }
+  return pyramid::readClosureFiles(files, {&stamped}, {0}, initial.size());
+}
+
+OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::object& loops,
+                        const py::object& priors, double prior_max_gap, const py::kwargs& kwargs) {
   const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
   const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans);
   const std::vector<Pose> initial = posesFromArray(poses, "poses");
+  // Poses and scans that differ in number: the run below refuses them.
+  const pyramid::ClosureInputs closures =
+      initial.size() == source->size()
+          ? closureInputs(scans, initial,
+                          {fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap})
+          : pyramid::ClosureInputs{};
   pyramid::HbaResult result;
   {
     // Python threads run on while hba works; nothing below touches Python.
     const py::gil_scoped_release release;
-    result = pyramid::runHierarchicalBa(*source, initial, settings);
+    result = pyramid::runHierarchicalBa(*source, initial, settings, closures);
   }
   nlohmann::json report = pyramid::reportToJson(result.report);
   report["settings"] = pyramid::settingsToJson(settings);
@@ -46,6 +84,10 @@ const char* const kOptimizeDoc = R"(Optimizes the poses of a sequence, as `hba o
 scans: a list of (N, 3) or (N, 4) arrays (x y z [intensity], sensor frame),
        or an hba.Dataset (read from disk as needed).
 poses: (K, 4, 4) sensor-to-world poses, one per scan.
+loops: a file of loop-closure pairs, as `hba optimize --loops` (docs/closure.md).
+priors: a file of position priors, as `--priors`; scans must then be an
+       hba.Dataset (priors go to frames by the scans' stamps).
+prior_max_gap: a prior further than this (s) from every scan is not used.
 **settings: the YAML keys of `hba optimize --config` (docs/settings.md):
        window=10, refine=False, local={"voxel_size": 2.0}; threads=N as -j N.
 Returns an hba.Result: .poses (K, 4, 4) and .report (report.json's dict).
@@ -62,7 +104,9 @@ void bindOptimize(py::module_& m) {
         return "hba.Result(" + std::to_string(r.poses.shape(0)) +
                " poses, report keys: " + std::string(py::str(py::list(r.report.attr("keys")()))) + ")";
       });
-  m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), kOptimizeDoc);
+  m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), py::kw_only(),
+        py::arg("loops") = py::none(), py::arg("priors") = py::none(),
+        py::arg("prior_max_gap") = pyramid::ClosureFiles{}.prior_max_gap_s, kOptimizeDoc);
   m.def("settings", &settingsDict,
         "Every setting hba.optimize would run with for these keywords (defaults for the rest), as "
         "the dict report['settings'] holds, plus 'threads'; raises hba.Error as hba.optimize does.");

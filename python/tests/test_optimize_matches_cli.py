@@ -1,6 +1,7 @@
 """hba.optimize on numpy arrays gives the poses `hba optimize` writes for the same files."""
 import json
 import os
+import pathlib
 import tempfile
 import unittest
 
@@ -10,22 +11,36 @@ import hba
 from support import main, run_cli, scan_paths, simulate
 
 
-class OptimizeMatchesCli(unittest.TestCase):
+class CliRunCase(unittest.TestCase):
+    """40 simulated frames in a temporary folder, and `hba -j 1 optimize` of them with cli_args."""
+    cli_args = ()
+
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.data = simulate(cls.tmp.name, frames=40, seed=3)
+        cls.write_inputs()
         cls.out = os.path.join(cls.tmp.name, "out")
-        run_cli("-j", "1", "optimize", cls.data, "-o", cls.out, "--no-render")
+        run_cli("-j", "1", "optimize", cls.data, "-o", cls.out, "--no-render", *cls.cli_args)
         cls.cli_poses = hba.read_poses(os.path.join(cls.out, "pose.json"))
         with open(os.path.join(cls.out, "report.json")) as f:
             cls.cli_report = json.load(f)
-        cls.scans = [hba.read_scan(path) for path in scan_paths(cls.data)]
-        cls.initial = hba.read_poses(os.path.join(cls.data, "pose.json"))
+
+    @classmethod
+    def write_inputs(cls):
+        pass
 
     @classmethod
     def tearDownClass(cls):
         cls.tmp.cleanup()
+
+
+class OptimizeMatchesCli(CliRunCase):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.scans = [hba.read_scan(path) for path in scan_paths(cls.data)]
+        cls.initial = hba.read_poses(os.path.join(cls.data, "pose.json"))
 
     def test_arrays_give_the_cli_poses(self):
         result = hba.optimize(self.scans, self.initial, threads=1)
@@ -57,6 +72,59 @@ class OptimizeMatchesCli(unittest.TestCase):
     def test_pose_count_must_match_scan_count(self):
         with self.assertRaisesRegex(hba.Error, "pose"):
             hba.optimize(self.scans, self.initial[:-1], threads=1)
+
+
+class LoopsAndPriorsMatchCli(CliRunCase):
+    """Loop pairs and position priors read by the tool's own call."""
+
+    @classmethod
+    def write_inputs(cls):
+        cls.loops = os.path.join(cls.tmp.name, "loops.txt")
+        with open(cls.loops, "w") as f:
+            f.write("# i j\n2 14\n")
+        # The true position of every tenth frame, 0.5 m sigma.
+        cls.priors = os.path.join(cls.tmp.name, "priors.txt")
+        with open(os.path.join(cls.data, "gt.txt")) as gt, open(cls.priors, "w") as out:
+            for i, line in enumerate(l for l in gt if not l.startswith("#")):
+                if i % 10 == 0:
+                    out.write(" ".join(line.split()[:4]) + " 0.5\n")
+        cls.cli_args = ("--loops", cls.loops, "--priors", cls.priors)
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.cli_closure = cls.cli_report["closure"]
+
+    def test_files_give_the_cli_poses_and_closures(self):
+        self.assertEqual(self.cli_closure["loops_used"], 1)  # a loop the planes verify
+        self.assertEqual(self.cli_closure["priors_used"], 4)
+        dataset = hba.open_dataset(self.data)
+        result = hba.optimize(dataset, dataset.poses, loops=self.loops, priors=pathlib.Path(self.priors),
+                              threads=1)
+        self.assertLess(np.abs(result.poses - self.cli_poses).max(), 1e-9)
+        for key in ("loops_given", "loops_used", "priors_given", "priors_used", "verified"):
+            self.assertEqual(result.report["closure"][key], self.cli_closure[key], key)
+
+    def test_without_files_none_is_given(self):
+        dataset = hba.open_dataset(self.data)
+        result = hba.optimize(dataset, dataset.poses, threads=1)
+        self.assertEqual(result.report["closure"]["priors_given"], 0)
+        self.assertEqual(result.report["closure"]["loops_given"], 0)
+
+    def test_priors_need_stamps_and_bad_files_are_named(self):
+        scans = [hba.read_scan(path) for path in scan_paths(self.data)]
+        initial = hba.read_poses(os.path.join(self.data, "pose.json"))
+        with self.assertRaisesRegex(hba.Error, "priors: .*no stamps.*hba.open_dataset"):
+            hba.optimize(scans, initial, priors=self.priors)
+        result = hba.optimize(scans, initial, loops=self.loops, threads=1, refine=False)
+        self.assertEqual(result.report["closure"]["loops_given"], 1)
+        bad = os.path.join(self.tmp.name, "bad_loops.txt")
+        with open(bad, "w") as f:
+            f.write("2 400\n")
+        with self.assertRaisesRegex(hba.Error, "bad_loops.txt"):
+            hba.optimize(scans, initial, loops=bad)
+        with self.assertRaisesRegex(hba.Error, "loops: expected a file name"):
+            hba.optimize(scans, initial, loops=3)
 
 
 if __name__ == "__main__":
