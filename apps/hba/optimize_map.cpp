@@ -152,7 +152,7 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   const nlohmann::json conventions = checkConventions(args, session, dataset);
 
   const closure::MapAlignment a = placeInMap(map, session, dataset.trajectory().poses, settings.scan_voxel);
-  nlohmann::json map_report = alignmentReport(a, args.data.dir);  // logs every pair with -v
+  nlohmann::json map_report = pyramid::alignmentReport(a, args.data.dir);  // logs every pair with -v
   if (!a.found) {
     throw Error(args.data.dir + ": could not place this session in the map " + map.name + " (" + a.reason +
                 (map.dataset ? ""

@@ -249,30 +249,4 @@ nlohmann::json writeReport(const fs::path& out, const nlohmann::json& report) {
   return with_memory;
 }
 
-nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label) {
-  nlohmann::json pairs = nlohmann::json::array();
-  for (const closure::SessionPairTrial& t : a.trials) {
-    pairs.push_back({{"reference_frame", t.reference_frame},
-                     {"session_frame", t.session_frame},
-                     {"votes", t.votes},
-                     {"descriptor_matches", t.matches},
-                     {"ransac_inliers", t.inliers},
-                     {"fitness", t.fitness},
-                     {"outcome", t.outcome}});
-    spdlog::debug("{}: place {} against reference place {}: {}", label, t.session_frame, t.reference_frame,
-                  t.outcome);
-  }
-  return {{"places", {a.reference_places, a.session_places}},
-          {"descriptor_voxel_m", a.feature_voxel_m},
-          {"registered", a.tried},
-          {"verified", a.verified},
-          {"agreeing", a.agreeing},
-          {"found", a.found},
-          {"seconds",
-           {{"describing", a.seconds_describing},
-            {"voting", a.seconds_voting},
-            {"registering", a.seconds_registering}}},
-          {"pairs", pairs}};
-}
-
 }  // namespace hba::cli::optimize

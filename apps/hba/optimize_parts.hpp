@@ -14,6 +14,7 @@
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_files.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/sessions.hpp"
 #include "setting_flags.hpp"
 
 namespace hba::cli::optimize {
@@ -91,10 +92,6 @@ bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& resu
                      const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                      const nlohmann::json& report, const std::string& title,
                      const std::filesystem::path& out);
-
-// What a session's alignment tried (places, pairs and their outcomes, times)
-// for report.json; each pair also logged at debug level, after `label`.
-nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label);
 
 // Several sessions (args.more_sessions): optimize_sessions.cpp.
 void runSessions(const Args& args, pyramid::HbaSettings settings);

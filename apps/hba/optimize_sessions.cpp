@@ -6,10 +6,10 @@
 
 #include "core/input_file.hpp"
 #include "core/staging_folder.hpp"
-#include "hba/closure/session_alignment.hpp"
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
+#include "hba/pyramid/sessions.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "memory_check.hpp"
 #include "optimize_parts.hpp"
@@ -86,7 +86,6 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   std::vector<const io::Dataset*> sessions_in;
   for (const io::Dataset& d : datasets) sessions_in.push_back(&d);
   pyramid::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
-  for (std::size_t k = 1; k < datasets.size(); ++k) closures.session_starts.push_back(scans.starts()[k]);
   const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
   const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
 
@@ -100,35 +99,19 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   }
 
   // Each later session placed in the first one's frame.
-  std::vector<Pose> placed(datasets.size());
-  nlohmann::json alignment_report = nlohmann::json::array();
-  if (args.align == "register") {
-    closure::SessionAlignmentSettings align_settings;
-    for (std::size_t k = 1; k < datasets.size(); ++k) {
-      const voxel::DownsampledScanSource reference(*sources[0], settings.scan_voxel);
-      const voxel::DownsampledScanSource session(*sources[k], settings.scan_voxel);
-      const closure::SessionAlignment a = closure::alignSession(
-          reference, datasets[0].trajectory().poses, session, datasets[k].trajectory().poses, align_settings);
-      nlohmann::json placed_report = alignmentReport(a, dirs[k]);
-      placed_report["session"] = k;
-      alignment_report.push_back(placed_report);
-      if (!a.found) {
-        throw Error(dirs[k] + ": could not place this session in " + dirs[0] + "'s frame (" + a.reason +
-                    "); give the transform with --align FILE, or --align identity if they share a frame");
-      }
-      placed[k] = a.world_from_session;
-      spdlog::info("{}: placed in {}'s frame by {} agreeing of {} verified place pairs ({} registered)",
-                   dirs[k], dirs[0], a.agreeing, a.verified, a.tried);
-    }
-  } else if (args.align != "identity") {
-    const std::vector<Pose> given = readAlignmentFile(args.align, datasets.size() - 1);
-    std::copy(given.begin(), given.end(), placed.begin() + 1);
-  }
-
-  std::vector<Pose> initial;
+  std::vector<pyramid::SessionInput> inputs;
   for (std::size_t k = 0; k < datasets.size(); ++k) {
-    for (const Pose& p : datasets[k].trajectory().poses) initial.push_back(placed[k] * p);
+    inputs.push_back({sources[k].get(), &datasets[k].trajectory(), dirs[k]});
   }
+  pyramid::SessionPlacement how;
+  if (args.align == "identity") {
+    how.method = pyramid::SessionPlacement::Method::Identity;
+  } else if (args.align != "register") {
+    how.method = pyramid::SessionPlacement::Method::Given;
+    how.given = readAlignmentFile(args.align, datasets.size() - 1);
+  }
+  const pyramid::PlacedSessions placed = pyramid::placeSessions(inputs, how, settings.scan_voxel);
+  const std::vector<Pose> initial = pyramid::sessionsInOneFrame(inputs, placed, closures);
   spdlog::info("{} sessions, {} scans in all", datasets.size(), scans.size());
   const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
 
@@ -162,7 +145,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   report["memory_estimate"] = memory;
   report["alignment"] = {
       {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
-      {"registered", alignment_report}};
+      {"registered", placed.registered}};
   report = writeReport(out, report);
   const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
   const bool paged = !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, initial, gt,

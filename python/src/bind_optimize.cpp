@@ -7,6 +7,7 @@
 #include "hba/io/dataset.hpp"
 #include "hba/pyramid/closure_files.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/sessions.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "json_to_python.hpp"
 #include "numpy_convert.hpp"
@@ -72,6 +73,76 @@ OptimizeResult optimize(const py::object& scans, const py::object& poses, const 
   return {arrayFromPoses(result.poses), py::dict(toPython(report))};
 }
 
+// align="register" | "identity" | the later sessions' world_from_session.
+pyramid::SessionPlacement placementFrom(const py::object& align, std::size_t sessions) {
+  pyramid::SessionPlacement how;
+  if (py::isinstance<py::str>(align)) {
+    const std::string name = align.cast<std::string>();
+    if (name == "identity") {
+      how.method = pyramid::SessionPlacement::Method::Identity;
+    } else if (name != "register") {
+      throw Error("align: '" + name + "' is none of 'register', 'identity' or a list of 4x4 transforms");
+    }
+    return how;
+  }
+  how.method = pyramid::SessionPlacement::Method::Given;
+  how.given = posesFromArray(align, "align");
+  if (how.given.size() + 1 != sessions) {
+    throw Error("align: " + std::to_string(how.given.size()) + " transforms for " +
+                std::to_string(sessions - 1) + " later sessions (one world_from_session each)");
+  }
+  return how;
+}
+
+OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& align,
+                                const py::object& loops, const py::object& priors, double prior_max_gap,
+                                const py::kwargs& kwargs) {
+  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  std::vector<const io::Dataset*> sessions;
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
+    if (!py::isinstance<io::Dataset>(datasets[k])) {
+      throw Error("datasets[" + std::to_string(k) + "]: expected an hba.Dataset (hba.open_dataset(folder))");
+    }
+    sessions.push_back(&datasets[k].cast<const io::Dataset&>());
+  }
+  if (sessions.size() < 2) throw Error("datasets: give two sessions or more (one: hba.optimize)");
+  std::vector<std::unique_ptr<io::DatasetScanSource>> sources;
+  std::vector<const io::ScanSource*> parts;
+  std::vector<const Trajectory*> trajectories;
+  std::vector<pyramid::SessionInput> inputs;
+  for (std::size_t k = 0; k < sessions.size(); ++k) {
+    sources.push_back(std::make_unique<io::DatasetScanSource>(*sessions[k]));
+    parts.push_back(sources.back().get());
+    trajectories.push_back(&sessions[k]->trajectory());
+    inputs.push_back({parts.back(), trajectories.back(), "datasets[" + std::to_string(k) + "]"});
+  }
+  const io::ConcatenatedScanSource scans(parts);
+  pyramid::ClosureInputs closures =
+      pyramid::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
+                                trajectories, scans.starts(), scans.size());
+  const pyramid::SessionPlacement how = placementFrom(align, sessions.size());
+  pyramid::HbaResult result;
+  pyramid::PlacedSessions placed;
+  {
+    const py::gil_scoped_release release;
+    placed = pyramid::placeSessions(inputs, how, settings.scan_voxel);
+    const std::vector<Pose> initial = pyramid::sessionsInOneFrame(inputs, placed, closures);
+    result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
+  }
+  nlohmann::json report = pyramid::reportToJson(result.report);
+  report["settings"] = pyramid::settingsToJson(settings);
+  report["sessions"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < sessions.size(); ++k) {
+    report["sessions"].push_back(
+        {{"first_frame", scans.starts()[k]}, {"frames", scans.starts()[k + 1] - scans.starts()[k]}});
+  }
+  report["alignment"] = {{"method", how.method == pyramid::SessionPlacement::Method::Register   ? "register"
+                                    : how.method == pyramid::SessionPlacement::Method::Identity ? "identity"
+                                                                                                : "given"},
+                         {"registered", placed.registered}};
+  return {arrayFromPoses(result.poses), py::dict(toPython(report))};
+}
+
 py::dict settingsDict(const py::kwargs& kwargs) {
   const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
   nlohmann::json out = pyramid::settingsToJson(settings);
@@ -93,6 +164,20 @@ prior_max_gap: a prior further than this (s) from every scan is not used.
 Returns an hba.Result: .poses (K, 4, 4) and .report (report.json's dict).
 Raises hba.Error for a bad setting, array or pose count.)";
 
+const char* const kOptimizeSessionsDoc = R"(Optimizes several sessions of one place as one map, as
+`hba optimize A B ...` does.
+
+datasets: two or more hba.Dataset, each in its own frame; the result is in
+       the first one's.
+align: how the later sessions are placed first: "register" (found from
+       their scans), "identity" (they share a frame), or one 4x4
+       world_from_session per later session.
+loops, priors, prior_max_gap, **settings: as hba.optimize; loop indices
+       count all sessions' frames one after the other.
+Returns an hba.Result: .poses (every session's, one after the other) and
+.report (with 'sessions': each one's first_frame and frames, and
+'alignment').)";
+
 }  // namespace
 
 void bindOptimize(py::module_& m) {
@@ -107,6 +192,9 @@ void bindOptimize(py::module_& m) {
   m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), py::kw_only(),
         py::arg("loops") = py::none(), py::arg("priors") = py::none(),
         py::arg("prior_max_gap") = pyramid::ClosureFiles{}.prior_max_gap_s, kOptimizeDoc);
+  m.def("optimize_sessions", &optimizeSessions, py::arg("datasets"), py::kw_only(),
+        py::arg("align") = "register", py::arg("loops") = py::none(), py::arg("priors") = py::none(),
+        py::arg("prior_max_gap") = pyramid::ClosureFiles{}.prior_max_gap_s, kOptimizeSessionsDoc);
   m.def("settings", &settingsDict,
         "Every setting hba.optimize would run with for these keywords (defaults for the rest), as "
         "the dict report['settings'] holds, plus 'threads'; raises hba.Error as hba.optimize does.");

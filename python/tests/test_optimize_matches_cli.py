@@ -127,5 +127,56 @@ class LoopsAndPriorsMatchCli(CliRunCase):
             hba.optimize(scans, initial, loops=3)
 
 
+class SessionsMatchCli(unittest.TestCase):
+    """Two sessions in their own frames: placed and optimized by the tool's own calls."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.data = os.path.join(cls.tmp.name, "sessions")
+        run_cli("simulate", "--sessions", 2, "--frames", 60, "--seed", 5, "-o", cls.data)
+        cls.dirs = [os.path.join(cls.data, "session-%d" % k) for k in range(2)]
+        cls.out = os.path.join(cls.tmp.name, "out")
+        run_cli("-j", "1", "optimize", *cls.dirs, "-o", cls.out, "--no-render")
+        cls.cli_poses = np.concatenate(
+            [hba.read_poses(os.path.join(cls.out, "session-%d" % k, "pose.json")) for k in range(2)])
+        with open(os.path.join(cls.out, "report.json")) as f:
+            cls.cli_report = json.load(f)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_registered_sessions_give_the_cli_poses(self):
+        datasets = [hba.open_dataset(d) for d in self.dirs]
+        result = hba.optimize_sessions(datasets, threads=1)
+        self.assertEqual(result.poses.shape, (120, 4, 4))
+        self.assertLess(np.abs(result.poses - self.cli_poses).max(), 1e-9)
+        self.assertEqual([s["first_frame"] for s in result.report["sessions"]],
+                         [s["first_frame"] for s in self.cli_report["sessions"]])
+        ours, theirs = result.report["alignment"], self.cli_report["alignment"]
+        self.assertEqual(ours["method"], "register")
+        self.assertTrue(ours["registered"][0]["found"])
+        self.assertEqual(ours["registered"][0]["agreeing"], theirs["registered"][0]["agreeing"])
+        # The second session really was moved into the first one's frame.
+        second = datasets[1].poses
+        self.assertGreater(np.abs(result.poses[60:, :3, 3] - second[:, :3, 3]).max(), 1.0)
+
+    def test_placement_given_or_refused(self):
+        datasets = [hba.open_dataset(d) for d in self.dirs]
+        identity = hba.optimize_sessions(datasets, align="identity", refine=False, threads=1)
+        self.assertEqual(identity.report["alignment"]["method"], "identity")
+        given = hba.optimize_sessions(datasets, align=[np.eye(4)], refine=False, threads=1)
+        self.assertLess(np.abs(given.poses - identity.poses).max(), 1e-12)
+        with self.assertRaisesRegex(hba.Error, "align: 2 transforms for 1 later sessions"):
+            hba.optimize_sessions(datasets, align=[np.eye(4), np.eye(4)])
+        with self.assertRaisesRegex(hba.Error, "align: 'nearest' is none of"):
+            hba.optimize_sessions(datasets, align="nearest")
+        with self.assertRaisesRegex(hba.Error, "two sessions or more"):
+            hba.optimize_sessions(datasets[:1])
+        with self.assertRaisesRegex(hba.Error, r"datasets\[1\]: expected an hba.Dataset"):
+            hba.optimize_sessions([datasets[0], self.dirs[1]])
+
+
 if __name__ == "__main__":
     main()

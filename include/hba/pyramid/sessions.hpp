@@ -1,0 +1,54 @@
+#pragma once
+// Several sessions of one place, each in its own frame, optimized as one
+// sequence in the first session's frame (docs/closure.md, "Several
+// sessions"). `hba optimize A B ...` and hba.optimize_sessions make the same
+// calls: readClosureFiles, placeSessions, sessionsInOneFrame, then
+// runHierarchicalBa on the sessions' scans one after the other.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "hba/closure/session_alignment.hpp"
+#include "hba/core/pose.hpp"
+#include "hba/io/scan_source.hpp"
+#include "hba/pyramid/closure_inputs.hpp"
+
+namespace hba::pyramid {
+
+struct SessionInput {
+  const io::ScanSource* scans = nullptr;
+  const Trajectory* trajectory = nullptr;  // its poses, in its own frame
+  std::string name;                        // for messages (its folder)
+};
+
+// How the later sessions are placed in the first one's frame.
+struct SessionPlacement {
+  enum class Method { Register, Identity, Given };
+  Method method = Method::Register;
+  std::vector<Pose> given;  // Given: world_from_session of each later session
+};
+
+struct PlacedSessions {
+  std::vector<Pose> world_from_session;                 // of each session; the first's is the identity
+  nlohmann::json registered = nlohmann::json::array();  // each registered session's search
+};
+
+// Registers each later session against the first (closure::alignSession,
+// the scans downsampled to `scan_voxel`), or takes the identity or the
+// transforms given. Throws hba::Error naming a session that registration
+// cannot place, or a count of given transforms that does not match.
+PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const SessionPlacement& how,
+                             double scan_voxel);
+
+// Every session's poses moved into the first one's frame, one session after
+// the other; `closures.session_starts` gets each later session's first frame.
+std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
+                                     ClosureInputs& closures);
+
+// A registration's search for report.json (its places, pairs and verdicts);
+// each pair is logged at debug level under `label`.
+nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label);
+
+}  // namespace hba::pyramid
