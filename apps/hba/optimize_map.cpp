@@ -14,6 +14,7 @@
 #include "hba/eval/merged_map.hpp"
 #include "hba/io/scan_file.hpp"
 #include "hba/io/scan_formats.hpp"
+#include "hba/pyramid/sessions.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "memory_check.hpp"

@@ -14,7 +14,6 @@
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_files.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/sessions.hpp"
 #include "setting_flags.hpp"
 
 namespace hba::cli::optimize {

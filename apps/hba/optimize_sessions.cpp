@@ -143,9 +143,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   nlohmann::json report = reportJson(result, datasets[0], args.data, settings, conventions);
   report["sessions"] = sessions;
   report["memory_estimate"] = memory;
-  report["alignment"] = {
-      {"method", args.align == "register" || args.align == "identity" ? args.align : "file"},
-      {"registered", placed.registered}};
+  report["alignment"] = {{"method", pyramid::placementName(how.method)}, {"registered", placed.registered}};
   report = writeReport(out, report);
   const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
   const bool paged = !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, initial, gt,

@@ -136,10 +136,7 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
     report["sessions"].push_back(
         {{"first_frame", scans.starts()[k]}, {"frames", scans.starts()[k + 1] - scans.starts()[k]}});
   }
-  report["alignment"] = {{"method", how.method == pyramid::SessionPlacement::Method::Register   ? "register"
-                                    : how.method == pyramid::SessionPlacement::Method::Identity ? "identity"
-                                                                                                : "given"},
-                         {"registered", placed.registered}};
+  report["alignment"] = {{"method", pyramid::placementName(how.method)}, {"registered", placed.registered}};
   return {arrayFromPoses(result.poses), py::dict(toPython(report))};
 }
 

@@ -168,6 +168,7 @@ class SessionsMatchCli(unittest.TestCase):
         self.assertEqual(identity.report["alignment"]["method"], "identity")
         given = hba.optimize_sessions(datasets, align=[np.eye(4)], refine=False, threads=1)
         self.assertLess(np.abs(given.poses - identity.poses).max(), 1e-12)
+        self.assertEqual(given.report["alignment"]["method"], "given")
         with self.assertRaisesRegex(hba.Error, "align: 2 transforms for 1 later sessions"):
             hba.optimize_sessions(datasets, align=[np.eye(4), np.eye(4)])
         with self.assertRaisesRegex(hba.Error, "align: 'nearest' is none of"):

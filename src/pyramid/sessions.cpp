@@ -7,6 +7,18 @@
 
 namespace hba::pyramid {
 
+const char* placementName(SessionPlacement::Method method) {
+  switch (method) {
+    case SessionPlacement::Method::Register:
+      return "register";
+    case SessionPlacement::Method::Identity:
+      return "identity";
+    case SessionPlacement::Method::Given:
+      break;
+  }
+  return "given";
+}
+
 PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const SessionPlacement& how,
                              double scan_voxel) {
   PlacedSessions placed;

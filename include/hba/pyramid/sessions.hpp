@@ -30,6 +30,9 @@ struct SessionPlacement {
   std::vector<Pose> given;  // Given: world_from_session of each later session
 };
 
+// "register", "identity" or "given": report.json's alignment.method.
+const char* placementName(SessionPlacement::Method method);
+
 struct PlacedSessions {
   std::vector<Pose> world_from_session;                 // of each session; the first's is the identity
   nlohmann::json registered = nlohmann::json::array();  // each registered session's search
