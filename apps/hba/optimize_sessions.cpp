@@ -76,15 +76,10 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
     datasets.push_back(one.open());
     refuseOutputInsideInput(args.output, datasets.back());
   }
-  std::vector<std::unique_ptr<io::DatasetScanSource>> sources;
-  std::vector<const io::ScanSource*> parts;
-  for (const io::Dataset& d : datasets) {
-    sources.push_back(std::make_unique<io::DatasetScanSource>(d));
-    parts.push_back(sources.back().get());
-  }
-  const io::ConcatenatedScanSource scans(parts);
   std::vector<const io::Dataset*> sessions_in;
   for (const io::Dataset& d : datasets) sessions_in.push_back(&d);
+  const pyramid::SessionScans session_scans(sessions_in, dirs);
+  const io::ConcatenatedScanSource& scans = session_scans.all();
   pyramid::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
   const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
@@ -94,15 +89,13 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   const fs::path& out = staging.path();
   nlohmann::json conventions = nlohmann::json::array();
   for (std::size_t k = 0; k < datasets.size(); ++k) {
-    conventions.push_back(
-        checkConventions(args, voxel::DownsampledScanSource(*sources[k], settings.scan_voxel), datasets[k]));
+    conventions.push_back(checkConventions(
+        args, voxel::DownsampledScanSource(*session_scans.inputs()[k].scans, settings.scan_voxel),
+        datasets[k]));
   }
 
   // Each later session placed in the first one's frame.
-  std::vector<pyramid::SessionInput> inputs;
-  for (std::size_t k = 0; k < datasets.size(); ++k) {
-    inputs.push_back({sources[k].get(), &datasets[k].trajectory(), dirs[k]});
-  }
+  const std::vector<pyramid::SessionInput>& inputs = session_scans.inputs();
   pyramid::SessionPlacement how;
   if (args.align == "identity") {
     how.method = pyramid::SessionPlacement::Method::Identity;

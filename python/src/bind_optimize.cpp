@@ -106,27 +106,20 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
     sessions.push_back(&datasets[k].cast<const io::Dataset&>());
   }
   if (sessions.size() < 2) throw Error("datasets: give two sessions or more (one: hba.optimize)");
-  std::vector<std::unique_ptr<io::DatasetScanSource>> sources;
-  std::vector<const io::ScanSource*> parts;
-  std::vector<const Trajectory*> trajectories;
-  std::vector<pyramid::SessionInput> inputs;
-  for (std::size_t k = 0; k < sessions.size(); ++k) {
-    sources.push_back(std::make_unique<io::DatasetScanSource>(*sessions[k]));
-    parts.push_back(sources.back().get());
-    trajectories.push_back(&sessions[k]->trajectory());
-    inputs.push_back({parts.back(), trajectories.back(), "datasets[" + std::to_string(k) + "]"});
-  }
-  const io::ConcatenatedScanSource scans(parts);
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < sessions.size(); ++k) names.push_back("datasets[" + std::to_string(k) + "]");
+  const pyramid::SessionScans session_scans(sessions, names);
+  const io::ConcatenatedScanSource& scans = session_scans.all();
   pyramid::ClosureInputs closures =
       pyramid::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
-                                trajectories, scans.starts(), scans.size());
+                                session_scans.trajectories(), scans.starts(), scans.size());
   const pyramid::SessionPlacement how = placementFrom(align, sessions.size());
   pyramid::HbaResult result;
   pyramid::PlacedSessions placed;
   {
     const py::gil_scoped_release release;
-    placed = pyramid::placeSessions(inputs, how, settings.scan_voxel);
-    const std::vector<Pose> initial = pyramid::sessionsInOneFrame(inputs, placed, closures);
+    placed = pyramid::placeSessions(session_scans.inputs(), how, settings.scan_voxel);
+    const std::vector<Pose> initial = pyramid::sessionsInOneFrame(session_scans.inputs(), placed, closures);
     result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
   }
   nlohmann::json report = pyramid::reportToJson(result.report);

@@ -7,6 +7,23 @@
 
 namespace hba::pyramid {
 
+SessionScans::SessionScans(const std::vector<const io::Dataset*>& datasets,
+                           const std::vector<std::string>& names) {
+  std::vector<const io::ScanSource*> parts;
+  for (std::size_t k = 0; k < datasets.size(); ++k) {
+    sources_.push_back(std::make_unique<io::DatasetScanSource>(*datasets[k]));
+    parts.push_back(sources_.back().get());
+    inputs_.push_back({parts.back(), &datasets[k]->trajectory(), names.at(k)});
+  }
+  all_ = std::make_unique<io::ConcatenatedScanSource>(parts);
+}
+
+std::vector<const Trajectory*> SessionScans::trajectories() const {
+  std::vector<const Trajectory*> out;
+  for (const SessionInput& input : inputs_) out.push_back(input.trajectory);
+  return out;
+}
+
 const char* placementName(SessionPlacement::Method method) {
   switch (method) {
     case SessionPlacement::Method::Register:

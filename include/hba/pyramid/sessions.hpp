@@ -5,6 +5,7 @@
 // calls: readClosureFiles, placeSessions, sessionsInOneFrame, then
 // runHierarchicalBa on the sessions' scans one after the other.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 
 #include "hba/closure/session_alignment.hpp"
 #include "hba/core/pose.hpp"
+#include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_inputs.hpp"
 
@@ -21,6 +23,21 @@ struct SessionInput {
   const io::ScanSource* scans = nullptr;
   const Trajectory* trajectory = nullptr;  // its poses, in its own frame
   std::string name;                        // for messages (its folder)
+};
+
+// The sessions' scans read from their datasets: all of them one after the
+// other, and each session as placeSessions takes it, named `names[k]`.
+class SessionScans {
+ public:
+  SessionScans(const std::vector<const io::Dataset*>& datasets, const std::vector<std::string>& names);
+  const io::ConcatenatedScanSource& all() const { return *all_; }
+  const std::vector<SessionInput>& inputs() const { return inputs_; }
+  std::vector<const Trajectory*> trajectories() const;
+
+ private:
+  std::vector<std::unique_ptr<io::DatasetScanSource>> sources_;
+  std::unique_ptr<io::ConcatenatedScanSource> all_;
+  std::vector<SessionInput> inputs_;
 };
 
 // How the later sessions are placed in the first one's frame.
