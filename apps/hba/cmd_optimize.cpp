@@ -15,6 +15,7 @@
 #include "file_checks.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/scan_formats.hpp"
+#include "hba/pipeline/deskew_passes.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "json_text.hpp"
@@ -85,29 +86,9 @@ void run(const Args& args) {
   spdlog::info("threads: {}{}", settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
-  pyramid::HbaResult result =
-      pyramid::runHierarchicalBa(scans, dataset.trajectory().poses, settings, closures, group);
-  nlohmann::json deskew_passes = nlohmann::json::array();
-  double seconds_before = 0.0;  // of the earlier passes
-  // Raw sweeps were deskewed by the input's motion, which the run has just
-  // corrected: each further pass deskews them by the poses found and
-  // optimizes again from there.
-  for (int pass = 2; dataset.pointTimes() && pass <= args.deskew_passes; ++pass) {
-    deskew_passes.push_back({{"largest_update_against_input_m", result.report.largest_translation_update},
-                             {"seconds", result.report.seconds_total - seconds_before}});
-    seconds_before = result.report.seconds_total;
-    spdlog::info("raw sweeps: pass {} of {}, deskewed by the poses of pass {}", pass, args.deskew_passes,
-                 pass - 1);
-    dataset.deskewBy(result.poses);
-    result = pyramid::runHierarchicalBa(scans, result.poses, settings, closures, group);
-    // The report speaks of the whole run: against the input, in all passes' time.
-    const PoseChange total = largestChange(dataset.trajectory().poses, result.poses);
-    result.report.largest_translation_update = total.translation_m;
-    result.report.largest_rotation_update = total.rotation_deg;
-    result.report.seconds_total += seconds_before;
-    spdlog::info("largest pose update against the input over {} passes: {:.4f} m, {:.4f} deg", pass,
-                 total.translation_m, total.rotation_deg);
-  }
+  pipeline::DatasetRun run = pipeline::runWithDeskewPasses(dataset, scans, dataset.trajectory().poses,
+                                                           settings, closures, args.deskew_passes, group);
+  const pyramid::HbaResult& result = run.result;
   if (!group.root()) return;
   const fs::path& out = staging->path();
 
@@ -119,11 +100,7 @@ void run(const Args& args) {
   nlohmann::json report = reportJson(result, dataset, args.data, settings, conventions);
   report["memory_estimate"] = memory;
   if (gt) report["window_errors"] = windowErrorsReport(result, dataset.trajectory().poses, *gt);
-  if (dataset.pointTimes()) {
-    report["deskew"] = {{"point_times", dataset.pointTimes()->describe()},
-                        {"passes", deskew_passes.size() + 1},
-                        {"earlier_passes", deskew_passes}};
-  }
+  if (dataset.pointTimes()) report["deskew"] = pipeline::deskewReport(dataset, run);
   report = writeReport(out, report);
 
   const bool drawn = !args.no_render &&

@@ -175,7 +175,7 @@ pyramid::ClosureInputs readClosureInputs(const Args& args, const std::vector<con
                                          const std::vector<std::size_t>& starts, std::size_t frames) {
   std::vector<const Trajectory*> sessions;
   for (const io::Dataset* dataset : datasets) sessions.push_back(&dataset->trajectory());
-  return pyramid::readClosureFiles(args.closure_files, sessions, starts, frames);
+  return pipeline::readClosureFiles(args.closure_files, sessions, starts, frames);
 }
 
 // Defaults, then the YAML file, then the flags given on the command line.

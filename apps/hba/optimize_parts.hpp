@@ -12,7 +12,7 @@
 #include "hba/closure/session_alignment.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
-#include "hba/pyramid/closure_files.hpp"
+#include "hba/pipeline/closure_files.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
 #include "setting_flags.hpp"
 
@@ -28,7 +28,7 @@ struct Args {
   std::string config;
   SettingFlags settings;
   std::string ground_truth;
-  pyramid::ClosureFiles closure_files;  // --loops, --priors, --prior-max-gap
+  pipeline::ClosureFiles closure_files;  // --loops, --priors, --prior-max-gap
   bool no_render = false;
   bool no_report_page = false;
   bool no_convention_check = false;

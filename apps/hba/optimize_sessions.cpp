@@ -9,7 +9,7 @@
 #include "hba/core/atomic_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
-#include "hba/pyramid/sessions.hpp"
+#include "hba/pipeline/sessions.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "memory_check.hpp"
 #include "optimize_parts.hpp"
@@ -78,7 +78,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   }
   std::vector<const io::Dataset*> sessions_in;
   for (const io::Dataset& d : datasets) sessions_in.push_back(&d);
-  const pyramid::SessionScans session_scans(sessions_in, dirs);
+  const pipeline::SessionScans session_scans(sessions_in, dirs);
   const io::ConcatenatedScanSource& scans = session_scans.all();
   pyramid::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
@@ -95,16 +95,16 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   }
 
   // Each later session placed in the first one's frame.
-  const std::vector<pyramid::SessionInput>& inputs = session_scans.inputs();
-  pyramid::SessionPlacement how;
+  const std::vector<pipeline::SessionInput>& inputs = session_scans.inputs();
+  pipeline::SessionPlacement how;
   if (args.align == "identity") {
-    how.method = pyramid::SessionPlacement::Method::Identity;
+    how.method = pipeline::SessionPlacement::Method::Identity;
   } else if (args.align != "register") {
-    how.method = pyramid::SessionPlacement::Method::Given;
+    how.method = pipeline::SessionPlacement::Method::Given;
     how.given = readAlignmentFile(args.align, datasets.size() - 1);
   }
-  const pyramid::PlacedSessions placed = pyramid::placeSessions(inputs, how, settings.scan_voxel);
-  const std::vector<Pose> initial = pyramid::sessionsInOneFrame(inputs, placed, closures);
+  const pipeline::PlacedSessions placed = pipeline::placeSessions(inputs, how, settings.scan_voxel);
+  const std::vector<Pose> initial = pipeline::sessionsInOneFrame(inputs, placed, closures);
   spdlog::info("{} sessions, {} scans in all", datasets.size(), scans.size());
   const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
 
@@ -136,7 +136,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   nlohmann::json report = reportJson(result, datasets[0], args.data, settings, conventions);
   report["sessions"] = sessions;
   report["memory_estimate"] = memory;
-  report["alignment"] = {{"method", pyramid::placementName(how.method)}, {"registered", placed.registered}};
+  report["alignment"] = {{"method", pipeline::placementName(how.method)}, {"registered", placed.registered}};
   report = writeReport(out, report);
   const bool drawn = !args.no_render && writePicture(scans, result, settings.scan_voxel, initial, gt, out);
   const bool paged = !args.no_report_page && writeReportPage(scans, result, settings.scan_voxel, initial, gt,

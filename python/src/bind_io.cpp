@@ -69,7 +69,10 @@ void writePoses(const fs::path& path, const py::handle& poses, const std::string
 io::Dataset openDataset(const fs::path& dir, const std::optional<fs::path>& scans,
                         const std::optional<fs::path>& poses, const std::optional<std::string>& pose_format,
                         const std::optional<fs::path>& times, bool invert_poses, const py::object& extrinsic,
-                        const std::optional<fs::path>& calibration, bool scans_in_world) {
+                        const std::optional<fs::path>& calibration, bool scans_in_world,
+                        const std::string& cloud_topic, const std::string& pose_topic,
+                        const std::string& tf_frames, double time_offset, double keyframe_distance,
+                        double keyframe_angle, const std::string& deskew) {
   io::DatasetOverrides overrides;
   overrides.scans_dir = scans;
   overrides.poses_file = poses;
@@ -79,6 +82,20 @@ io::Dataset openDataset(const fs::path& dir, const std::optional<fs::path>& scan
   if (!extrinsic.is_none()) overrides.extrinsic = poseFromMatrix(extrinsic, "extrinsic");
   overrides.calibration = calibration;
   overrides.scans_in_world = scans_in_world;
+  overrides.recording.cloud_topic = cloud_topic;
+  overrides.recording.pose_topic = pose_topic;
+  if (!tf_frames.empty()) {
+    const std::size_t colon = tf_frames.find(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == tf_frames.size()) {
+      throw Error("tf_frames: '" + tf_frames + "' must be PARENT:CHILD, e.g. odom:base_link");
+    }
+    overrides.recording.tf_parent = tf_frames.substr(0, colon);
+    overrides.recording.tf_child = tf_frames.substr(colon + 1);
+  }
+  overrides.recording.time_offset = time_offset;
+  overrides.recording.keyframe_distance = keyframe_distance;
+  overrides.recording.keyframe_angle = keyframe_angle;
+  overrides.deskew = parseEnum<io::DeskewMode>(deskew);
   return io::Dataset::open(dir, overrides);
 }
 
@@ -117,6 +134,16 @@ void bindDataset(py::module_& m) {
       .def_property_readonly(
           "stamps", [](const io::Dataset& d) { return stampsArray(d.trajectory().stamps); },
           "times (s) of the poses, or None")
+      .def(
+          "every_scan",
+          [](const io::Dataset& d, const py::object& poses) {
+            const Trajectory every = d.everyScan(posesFromArray(poses, "poses"));
+            return py::make_tuple(stampsArray(every.stamps), arrayFromPoses(every.poses));
+          },
+          py::arg("poses"),
+          "Every scan of a keyframed recording, keyframe or not, with its pose corrected as the "
+          "keyframes around it were (`hba optimize --every-scan`): (stamps (N,), poses (N, 4, 4)) "
+          "for `poses`, one per keyframe (this dataset's scans)")
       .def_property_readonly("layout", &io::Dataset::layout)
       .def_property_readonly("root", &io::Dataset::root)
       .def_property_readonly("scans_dir", &io::Dataset::scansDir)
@@ -173,10 +200,15 @@ void bindIo(py::module_& m) {
   m.def("open_dataset", &openDataset, py::arg("path"), py::kw_only(), py::arg("scans") = py::none(),
         py::arg("poses") = py::none(), py::arg("pose_format") = py::none(), py::arg("times") = py::none(),
         py::arg("invert_poses") = false, py::arg("extrinsic") = py::none(),
-        py::arg("calibration") = py::none(), py::arg("scans_in_world") = false,
-        "Opens a dataset folder as `hba optimize DIR` does (docs/io_datasets.md); the keywords are "
-        "its --scans, --poses, --format, --times, --invert-poses, --extrinsic (4x4), --calib and "
-        "--scans-in-world. Reads no scan until asked.");
+        py::arg("calibration") = py::none(), py::arg("scans_in_world") = false, py::arg("cloud_topic") = "",
+        py::arg("pose_topic") = "", py::arg("tf_frames") = "", py::arg("time_offset") = 0.0,
+        py::arg("keyframe_distance") = 0.0, py::arg("keyframe_angle") = 0.0, py::arg("deskew") = "auto",
+        "Opens a dataset folder or a recording (ROS 1 bag, MCAP, .db3, rosbag2 folder) as `hba "
+        "optimize DIR` does (docs/io_datasets.md, docs/recordings.md); the keywords are its --scans, "
+        "--poses, --format, --times, --invert-poses, --extrinsic (4x4), --calib, --scans-in-world, "
+        "--cloud-topic, --pose-topic, --tf-frames ('PARENT:CHILD'), --time-offset (s), "
+        "--keyframe-distance (m), --keyframe-angle (deg) and --deskew ('auto', 'on', 'off'). Reads no "
+        "scan until asked.");
 }
 
 }  // namespace hba::python

@@ -2,12 +2,17 @@
 // Python, with loop pairs and position priors read as the tool reads them.
 #include <pybind11/numpy.h>
 
+#include <filesystem>
+#include <optional>
+
 #include "bindings.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/dataset.hpp"
-#include "hba/pyramid/closure_files.hpp"
+#include "hba/pipeline/closure_files.hpp"
+#include "hba/pipeline/deskew_passes.hpp"
+#include "hba/pipeline/prior_map.hpp"
+#include "hba/pipeline/sessions.hpp"
 #include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/sessions.hpp"
 #include "hba/pyramid/settings_file.hpp"
 #include "json_to_python.hpp"
 #include "numpy_convert.hpp"
@@ -36,7 +41,7 @@ std::string fileName(const py::object& name, const char* what) {
 // --loops and --priors as the tool reads them; priors go to frames by their
 // stamps, which only a dataset has.
 pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<Pose>& initial,
-                                     const pyramid::ClosureFiles& files) {
+                                     const pipeline::ClosureFiles& files) {
   if (files.loops.empty() && files.priors.empty()) return {};
   Trajectory stamped;
   stamped.poses = initial;
@@ -48,44 +53,106 @@ pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<
     }
     stamped.stamps = scans.cast<const io::Dataset&>().trajectory().stamps;
   }
-  return pyramid::readClosureFiles(files, {&stamped}, {0}, initial.size());
+  return pipeline::readClosureFiles(files, {&stamped}, {0}, initial.size());
 }
 
 OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::object& loops,
-                        const py::object& priors, double prior_max_gap, const py::kwargs& kwargs) {
+                        const py::object& priors, double prior_max_gap, int deskew_passes,
+                        const py::kwargs& kwargs) {
   const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
-  const std::unique_ptr<io::ScanSource> source = scanSourceFrom(scans);
-  const std::vector<Pose> initial = posesFromArray(poses, "poses");
+  const bool is_dataset = py::isinstance<io::Dataset>(scans);
+  if (poses.is_none() && !is_dataset)
+    throw Error("poses: required with arrays of scans (only a dataset has its own)");
+  // A dataset's own poses as read, not through a 4x4 matrix and back (which
+  // rounds them): the tool's poses, bit for bit.
+  const std::vector<Pose> initial =
+      poses.is_none() ? scans.cast<const io::Dataset&>().trajectory().poses : posesFromArray(poses, "poses");
+  if (deskew_passes < 1) throw Error("deskew_passes: " + std::to_string(deskew_passes) + " (at least 1)");
+  // A dataset's raw sweeps are deskewed again between passes: in a copy, so
+  // that the caller's dataset still reads them as it did.
+  std::optional<io::Dataset> dataset;
+  if (is_dataset) dataset.emplace(scans.cast<const io::Dataset&>());
+  const std::unique_ptr<io::ScanSource> source =
+      dataset ? std::make_unique<io::DatasetScanSource>(*dataset) : scanSourceFrom(scans);
   // Poses and scans that differ in number: the run below refuses them.
   const pyramid::ClosureInputs closures =
       initial.size() == source->size()
           ? closureInputs(scans, initial,
                           {fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap})
           : pyramid::ClosureInputs{};
-  pyramid::HbaResult result;
+  pipeline::DatasetRun run;
   {
     // Python threads run on while hba works; nothing below touches Python.
     const py::gil_scoped_release release;
-    result = pyramid::runHierarchicalBa(*source, initial, settings, closures);
+    if (dataset) {
+      run = pipeline::runWithDeskewPasses(*dataset, *source, initial, settings, closures, deskew_passes);
+    } else {
+      run.result = pyramid::runHierarchicalBa(*source, initial, settings, closures);
+    }
   }
-  nlohmann::json report = pyramid::reportToJson(result.report);
+  nlohmann::json report = pyramid::reportToJson(run.result.report);
   report["settings"] = pyramid::settingsToJson(settings);
-  return {arrayFromPoses(result.poses), py::dict(toPython(report))};
+  if (dataset && dataset->pointTimes()) report["deskew"] = pipeline::deskewReport(*dataset, run);
+  return {arrayFromPoses(run.result.poses), py::dict(toPython(report))};
+}
+
+bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code ec;
+  return a == b || std::filesystem::equivalent(a, b, ec);
+}
+
+// map: a cloud file, or an hba.Dataset at its poses (or at map_poses).
+pipeline::PriorMap priorMapFrom(const py::object& map, const py::object& map_poses) {
+  if (py::isinstance<io::Dataset>(map)) {
+    const io::Dataset& dataset = map.cast<const io::Dataset&>();
+    std::vector<Pose> poses =
+        map_poses.is_none() ? dataset.trajectory().poses : posesFromArray(map_poses, "map_poses");
+    const std::string name = "map (" + dataset.root().string() + ")";
+    return pipeline::priorMapFromDataset(dataset, std::move(poses), name);
+  }
+  if (!map_poses.is_none()) throw Error("map_poses: only for a map given as an hba.Dataset");
+  return pipeline::priorMapFromCloud(fileName(map, "map"));
+}
+
+OptimizeResult optimizeInMap(const io::Dataset& dataset, const py::object& map, const py::object& map_poses,
+                             const py::object& poses, const py::object& loops, const py::kwargs& kwargs) {
+  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  const std::vector<Pose> initial =
+      poses.is_none() ? dataset.trajectory().poses : posesFromArray(poses, "poses");
+  const pipeline::PriorMap prior_map = priorMapFrom(map, map_poses);
+  const io::DatasetScanSource scans(dataset);
+  if (py::isinstance<io::Dataset>(map) && sameFolder(map.cast<const io::Dataset&>().root(), dataset.root())) {
+    throw Error("map: " + dataset.root().string() +
+                " is the session being optimized: a session placed in a map of itself finds only itself");
+  }
+  const pyramid::ClosureInputs closures =
+      initial.size() == scans.size() ? pipeline::readClosureFiles({fileName(loops, "loops"), "", 0.5},
+                                                                  {&dataset.trajectory()}, {0}, scans.size())
+                                     : pyramid::ClosureInputs{};
+  pipeline::MapRun run;
+  {
+    const py::gil_scoped_release release;
+    run = pipeline::runInMap(prior_map, scans, initial, settings, closures, dataset.root().string());
+  }
+  nlohmann::json report = pyramid::reportToJson(run.result.report);
+  report["settings"] = pyramid::settingsToJson(settings);
+  report["map"] = pipeline::mapReport(prior_map, run);
+  return {arrayFromPoses(pipeline::inMapFrame(prior_map, run.result.poses)), py::dict(toPython(report))};
 }
 
 // align="register" | "identity" | the later sessions' world_from_session.
-pyramid::SessionPlacement placementFrom(const py::object& align, std::size_t sessions) {
-  pyramid::SessionPlacement how;
+pipeline::SessionPlacement placementFrom(const py::object& align, std::size_t sessions) {
+  pipeline::SessionPlacement how;
   if (py::isinstance<py::str>(align)) {
     const std::string name = align.cast<std::string>();
     if (name == "identity") {
-      how.method = pyramid::SessionPlacement::Method::Identity;
+      how.method = pipeline::SessionPlacement::Method::Identity;
     } else if (name != "register") {
       throw Error("align: '" + name + "' is none of 'register', 'identity' or a list of 4x4 transforms");
     }
     return how;
   }
-  how.method = pyramid::SessionPlacement::Method::Given;
+  how.method = pipeline::SessionPlacement::Method::Given;
   how.given = posesFromArray(align, "align");
   if (how.given.size() + 1 != sessions) {
     throw Error("align: " + std::to_string(how.given.size()) + " transforms for " +
@@ -108,18 +175,18 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
   if (sessions.size() < 2) throw Error("datasets: give two sessions or more (one: hba.optimize)");
   std::vector<std::string> names;
   for (std::size_t k = 0; k < sessions.size(); ++k) names.push_back("datasets[" + std::to_string(k) + "]");
-  const pyramid::SessionScans session_scans(sessions, names);
+  const pipeline::SessionScans session_scans(sessions, names);
   const io::ConcatenatedScanSource& scans = session_scans.all();
   pyramid::ClosureInputs closures =
-      pyramid::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
-                                session_scans.trajectories(), scans.starts(), scans.size());
-  const pyramid::SessionPlacement how = placementFrom(align, sessions.size());
+      pipeline::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
+                                 session_scans.trajectories(), scans.starts(), scans.size());
+  const pipeline::SessionPlacement how = placementFrom(align, sessions.size());
   pyramid::HbaResult result;
-  pyramid::PlacedSessions placed;
+  pipeline::PlacedSessions placed;
   {
     const py::gil_scoped_release release;
-    placed = pyramid::placeSessions(session_scans.inputs(), how, settings.scan_voxel);
-    const std::vector<Pose> initial = pyramid::sessionsInOneFrame(session_scans.inputs(), placed, closures);
+    placed = pipeline::placeSessions(session_scans.inputs(), how, settings.scan_voxel);
+    const std::vector<Pose> initial = pipeline::sessionsInOneFrame(session_scans.inputs(), placed, closures);
     result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
   }
   nlohmann::json report = pyramid::reportToJson(result.report);
@@ -129,9 +196,21 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
     report["sessions"].push_back(
         {{"first_frame", scans.starts()[k]}, {"frames", scans.starts()[k + 1] - scans.starts()[k]}});
   }
-  report["alignment"] = {{"method", pyramid::placementName(how.method)}, {"registered", placed.registered}};
+  report["alignment"] = {{"method", pipeline::placementName(how.method)}, {"registered", placed.registered}};
   return {arrayFromPoses(result.poses), py::dict(toPython(report))};
 }
+
+const char* const kOptimizeInMapDoc = R"(Places a new session in a map that stays put, optimizes it
+and refines it against the map, as `hba optimize NEW --map MAP` (a cloud
+file) or `--fixed SESSION` (a dataset at its poses) does.
+
+dataset: the new session, an hba.Dataset.
+map: a map cloud file (.pcd, .ply, .las, .xyz, ...), or an hba.Dataset
+       whose scans at its poses (or at map_poses) are the map.
+poses: the session's start poses (default: the dataset's).
+loops, **settings: as hba.optimize.
+Returns an hba.Result: .poses in the map's frame, .report with 'map' (the
+placement and the refinement against the map).)";
 
 py::dict settingsDict(const py::kwargs& kwargs) {
   const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
@@ -144,11 +223,15 @@ const char* const kOptimizeDoc = R"(Optimizes the poses of a sequence, as `hba o
 
 scans: a list of (N, 3) or (N, 4) arrays (x y z [intensity], sensor frame),
        or an hba.Dataset (read from disk as needed).
-poses: (K, 4, 4) sensor-to-world poses, one per scan.
+poses: (K, 4, 4) sensor-to-world poses, one per scan; for an hba.Dataset,
+       None (the default) takes its own poses as the tool reads them.
 loops: a file of loop-closure pairs, as `hba optimize --loops` (docs/closure.md).
 priors: a file of position priors, as `--priors`; scans must then be an
        hba.Dataset (priors go to frames by the scans' stamps).
 prior_max_gap: a prior further than this (s) from every scan is not used.
+deskew_passes: raw sweeps (an hba.Dataset with point times, deskewed): runs
+       in all, each after deskewing the sweeps by the poses the last found,
+       as `--deskew-passes` (the dataset passed in is not changed).
 **settings: the YAML keys of `hba optimize --config` (docs/settings.md):
        window=10, refine=False, local={"voxel_size": 2.0}; threads=N as -j N.
 Returns an hba.Result: .poses (K, 4, 4) and .report (report.json's dict).
@@ -179,12 +262,16 @@ void bindOptimize(py::module_& m) {
         return "hba.Result(" + std::to_string(r.poses.shape(0)) +
                " poses, report keys: " + std::string(py::str(py::list(r.report.attr("keys")()))) + ")";
       });
-  m.def("optimize", &optimize, py::arg("scans"), py::arg("poses"), py::kw_only(),
+  m.def("optimize", &optimize, py::arg("scans"), py::arg("poses") = py::none(), py::kw_only(),
         py::arg("loops") = py::none(), py::arg("priors") = py::none(),
-        py::arg("prior_max_gap") = pyramid::ClosureFiles{}.prior_max_gap_s, kOptimizeDoc);
+        py::arg("prior_max_gap") = pipeline::ClosureFiles{}.prior_max_gap_s, py::arg("deskew_passes") = 2,
+        kOptimizeDoc);
+  m.def("optimize_in_map", &optimizeInMap, py::arg("dataset"), py::kw_only(), py::arg("map"),
+        py::arg("map_poses") = py::none(), py::arg("poses") = py::none(), py::arg("loops") = py::none(),
+        kOptimizeInMapDoc);
   m.def("optimize_sessions", &optimizeSessions, py::arg("datasets"), py::kw_only(),
         py::arg("align") = "register", py::arg("loops") = py::none(), py::arg("priors") = py::none(),
-        py::arg("prior_max_gap") = pyramid::ClosureFiles{}.prior_max_gap_s, kOptimizeSessionsDoc);
+        py::arg("prior_max_gap") = pipeline::ClosureFiles{}.prior_max_gap_s, kOptimizeSessionsDoc);
   m.def("settings", &settingsDict,
         "Every setting hba.optimize would run with for these keywords (defaults for the rest), as "
         "the dict report['settings'] holds, plus 'threads'; raises hba.Error as hba.optimize does.");

@@ -17,7 +17,7 @@
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/closure_inputs.hpp"
 
-namespace hba::pyramid {
+namespace hba::pipeline {
 
 struct SessionInput {
   const io::ScanSource* scans = nullptr;
@@ -65,10 +65,10 @@ PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const Se
 // Every session's poses moved into the first one's frame, one session after
 // the other; `closures.session_starts` gets each later session's first frame.
 std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
-                                     ClosureInputs& closures);
+                                     pyramid::ClosureInputs& closures);
 
 // A registration's search for report.json (its places, pairs and verdicts);
 // each pair is logged at debug level under `label`.
 nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::string& label);
 
-}  // namespace hba::pyramid
+}  // namespace hba::pipeline

@@ -9,7 +9,7 @@
 #include "hba/core/pose.hpp"  // Trajectory
 #include "hba/pyramid/closure_inputs.hpp"
 
-namespace hba::pyramid {
+namespace hba::pipeline {
 
 struct ClosureFiles {
   std::string loops;   // loop pairs (io::readLoopFile); "" = none
@@ -24,7 +24,8 @@ struct ClosureFiles {
 // its first frame `starts[k]` (an entry beyond the sessions, the frame
 // count, is ignored), and each prior goes, by its stamp, to the
 // session whose scans it falls among. Logs what it read.
-ClosureInputs readClosureFiles(const ClosureFiles& files, const std::vector<const Trajectory*>& sessions,
-                               const std::vector<std::size_t>& starts, std::size_t frames);
+pyramid::ClosureInputs readClosureFiles(const ClosureFiles& files,
+                                        const std::vector<const Trajectory*>& sessions,
+                                        const std::vector<std::size_t>& starts, std::size_t frames);
 
-}  // namespace hba::pyramid
+}  // namespace hba::pipeline

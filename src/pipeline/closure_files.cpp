@@ -1,4 +1,4 @@
-#include "hba/pyramid/closure_files.hpp"
+#include "hba/pipeline/closure_files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -10,15 +10,16 @@
 #include "hba/io/loop_file.hpp"
 #include "hba/io/position_prior_file.hpp"
 
-namespace hba::pyramid {
+namespace hba::pipeline {
 
-ClosureInputs readClosureFiles(const ClosureFiles& files, const std::vector<const Trajectory*>& sessions,
-                               const std::vector<std::size_t>& starts, std::size_t frames) {
+pyramid::ClosureInputs readClosureFiles(const ClosureFiles& files,
+                                        const std::vector<const Trajectory*>& sessions,
+                                        const std::vector<std::size_t>& starts, std::size_t frames) {
   if (starts.size() < sessions.size()) {
     throw Error(
         fmt::format("closure files: {} sessions but {} session starts", sessions.size(), starts.size()));
   }
-  ClosureInputs inputs;
+  pyramid::ClosureInputs inputs;
   if (!files.loops.empty()) {
     for (const io::LoopRecord& record : io::readLoopFile(files.loops, frames)) {
       inputs.loops.push_back({record.from, record.to, record.relative});
@@ -63,4 +64,4 @@ ClosureInputs readClosureFiles(const ClosureFiles& files, const std::vector<cons
   return inputs;
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::pipeline

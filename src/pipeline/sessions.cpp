@@ -1,11 +1,11 @@
-#include "hba/pyramid/sessions.hpp"
+#include "hba/pipeline/sessions.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include "hba/core/error.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 
-namespace hba::pyramid {
+namespace hba::pipeline {
 
 SessionScans::SessionScans(const std::vector<const io::Dataset*>& datasets,
                            const std::vector<std::string>& names) {
@@ -76,7 +76,7 @@ PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const Se
 }
 
 std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
-                                     ClosureInputs& closures) {
+                                     pyramid::ClosureInputs& closures) {
   std::vector<Pose> initial;
   for (std::size_t k = 0; k < sessions.size(); ++k) {
     if (k > 0) closures.session_starts.push_back(initial.size());
@@ -112,4 +112,4 @@ nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::st
           {"pairs", pairs}};
 }
 
-}  // namespace hba::pyramid
+}  // namespace hba::pipeline
