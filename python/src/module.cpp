@@ -35,4 +35,5 @@ PYBIND11_MODULE(hba, m) {
   hba::python::bindOptimize(m);
   hba::python::bindIo(m);
   hba::python::bindEval(m);
+  hba::python::bindRender(m);
 }

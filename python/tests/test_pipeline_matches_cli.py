@@ -2,6 +2,7 @@
 deskewed again between passes, recordings with keyframes and every scan's
 pose, and a session placed in a map that stays put. Each gives the poses
 `hba optimize` writes, bit for bit."""
+import filecmp
 import json
 import os
 import shutil
@@ -194,6 +195,52 @@ class PriorMapMatchesCli(TempCase):
             hba.optimize_in_map(session, map=self.cloud, map_poses=session.poses)
         with self.assertRaisesRegex(hba.Error, "nowhere.pcd"):
             hba.optimize_in_map(session, map=self.path("nowhere.pcd"))
+
+
+class ReportPageMatchesCli(TempCase):
+    """The page `hba view OUT` writes for an output folder, written from Python by the same call."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.data = cls.path("plain")
+        run_cli("simulate", "--frames", 40, "--seed", 3, "-o", cls.data)
+        cls.out = cls.path("out")
+        run_cli("-j", "1", "optimize", cls.data, "-o", cls.out, "--no-report-page")
+        run_cli("view", cls.out)
+
+    def test_the_page_is_the_tools_byte_for_byte(self):
+        dataset = hba.open_dataset(self.data)
+        with open(os.path.join(self.out, "report.json")) as f:
+            report = json.load(f)
+        page = self.path("page.html")
+        figures = hba.write_report_page(page, dataset, dataset.poses,
+                                        hba.read_poses(os.path.join(self.out, "pose.json")), report=report,
+                                        title="plain", ground_truth=hba.read_poses(os.path.join(self.data, "gt.txt")),
+                                        picture=os.path.join(self.out, "before_after.png"))
+        self.assertGreater(figures["points"], 1000)
+        self.assertEqual(figures["bytes"], os.path.getsize(page))
+        self.assertTrue(filecmp.cmp(page, os.path.join(self.out, "report.html"), shallow=False))
+        # Written again over its own page; another title is another page.
+        hba.write_report_page(page, dataset, dataset.poses, dataset.poses, title="other")
+        self.assertFalse(filecmp.cmp(page, os.path.join(self.out, "report.html"), shallow=False))
+
+    def test_bad_pages_are_refused(self):
+        dataset = hba.open_dataset(self.data)
+        with self.assertRaisesRegex(hba.Error, "must be an .html file"):
+            hba.write_report_page(self.path("page.txt"), dataset, dataset.poses, dataset.poses)
+        notes = self.path("notes.html")
+        with open(notes, "w") as f:
+            f.write("<p>mine</p>")
+        with self.assertRaisesRegex(hba.Error, "not a page hba wrote; pass force=True"):
+            hba.write_report_page(notes, dataset, dataset.poses, dataset.poses)
+        with open(notes) as f:
+            self.assertEqual(f.read(), "<p>mine</p>")
+        with self.assertRaisesRegex(hba.Error, "report: expected a dict"):
+            hba.write_report_page(self.path("p.html"), dataset, dataset.poses, dataset.poses, report=[1])
+        with self.assertRaisesRegex(hba.Error, "pose"):
+            hba.write_report_page(self.path("p.html"), dataset, dataset.poses[:3], dataset.poses[:3])
+        hba.write_report_page(notes, dataset, dataset.poses, dataset.poses, force=True)
 
 
 if __name__ == "__main__":
