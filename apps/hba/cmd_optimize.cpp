@@ -45,9 +45,9 @@ void run(const Args& args) {
   // Kept clouds and maps go to the temporary folder: a wrong TMPDIR is
   // refused before any work, naming it.
   temporaryFolder();
-  // Under mpirun: each layer's windows spread over the processes (each reads
-  // its own windows' scans); the first alone checks the conventions, runs
-  // the closure stage and the refinement, and writes the outputs.
+  // Under mpirun every process runs the method, sharing its work (which
+  // stage runs where: kStages, src/pyramid/hierarchical_ba.cpp); the first
+  // alone checks the conventions and writes the outputs.
   const dist::Group& group = processGroup();
   if (!args.map.empty() || !args.fixed.empty()) {
     if (group.size() > 1)

@@ -40,8 +40,9 @@ struct HbaResult {
 // With `group` (the processes of an mpirun), each layer's windows are spread
 // over its members, which must all call this with the same input; each
 // reads only the scans of its windows there, and all get the same poses,
-// those of one process. The closure stage's outcome is shared the same
-// way; the refinement and the anchoring run in the first member only.
+// those of one process. The closures and the refinement are shared the
+// same way; the anchoring on priors runs in the first member only
+// (kStages in src/pyramid/hierarchical_ba.cpp says which stage runs where).
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings, const ClosureInputs& closures = {},
                             const dist::Group& group = dist::singleProcess());
