@@ -106,12 +106,10 @@ void finish(Run& run) {
   spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation_m,
                total.rotation_deg);
   // A converged input is a fixed point: say so, as the reason nothing moved.
-  if (total.translation_m == 0.0 && total.rotation_deg == 0.0 && report.refinement.converged_at_start) {
+  if (total.translation_m == 0.0 && total.rotation_deg == 0.0 && run.converged_at_start) {
     spdlog::info("the input is converged: its poses are returned unchanged");
   }
-  std::size_t planes = 0;
-  for (const auto& layer_report : report.layer_reports) planes += layer_report.planes;
-  if (planes == 0) {
+  if (run.planes_found == 0) {
     warn(report, "no plane features found: poses returned unchanged");
     run.poses = run.input;
   }
@@ -171,6 +169,7 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   const auto layer_one = std::make_shared<const TimedClouds>(scans, settings.scan_voxel, /*keep=*/true);
   Run run(*layer_one, resolved, group);
   run.report = std::move(report);
+  run.layers = run.report.layers;
   run.origin = initial.front().t;
   run.input = translated(initial, -run.origin);
   run.closures = closures;

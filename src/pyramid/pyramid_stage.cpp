@@ -112,7 +112,7 @@ struct Pyramid {
 
 Pyramid bottomUp(Run& run, int iteration, StageTimes& times) {
   const HbaSettings& settings = run.settings;
-  const int layers = run.report.layers;
+  const int layers = run.layers;
   Pyramid pyramid;
   Layer layer = scanLayer(run.poses);
   for (int level = 1; level <= layers; ++level) {
@@ -133,6 +133,8 @@ Pyramid bottomUp(Run& run, int iteration, StageTimes& times) {
     outcome.report.global = top;
     outcome.report.seconds = secondsSince(start);
     logLayer(outcome.report);
+    if (iteration == 1 && level == 1) run.layer_one_points = outcome.report.cloud_points;
+    run.planes_found += outcome.report.planes;
     run.report.layer_reports.push_back(outcome.report);
     recordWindows(layer, outcome, run.report);
     if (top) {
@@ -192,7 +194,7 @@ void buildPyramid(Run& run) {
   HbaReport& report = run.report;
   OuterRounds rounds(run.settings);
   for (int iteration = 1; iteration <= run.settings.outer_iterations; ++iteration) {
-    spdlog::info("iteration {}/{}: {} layers", iteration, run.settings.outer_iterations, report.layers);
+    spdlog::info("iteration {}/{}: {} layers", iteration, run.settings.outer_iterations, run.layers);
     StageTimes times;
     const Pyramid pyramid = bottomUp(run, iteration, times);
     addStageTimes(times, report);

@@ -1,6 +1,7 @@
 #pragma once
 // What the stages of one run of the method share (hierarchical_ba.cpp): its
-// inputs, the poses as they pass from stage to stage, and the report.
+// inputs, the poses as they pass from stage to stage, what a stage found
+// that a later one acts on, and the report (which no stage reads).
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,16 @@ struct Run {
   ClosureOutcome closed;        // the closure stage's start, loops and priors
   std::vector<Pose> poses;      // the current poses, handed from stage to stage
   std::vector<Pose> hierarchy;  // the pyramid's result, before the refinement
+  int layers = 0;               // the pyramid's layers, planned from the frame count
+  // Found by the pyramid stage: the points layer 1 held (its first round),
+  // the planes of every layer and round (none: the input is returned).
+  std::size_t layer_one_points = 0;
+  std::size_t planes_found = 0;
+  // Found by the refinement: nothing was gained from the start (a converged
+  // input), and the priors held by its blocks to the end (no pass after them
+  // moved the frames without the priors), so no re-anchoring is due.
+  bool converged_at_start = false;
+  bool priors_held = false;
   HbaReport report;
   // Each stage run so far, in order, and its wall time (s).
   std::vector<std::pair<std::string, double>> stage_seconds;

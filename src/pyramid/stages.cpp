@@ -31,8 +31,8 @@ void closeLoops(Run& run) {
 void refineMap(Run& run) {
   HbaReport& report = run.report;
   refine::HierarchyFacts facts;
-  facts.layers = report.layers;
-  facts.layer_one_points = report.layer_reports.empty() ? 0 : report.layer_reports.front().cloud_points;
+  facts.layers = run.layers;
+  facts.layer_one_points = run.layer_one_points;
   facts.scans_kept = run.scans.kept();
   // Every process of a group runs it, each with its share of the planes
   // (docs/mpi.md).
@@ -44,6 +44,11 @@ void refineMap(Run& run) {
                                                          facts, run.closed.priors, settings);
   run.poses = std::move(refined.poses);
   report.consistency = std::move(refined.consistency);
+  const RefinementReport& r = refined.refinement;
+  run.converged_at_start = r.converged_at_start;
+  // Its blocks hold the priors themselves; the groups (which do not see
+  // them) may move the frames after.
+  run.priors_held = r.ran && !(r.groups.ran && !r.groups.rejected);
   report.refinement = std::move(refined.refinement);
   report.warnings.insert(report.warnings.end(), refined.notes.warnings.begin(), refined.notes.warnings.end());
   report.seconds_voxelize += refined.notes.seconds_voxelize;
@@ -52,10 +57,8 @@ void refineMap(Run& run) {
 
 void anchorOnPriors(Run& run) {
   const std::vector<graph::PositionPriorFactor>& priors = run.closed.priors;
-  const RefinementReport& r = run.report.refinement;
-  // The refinement's blocks hold the priors themselves; the hierarchy (held
-  // at its first frame) and the groups (which do not see them) do not.
-  if (priors.empty() || (r.ran && !(r.groups.ran && !r.groups.rejected))) return;
+  // The hierarchy (held at its first frame) does not hold the priors.
+  if (priors.empty() || run.priors_held) return;
   closure::ClosureGraphSettings anchoring;
   anchoring.threads = run.settings.threads;
   const closure::ClosureGraphResult anchored =
