@@ -44,10 +44,16 @@ OutputLock::OutputLock(const fs::path& output) {
   const fs::path absolute = fs::absolute(output).lexically_normal();
   const fs::path target = absolute.filename().empty() ? absolute.parent_path() : absolute;
   lock_path_ = target.parent_path() / ("." + target.filename().string() + ".lock");
-  fd_ = lockFile(lock_path_);
-  if (fd_ < 0)
-    failAt(target, "another hba run is writing this output; wait for it to finish or choose another");
+  interruptPointForTests("output-locking");
+  // Registered before the file is made, both under a deferral: an interrupt
+  // in between waits, then finds the file registered and removes it.
+  const InterruptDeferral defer;
   remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(lock_path_);
+  fd_ = lockFile(lock_path_);
+  if (fd_ < 0) {
+    remove_on_interrupt_.reset();  // another run's lock: never ours to remove
+    failAt(target, "another hba run is writing this output; wait for it to finish or choose another");
+  }
 }
 
 OutputLock::~OutputLock() {

@@ -27,6 +27,9 @@ struct Registry {
   std::mutex mutex;
   std::vector<const RemoveOnInterrupt*> entries;
   std::vector<fs::path> in_place;  // outputs complete before any interrupt
+  // The watcher is removing the entries (it holds the gate for good): a
+  // path registered now would be made after the removal and left behind.
+  bool removing = false;
 };
 
 Registry& registry() {
@@ -128,7 +131,13 @@ RemoveOnInterrupt::RemoveOnInterrupt(fs::path path) : RemoveOnInterrupt(std::mov
 RemoveOnInterrupt::RemoveOnInterrupt(fs::path staging, fs::path destination)
     : path_(std::move(staging)), destination_(std::move(destination)) {
   Registry& state = registry();
-  const std::lock_guard<std::mutex> lock(state.mutex);
+  std::unique_lock<std::mutex> lock(state.mutex);
+  if (state.removing) {
+    // The process is ending: this path is never made. (The watcher holds
+    // the gate, so this thread holds no deferral it waits for.)
+    lock.unlock();
+    waitForever();
+  }
   state.entries.push_back(this);
 }
 
@@ -185,7 +194,13 @@ void startInterruptWatcher() {
     std::string said;
     {
       const std::lock_guard<std::mutex> lock(state.mutex);
+      state.removing = true;
       said = removeAndDescribe(state);
+    }
+    // Tests widen the moment between the removal and the exit, in which
+    // other threads still run (a slow build's is long).
+    if (const char* pause = std::getenv("HBA_TEST_INTERRUPT_PAUSE_MS")) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::strtol(pause, nullptr, 10)));
     }
     std::fprintf(stderr, "[error] interrupted (%s)%s\n", strsignal(signal), said.c_str());
     std::fflush(stderr);

@@ -118,10 +118,16 @@ StagingFolder::StagingFolder(fs::path destination, bool force, const std::string
   replaces_ = checkReplaceable(destination_, force);
   removeAbandonedStaging(destination_);
   staging_ = besideWithSuffix(destination_, ".partial-");
-  remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(staging_, destination_);
-  fs::remove_all(staging_, ec);
-  if (!fs::create_directory(staging_, ec) || ec) {
-    failAt(staging_, "cannot create the staging folder: " + ec.message());
+  {
+    // Registered and made under a deferral: an interrupt in between waits,
+    // then removes the folder made (else it came after the removal).
+    const InterruptDeferral defer;
+    remove_on_interrupt_ = std::make_unique<RemoveOnInterrupt>(staging_, destination_);
+    fs::remove_all(staging_, ec);
+    if (!fs::create_directory(staging_, ec) || ec) {
+      failAt(staging_, "cannot create the staging folder: " + ec.message());
+    }
+    interruptPointForTests("staging-made");
   }
   try {
     writeFileAtomically(

@@ -71,8 +71,8 @@ bool says(const std::string& output, const std::string& text) {
 
 // Runs the tool with the interrupt hook at `point` (NAME or NAME:N).
 test::CommandResult runInterruptedAt(const std::string& point, const Signal& signal,
-                                     const std::string& arguments) {
-  return test::runCommand(std::string("HBA_TEST_INTERRUPT_AT=") + point + " HBA_TEST_INTERRUPT_SIGNAL=" +
+                                     const std::string& arguments, const std::string& environment = "") {
+  return test::runCommand(environment + "HBA_TEST_INTERRUPT_AT=" + point + " HBA_TEST_INTERRUPT_SIGNAL=" +
                           signal.name + " " + quoted(test::cliPath()) + " " + arguments);
 }
 
@@ -110,6 +110,27 @@ TEST_F(InterruptSignals, DuringTheScansNothingIsLeftAndTheMessageSaysSo) {
       EXPECT_TRUE(says(run.output, "the unfinished output was removed: " + out.string() + " was not created"))
           << run.output;
       EXPECT_EQ(hiddenLeftovers(out), std::vector<std::string>());
+    }
+  }
+}
+
+// Found under ThreadSanitizer (a slow build, so an early Ctrl-C): an
+// interrupt between making the lock file or the staging folder and
+// registering it for removal left `.OUT.lock` and `.OUT.partial-PID` behind.
+TEST_F(InterruptSignals, AsTheOutputIsLockedAndStagedNothingIsLeft) {
+  for (const Signal& signal : kSignals) {
+    for (const char* point : {"output-locking", "staging-made"}) {
+      SCOPED_TRACE(std::string(signal.name) + " at " + point);
+      const fs::path out = tmp_ / ("early_" + std::string(signal.name) + point);
+      // The watcher pauses between its removal and the exit, while the run
+      // goes on making the lock and the staging folder.
+      const test::CommandResult run =
+          runInterruptedAt(point, signal, "extract " + quoted(tmp_ / "data") + " -o " + quoted(out),
+                           "HBA_TEST_INTERRUPT_PAUSE_MS=400 ");
+      EXPECT_EQ(run.exit_code, 128 + signal.number) << run.output;
+      EXPECT_FALSE(fs::exists(out)) << run.output;
+      EXPECT_EQ(hiddenLeftovers(out), std::vector<std::string>()) << run.output;
+      EXPECT_TRUE(says(run.output, "interrupted")) << run.output;
     }
   }
 }
