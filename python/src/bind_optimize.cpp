@@ -38,6 +38,13 @@ std::string fileName(const py::object& name, const char* what) {
   return py::str(py::module_::import("os").attr("fspath")(name)).cast<std::string>();
 }
 
+// report.json's library part: the run's report and the settings it ran with.
+nlohmann::json libraryReport(const pyramid::HbaReport& report, const pyramid::HbaSettings& settings) {
+  nlohmann::json json = pyramid::reportToJson(report);
+  json["settings"] = pyramid::settingsToJson(settings);
+  return json;
+}
+
 // --loops and --priors as the tool reads them; priors go to frames by their
 // stamps, which only a dataset has.
 pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<Pose>& initial,
@@ -90,8 +97,7 @@ OptimizeResult optimize(const py::object& scans, const py::object& poses, const 
       run.result = pyramid::runHierarchicalBa(*source, initial, settings, closures);
     }
   }
-  nlohmann::json report = pyramid::reportToJson(run.result.report);
-  report["settings"] = pyramid::settingsToJson(settings);
+  nlohmann::json report = libraryReport(run.result.report, settings);
   if (dataset && dataset->pointTimes()) report["deskew"] = pipeline::deskewReport(*dataset, run);
   return {arrayFromPoses(run.result.poses), py::dict(toPython(report))};
 }
@@ -119,23 +125,25 @@ OptimizeResult optimizeInMap(const io::Dataset& dataset, const py::object& map, 
   const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
   const std::vector<Pose> initial =
       poses.is_none() ? dataset.trajectory().poses : posesFromArray(poses, "poses");
-  const pipeline::PriorMap prior_map = priorMapFrom(map, map_poses);
-  const io::DatasetScanSource scans(dataset);
+  // Refused before the map is merged from its scans.
   if (py::isinstance<io::Dataset>(map) && sameFolder(map.cast<const io::Dataset&>().root(), dataset.root())) {
     throw Error("map: " + dataset.root().string() +
                 " is the session being optimized: a session placed in a map of itself finds only itself");
   }
+  const io::DatasetScanSource scans(dataset);
+  pipeline::ClosureFiles files;
+  files.loops = fileName(loops, "loops");
   const pyramid::ClosureInputs closures =
-      initial.size() == scans.size() ? pipeline::readClosureFiles({fileName(loops, "loops"), "", 0.5},
-                                                                  {&dataset.trajectory()}, {0}, scans.size())
-                                     : pyramid::ClosureInputs{};
+      initial.size() == scans.size()
+          ? pipeline::readClosureFiles(files, {&dataset.trajectory()}, {0}, scans.size())
+          : pyramid::ClosureInputs{};
+  const pipeline::PriorMap prior_map = priorMapFrom(map, map_poses);
   pipeline::MapRun run;
   {
     const py::gil_scoped_release release;
     run = pipeline::runInMap(prior_map, scans, initial, settings, closures, dataset.root().string());
   }
-  nlohmann::json report = pyramid::reportToJson(run.result.report);
-  report["settings"] = pyramid::settingsToJson(settings);
+  nlohmann::json report = libraryReport(run.result.report, settings);
   report["map"] = pipeline::mapReport(prior_map, run);
   return {arrayFromPoses(pipeline::inMapFrame(prior_map, run.result.poses)), py::dict(toPython(report))};
 }
@@ -189,8 +197,7 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
     const std::vector<Pose> initial = pipeline::sessionsInOneFrame(session_scans.inputs(), placed, closures);
     result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
   }
-  nlohmann::json report = pyramid::reportToJson(result.report);
-  report["settings"] = pyramid::settingsToJson(settings);
+  nlohmann::json report = libraryReport(result.report, settings);
   report["sessions"] = nlohmann::json::array();
   for (std::size_t k = 0; k < sessions.size(); ++k) {
     report["sessions"].push_back(
