@@ -95,9 +95,15 @@ TEST_F(MemoryCheck, TheEstimateIsReportedAndBoundsTheMeasuredPeak) {
   const nlohmann::json& estimate = report.at("memory_estimate");
   EXPECT_EQ(estimate.at("peak_stage"), "global BA");
   const double estimated = estimate.at("peak_mib").get<double>();
+  EXPECT_GT(estimated, 0.0);
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+  // A sanitizer's shadow memory and allocator make the measured peak several
+  // times what the run itself holds; the estimate does not model them.
+#else
   // An upper bound, and not a loose one.
   EXPECT_GE(estimated, measured);
   EXPECT_LE(estimated, 1.5 * measured);
+#endif
   RecordProperty("estimated_mib", std::to_string(estimated));
   RecordProperty("measured_mib", std::to_string(measured));
 }
