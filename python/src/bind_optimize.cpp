@@ -25,8 +25,9 @@ namespace hba::python {
 namespace {
 
 struct OptimizeResult {
-  py::array_t<double> poses;  // (K, 4, 4)
-  py::dict report;            // report.json's library part, settings included
+  py::array_t<double> poses;            // (K, 4, 4)
+  py::dict report;                      // report.json's library part, settings included
+  py::array_t<double> hierarchy_poses;  // (K, 4, 4): the paper's method alone, before the refinement
 };
 
 // A file name from Python (str or os.PathLike), "" for None.
@@ -99,7 +100,8 @@ OptimizeResult optimize(const py::object& scans, const py::object& poses, const 
   }
   nlohmann::json report = libraryReport(run.result.report, settings);
   if (dataset && dataset->pointTimes()) report["deskew"] = pipeline::deskewReport(*dataset, run);
-  return {arrayFromPoses(run.result.poses), py::dict(toPython(report))};
+  return {arrayFromPoses(run.result.poses), py::dict(toPython(report)),
+          arrayFromPoses(run.result.hierarchy_poses)};
 }
 
 bool sameFolder(const std::filesystem::path& a, const std::filesystem::path& b) {
@@ -145,7 +147,8 @@ OptimizeResult optimizeInMap(const io::Dataset& dataset, const py::object& map, 
   }
   nlohmann::json report = libraryReport(run.result.report, settings);
   report["map"] = pipeline::mapReport(prior_map, run);
-  return {arrayFromPoses(pipeline::inMapFrame(prior_map, run.result.poses)), py::dict(toPython(report))};
+  return {arrayFromPoses(pipeline::inMapFrame(prior_map, run.result.poses)), py::dict(toPython(report)),
+          arrayFromPoses(pipeline::inMapFrame(prior_map, run.result.hierarchy_poses))};
 }
 
 // align="register" | "identity" | the later sessions' world_from_session.
@@ -204,7 +207,7 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
         {{"first_frame", scans.starts()[k]}, {"frames", scans.starts()[k + 1] - scans.starts()[k]}});
   }
   report["alignment"] = {{"method", pipeline::placementName(how.method)}, {"registered", placed.registered}};
-  return {arrayFromPoses(result.poses), py::dict(toPython(report))};
+  return {arrayFromPoses(result.poses), py::dict(toPython(report)), arrayFromPoses(result.hierarchy_poses)};
 }
 
 const char* const kOptimizeInMapDoc = R"(Places a new session in a map that stays put, optimizes it
@@ -265,6 +268,9 @@ void bindOptimize(py::module_& m) {
       .def_readonly("poses", &OptimizeResult::poses, "optimized sensor-to-world poses, (K, 4, 4)")
       .def_readonly("report", &OptimizeResult::report,
                     "the run report (report.json's library part, with 'settings')")
+      .def_readonly("hierarchy_poses", &OptimizeResult::hierarchy_poses,
+                    "the poses the paper's method alone reached (the top-down pose graph), before the "
+                    "refinement and the self-check, (K, 4, 4): for diagnosis")
       .def("__repr__", [](const OptimizeResult& r) {
         return "hba.Result(" + std::to_string(r.poses.shape(0)) +
                " poses, report keys: " + std::string(py::str(py::list(r.report.attr("keys")()))) + ")";

@@ -53,6 +53,18 @@ class OptimizeMatchesCli(CliRunCase):
         self.assertEqual(result.report["layers"], self.cli_report["layers"])
         self.assertEqual(result.report["threads"], 1)
 
+    def test_the_hierarchys_own_poses_are_given(self):
+        result = hba.optimize(self.scans, self.initial, threads=1, refine=False)
+        self.assertEqual(result.hierarchy_poses.shape, (40, 4, 4))
+        # Without the refinement the run's poses are the hierarchy's, kept
+        # by the self-check (the simulation drifts: the hierarchy moved it).
+        self.assertFalse(result.report["consistency"]["hierarchy_rejected"])
+        self.assertTrue(np.array_equal(result.hierarchy_poses, result.poses))
+        self.assertGreater(np.abs(result.hierarchy_poses - self.initial).max(), 1e-3)
+        refined = hba.optimize(self.scans, self.initial, threads=1)
+        self.assertTrue(np.array_equal(refined.hierarchy_poses, result.hierarchy_poses))
+        self.assertGreater(np.abs(refined.poses - refined.hierarchy_poses).max(), 1e-6)
+
     def test_dataset_gives_the_cli_poses(self):
         dataset = hba.open_dataset(self.data)
         result = hba.optimize(dataset, dataset.poses, threads=1)

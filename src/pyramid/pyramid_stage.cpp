@@ -63,7 +63,18 @@ void recordWindows(const Layer& layer, const LayerOutcome& outcome, HbaReport& r
 // has its own, looser plane test; layer 1 may start finer, but never below
 // the final voxel (coarsened for sparse scans: final_voxel.hpp).
 ba::BaSettings windowSettings(const HbaSettings& settings, int level, bool top) {
-  if (top) return settings.globalBa();
+  if (top) {
+    ba::BaSettings global = settings.globalBa();
+    // A top of scans (--layers 1) is the whole problem, not a view of it: a
+    // real correction spread over a long sequence gains only a few times
+    // fitting noise per degree of freedom there (nclt's odometry: 3.65), so
+    // it never settles. A top of keyframes settles only when every window
+    // below kept its start (Layer::as_input), and then gains 0.7-1.6 times
+    // fitting noise at a converged map against 20-460 from a drifting one
+    // (docs/pyramid.md, "Settle check").
+    if (level == 1) global.significant_gain = 0.0;
+    return global;
+  }
   ba::BaSettings window = settings.localBa();
   if (level == 1 && settings.scan_window_voxel > 0.0)
     window.planes.voxel_size = std::max(settings.scan_window_voxel, window.final_voxel_size);

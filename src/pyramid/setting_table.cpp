@@ -161,11 +161,8 @@ ba::BaSettings topLayerDefaults() {
   ba::BaSettings top;
   // A looser plane test: it finds the large divergences of a whole sequence.
   top.planes.eigen_ratio = 0.1;
-  // Only windows settle: the top layer's BA sees every frame, so it is the
-  // whole problem rather than a partial view, and a real correction spread
-  // over a long sequence can gain only a few times fitting noise per
-  // degree of freedom (nclt's odometry, one global BA: 3.65).
-  top.significant_gain = 0.0;
+  // The top settles as the windows do (above layer 1 only: one global BA
+  // of the scans, --layers 1, never settles; see windowSettings).
   return top;
 }
 

@@ -88,7 +88,7 @@ TEST(SettingTable, DefaultsAreInRangeAndAreWhatASettingsObjectHolds) {
 // One home per default: a setting whose field lives in a module's struct
 // has that struct's default, so that a module used on its own (a test, the
 // Python bindings, another program) runs as the tool does. The top layer's
-// BA differs from the windows' in its two documented settings only.
+// BA differs from the windows' in its one documented setting only.
 TEST(SettingTable, ModuleStructsHoldTheTablesDefaults) {
   HbaSettings modules;  // every module struct as it comes
   modules.local = ba::BaSettings{};
@@ -97,7 +97,7 @@ TEST(SettingTable, ModuleStructsHoldTheTablesDefaults) {
   modules.information = graph::InformationSettings{};
   modules.graph = graph::PoseGraphSettings{};
   modules.revisit = closure::RevisitSettings{};
-  const std::set<std::string> top_layer_own = {"global.eigen_ratio", "global.significant_gain"};
+  const std::set<std::string> top_layer_own = {"global.eigen_ratio"};
   for (const Setting& s : settingTable()) {
     if (s.shorthand()) continue;
     if (top_layer_own.count(s.key) > 0) {
@@ -110,16 +110,6 @@ TEST(SettingTable, ModuleStructsHoldTheTablesDefaults) {
   // Copies the tool makes from the table (HbaSettings::localBa()) start as it.
   EXPECT_EQ(ba::MotionPriorSettings{}.point_sigma, graph::InformationSettings{}.point_sigma);
   EXPECT_EQ(ba::RefinementSettings{}.motion_prior.enabled, ba::MotionPriorSettings{}.enabled);
-}
-
-// Windows settle, the top layer's BA does not: it sees every frame, and a
-// real correction of a long sequence gains only a few times fitting noise
-// per degree of freedom there (nclt, one global BA from the odometry: 3.65;
-// settling it returned the odometry).
-TEST(SettingTable, OnlyTheWindowsSettle) {
-  const HbaSettings defaults;
-  EXPECT_GT(defaults.localBa().significant_gain, 0.0);
-  EXPECT_EQ(defaults.globalBa().significant_gain, 0.0);
 }
 
 // Each entry writes its own field and no other: a new value for one setting
