@@ -90,7 +90,7 @@ nlohmann::json checkMemory(const io::ScanSource& scans, const pyramid::HbaSettin
   const pyramid::ScanDensity density = pyramid::sampleScanDensity(scans, given);
   // The windows the run will use (an automatic window from the same density).
   const pyramid::HbaSettings settings =
-      pyramid::withWindowSize(given, pyramid::chooseWindowSize(given, density.points));
+      pyramid::withWindowSize(given, pyramid::chooseWindowSize(given, density.sampled_points));
   const MemoryEstimate estimate = pyramid::estimateMemory(scans.size(), density, settings);
   const std::optional<AvailableMemory> available = availableMemory();
   const pyramid::StageMemory& peak = estimate.largest();

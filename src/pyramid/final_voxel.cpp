@@ -4,6 +4,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "hba/core/error.hpp"
 #include "hba/pyramid/memory_estimate.hpp"
 #include "hba/voxel/downsample.hpp"
 #include "hba/voxel/voxel_key.hpp"
@@ -33,13 +34,19 @@ double scanPointsPerVoxel(const PointCloud& scan, double size) {
   return points > 0.0 ? squares / points : 0.0;
 }
 
+double scanPointsWanted(const HbaSettings& settings) {
+  if (settings.window < 1)
+    throw Error("the final voxel needs the window size worked out (window 0 is automatic)");
+  return settings.local.planes.min_points / 2.0 * kReferenceWindow / settings.window;
+}
+
 FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
                             const std::function<double(double)>& points_per_voxel) {
   FinalVoxel out;
   out.setting = out.chosen = settings.local.final_voxel_size;
   const double root = settings.local.planes.voxel_size;
   if (!settings.adapt_final_voxel || !(out.setting > 0.0) || out.setting >= root) return out;
-  const double wanted = settings.local.planes.min_points / 2.0;
+  const double wanted = scanPointsWanted(settings);
   out.scan_points_at_setting = out.scan_points_at_chosen = points_per_voxel(out.setting);
   while (out.scan_points_at_chosen < wanted && out.chosen * 2.0 <= root) {
     out.chosen *= 2.0;

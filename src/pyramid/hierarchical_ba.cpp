@@ -79,14 +79,16 @@ void warn(HbaReport& report, std::string message) {
 HbaSettings resolve(const HbaSettings& settings, const io::ScanSource& scans, WindowSize& window_size,
                     FinalVoxel& final_voxel) {
   window_size = chooseWindowSize(settings, scans);
-  final_voxel = chooseFinalVoxel(settings, scans);
-  HbaSettings resolved = withFinalVoxel(withWindowSize(settings, window_size), final_voxel);
+  const HbaSettings sized = withWindowSize(settings, window_size);
+  final_voxel = chooseFinalVoxel(sized, scans);
+  HbaSettings resolved = withFinalVoxel(sized, final_voxel);
   if (final_voxel.coarsened) {
     spdlog::info(
-        "sparse scans ({:.1f} points of a scan in a {:g} m voxel, fewer than {:g}): the windows' planes end "
+        "sparse scans ({:.1f} points of a scan in a {:g} m voxel, fewer than {:.1f}): the windows' planes "
+        "end "
         "at {:g} m voxels ({:.1f} points), not {:g} m",
-        final_voxel.scan_points_at_setting, final_voxel.setting, settings.local.planes.min_points / 2.0,
-        final_voxel.chosen, final_voxel.scan_points_at_chosen, final_voxel.setting);
+        final_voxel.scan_points_at_setting, final_voxel.setting, scanPointsWanted(sized), final_voxel.chosen,
+        final_voxel.scan_points_at_chosen, final_voxel.setting);
   }
   resolved.threads = resolvedThreadCount(settings);
   if (window_size.automatic) {

@@ -94,6 +94,7 @@ ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& se
                                           : 1.0 / static_cast<double>(count);
   density.sampled = count;
   density.points = points * scale;
+  density.sampled_points = points / static_cast<double>(count);
   density.refine_points = refine_points * scale;
   return density;
 }

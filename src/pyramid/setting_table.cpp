@@ -220,7 +220,7 @@ void addPyramidShape(std::vector<Setting>& t) {
   // Automatic windows (0) hold enough points to place their frames better
   // than the odometry (window_size.hpp): ten dense scans, more sparse ones.
   Setting window = integer(
-      "window", "--window", 10, zeroOr("automatic", 2, kInf), [](HbaSettings& h) -> int& { return h.window; },
+      "window", "--window", 0, zeroOr("automatic", 2, kInf), [](HbaSettings& h) -> int& { return h.window; },
       "frames per local window, w; automatic: the scans of 150 000 points, at least 10");
   t.push_back(window);
   Setting stride = integer(
@@ -277,7 +277,7 @@ void addDensity(std::vector<Setting>& t) {
       "adapt_final_voxel", "--no-adapt-final-voxel", true,
       [](HbaSettings& h) -> bool& { return h.adapt_final_voxel; },
       "end the windows' association at a coarser voxel where a scan puts fewer than half a plane's "
-      "points in one"));
+      "points in one (ten-scan windows; 10 / w of that in windows of w)"));
 }
 
 // The top-down pose graph and the weights of its factors.

@@ -31,7 +31,10 @@ WindowSize chooseWindowSize(const HbaSettings& settings, double points_per_scan)
 
 WindowSize chooseWindowSize(const HbaSettings& settings, const io::ScanSource& scans) {
   if (settings.window > 0) return chooseWindowSize(settings, 0.0);
-  return chooseWindowSize(settings, sampleScanDensity(scans, settings).points);
+  // The scans read, as they are: hku1 in an lz4 bag weighted by its message
+  // sizes came to 3 900 points a scan against 4 036 from its folder, and so
+  // to other windows (39 scans against 38) and other poses.
+  return chooseWindowSize(settings, sampleScanDensity(scans, settings).sampled_points);
 }
 
 HbaSettings withWindowSize(HbaSettings settings, const WindowSize& size) {

@@ -80,7 +80,7 @@ const std::vector<BadValue> kRows = {
     {"optimize DATA -o OUT/o", "--voxel 500", "(too large)"},
     {"optimize DATA -o OUT/o", "--voxel inf", "(not finite)"},
     {"optimize DATA -o OUT/o", "--stride -1", "0 (half the window) or >= 1"},
-    {"optimize DATA -o OUT/o", "--stride 10", "stride must be below window"},
+    {"optimize DATA -o OUT/o", "--stride 10 --window 10", "stride must be below window"},
     {"optimize DATA -o OUT/o", "--iterations 100000", "must be [1, 100], got 100000 (too large)"},
     {"optimize DATA -o OUT/o", "--iterations 0", "[1, 100]"},
     {"optimize DATA -o OUT/o", "--settle-translation 0", "[1e-06, 1]"},
@@ -171,7 +171,7 @@ TEST_F(CliBadValues, ConfigFileValuesAreUsageErrors) {
   // message names both flags (a file's stride may fit a flag's --window).
   test::writeText(*dir_ / "stride.yaml", "stride: 12\n");
   const test::CommandResult run = test::runHba("optimize --config " + test::quoted(*dir_ / "stride.yaml") +
-                                               " " + arguments("DATA -o OUT/o"));
+                                               " " + arguments("DATA -o OUT/o") + " --window 10");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("setting stride must be below window (--stride 12 >= --window 10)"),
             std::string::npos)

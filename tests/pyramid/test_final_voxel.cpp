@@ -1,10 +1,12 @@
 // The windows' finest voxel: kept for dense scans, coarsened for sparse
-// ones until a scan holds half a plane's points in a voxel, never above
-// the root voxel, and left alone when switched off.
+// ones until a scan holds half a plane's points in a voxel (at ten-scan
+// windows; less in larger ones), never above the root voxel, and left
+// alone when switched off.
 #include <gtest/gtest.h>
 
 #include <map>
 
+#include "hba/core/error.hpp"
 #include "hba/pyramid/final_voxel.hpp"
 
 namespace hba::pyramid {
@@ -26,8 +28,9 @@ std::function<double(double)> measured(std::map<double, double> by_size) {
 }
 
 TEST(FinalVoxel, DenseScansKeepTheSettingSparseOnesGoCoarser) {
-  const HbaSettings settings;  // final 1 m, root 4 m, 20-point planes
+  HbaSettings settings;  // final 1 m, root 4 m, 20-point planes
   ASSERT_DOUBLE_EQ(settings.local.final_voxel_size, 1.0);
+  settings.window = 10;
   const FinalVoxel dense = chooseFinalVoxel(settings, measured({{1.0, 18.5}}));  // simulated Livox
   EXPECT_DOUBLE_EQ(dense.chosen, 1.0);
   EXPECT_FALSE(dense.coarsened);
@@ -41,6 +44,26 @@ TEST(FinalVoxel, DenseScansKeepTheSettingSparseOnesGoCoarser) {
   // Never above the root voxel, however sparse.
   const FinalVoxel empty = chooseFinalVoxel(settings, measured({{1.0, 0.0}, {2.0, 0.0}, {4.0, 0.0}}));
   EXPECT_DOUBLE_EQ(empty.chosen, 4.0);
+}
+
+// The wanted points shrink with the window: a window of w scans pools w of
+// them into a voxel (10 / w of a ten-scan window's wish).
+TEST(FinalVoxel, LargerWindowsPoolMoreScansAndKeepFinerVoxels) {
+  HbaSettings settings;
+  EXPECT_THROW(scanPointsWanted(settings), Error);  // automatic (0): not worked out yet
+  settings.window = 10;
+  EXPECT_DOUBLE_EQ(scanPointsWanted(settings), 10.0);
+  settings.window = 52;  // nclt's automatic windows
+  EXPECT_NEAR(scanPointsWanted(settings), 100.0 / 52.0, 1e-12);
+  const FinalVoxel nclt = chooseFinalVoxel(settings, measured({{1.0, 8.1}}));
+  EXPECT_DOUBLE_EQ(nclt.chosen, 1.0);
+  EXPECT_FALSE(nclt.coarsened);
+  settings.window = 34;  // the sparse twin's
+  const FinalVoxel twin = chooseFinalVoxel(settings, measured({{1.0, 2.2}, {2.0, 5.7}}));
+  EXPECT_DOUBLE_EQ(twin.chosen, 2.0);
+  settings.window = 5;  // half the reference: a simulated Livox scan no longer suffices at 1 m
+  const FinalVoxel livox = chooseFinalVoxel(settings, measured({{1.0, 18.5}, {2.0, 60.0}}));
+  EXPECT_DOUBLE_EQ(livox.chosen, 2.0);
 }
 
 TEST(FinalVoxel, OffOrWithoutCoarseToFineNothingChanges) {

@@ -51,7 +51,8 @@ TEST(MemoryEstimate, TheGlobalBaGrowsWithTheSquareOfItsFrames) {
 }
 
 TEST(MemoryEstimate, TheLayersAreTheRunsOwn) {
-  HbaSettings settings;  // the default rule: 314 frames -> 62 -> 12 (hku1)
+  HbaSettings settings;
+  settings.window = 10;  // the paper's windows and the default rule: 314 frames -> 62 -> 12 (hku1)
   const MemoryEstimate estimate = estimateMemory(314, ScanDensity{}, settings);
   // The default stride (half the window) resolved, as the run resolves it.
   EXPECT_EQ(estimate.layers, layerCount(314, withWindowSize(settings, chooseWindowSize(settings, 0.0))));

@@ -30,7 +30,8 @@ SettingValue otherValue(const Setting& s) {
     case SettingType::Integer:
     case SettingType::Count: {
       const long long v = std::get<long long>(d);
-      const long long up = v + 1;
+      // Above a meaningful 0 (automatic) lies the range's own minimum.
+      const long long up = v == 0 && !s.range.zero.empty() ? static_cast<long long>(s.range.min) : v + 1;
       return up <= s.range.max ? up : v - 1;
     }
     case SettingType::Real: {
@@ -174,6 +175,7 @@ TEST(SettingTable, EveryBoundIsEnforced) {
   }
   EXPECT_GT(bounds, 30);
   HbaSettings s;
+  s.window = 10;
   s.stride = s.window;
   try {
     checkSettings(s);

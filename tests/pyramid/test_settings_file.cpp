@@ -10,9 +10,10 @@ namespace {
 
 TEST(SettingsFile, DefaultsAreThePapers) {
   const HbaSettings s;
-  EXPECT_EQ(s.window, 10);
-  EXPECT_EQ(s.stride, 0);  // half the window: the paper's 5
-  EXPECT_EQ(chooseWindowSize(s, 0.0).stride, 5);
+  EXPECT_EQ(s.window, 0);                              // automatic: the paper's 10 for dense scans
+  EXPECT_EQ(s.stride, 0);                              // half the window: the paper's 5
+  EXPECT_EQ(chooseWindowSize(s, 36000.0).window, 10);  // a simulated HDL-32 scan
+  EXPECT_EQ(chooseWindowSize(s, 36000.0).stride, 5);
   EXPECT_DOUBLE_EQ(s.local.planes.eigen_ratio, 0.05);
   EXPECT_DOUBLE_EQ(s.global.planes.eigen_ratio, 0.1);
   EXPECT_DOUBLE_EQ(s.local.planes.voxel_size, 4.0);
@@ -37,7 +38,7 @@ TEST(SettingsFile, AppliesOnlyTheKeysGiven) {
 TEST(SettingsFile, EmptyFileChangesNothing) {
   HbaSettings s;
   applySettingsYaml("", "empty.yaml", s);
-  EXPECT_EQ(s.window, 10);
+  EXPECT_EQ(s.window, 0);
 }
 
 void expectErrorMentions(const std::string& yaml, const std::string& needle) {
@@ -82,6 +83,7 @@ TEST(SettingsFile, BadInputIsAClearError) {
 
 TEST(SettingsFile, RangeChecks) {
   HbaSettings s;
+  s.window = 10;
   s.stride = s.window;
   EXPECT_THROW(checkSettings(s), Error);
   s = HbaSettings();
@@ -97,7 +99,7 @@ TEST(SettingsFile, RangeChecks) {
 
 TEST(SettingsFile, JsonHasEverySetting) {
   const auto json = settingsToJson(HbaSettings());
-  EXPECT_EQ(json.at("window"), 10);
+  EXPECT_EQ(json.at("window"), 0);
   EXPECT_EQ(json.at("voxel_scans"), 2.0);
   EXPECT_EQ(json.at("local").at("voxel_size"), 4.0);
   EXPECT_EQ(json.at("global").at("eigen_ratio"), 0.1);

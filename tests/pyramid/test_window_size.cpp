@@ -72,7 +72,8 @@ TEST(WindowSize, ReadFromTheScansOnlyWhenAutomatic) {
   const WindowSize size = chooseWindowSize(automatic(), source);
   EXPECT_NEAR(size.points_per_scan, 5000.0, 1.0);
   EXPECT_EQ(size.window, 30);
-  HbaSettings given;  // 10 and 5: nothing read
+  HbaSettings given;
+  given.window = 10;  // given: nothing read
   EXPECT_EQ(chooseWindowSize(given, source).window, 10);
   EXPECT_EQ(chooseWindowSize(given, source).points_per_scan, 0.0);
 }

@@ -12,7 +12,11 @@
 // (docs/pyramid.md, "Where error enters"). So the coarse-to-fine
 // association stops one halving earlier while one scan holds fewer than
 // half the plane test's minimum points in a voxel (`min_points / 2`, on
-// average over its points).
+// average over its points). Larger windows pool more scans into each
+// voxel: the wanted points shrink in proportion (a window of w scans wants
+// 10 / w of it). On nclt, 53-scan windows at 1 m took the hierarchy alone
+// to MME -3.297 where 2 m voxels left it at -3.281; ten-scan windows at 1 m
+// made its map blurrier (docs/pyramid.md, "Automatic windows").
 #include <functional>
 
 #include "hba/core/point_cloud.hpp"
@@ -31,13 +35,21 @@ struct FinalVoxel {
   double scan_points_at_chosen = 0.0;
 };
 
+// The window whose scans' density the rule was first set for.
+inline constexpr double kReferenceWindow = 10.0;
+
+// The points one scan should hold in a voxel for windows of
+// settings.window scans (min_points / 2 at the reference window).
+double scanPointsWanted(const HbaSettings& settings);
+
 // The points of `scan` that share a cubic voxel of edge `size` with each
 // of its points, averaged over the points: sum n^2 / sum n over its cells.
 double scanPointsPerVoxel(const PointCloud& scan, double size);
 
 // The voxel for scans whose points per voxel of a given size are
 // `points_per_voxel(size)` (scanPointsPerVoxel's measure): local.final_voxel_size
-// doubled while below `min_points / 2` and below the root voxel. Unchanged
+// doubled while below scanPointsWanted and below the root voxel
+// (settings.window must be resolved: not 0). Unchanged
 // when settings.adapt_final_voxel is off or the coarse-to-fine is (0).
 FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
                             const std::function<double(double)>& points_per_voxel);

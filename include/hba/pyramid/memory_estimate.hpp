@@ -23,6 +23,9 @@ struct ScanDensity {
   std::size_t sampled = 0;     // scans read
   double points = 0.0;         // per scan, at settings.scan_voxel (the windows' and the global BA's)
   double refine_points = 0.0;  // per scan, at the refinement's density
+  // Per scan read, unweighted: the same for the same scans in any container
+  // (a bag's compressed message sizes weigh them otherwise).
+  double sampled_points = 0.0;
 };
 
 // The indices of up to `samples` scans spread evenly over `n`, first and
