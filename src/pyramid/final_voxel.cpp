@@ -37,7 +37,7 @@ double scanPointsPerVoxel(const PointCloud& scan, double size) {
 double scanPointsWanted(const HbaSettings& settings) {
   if (settings.window < 1)
     throw Error("the final voxel needs the window size worked out (window 0 is automatic)");
-  return settings.local.planes.min_points / 2.0 * kReferenceWindow / settings.window;
+  return settings.local.planes.min_points / 2.0 * kPaperWindow / settings.window;
 }
 
 FinalVoxel chooseFinalVoxel(const HbaSettings& settings,

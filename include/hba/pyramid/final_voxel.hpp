@@ -22,6 +22,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pyramid/settings.hpp"
+#include "hba/pyramid/window_size.hpp"
 
 namespace hba::pyramid {
 
@@ -35,11 +36,9 @@ struct FinalVoxel {
   double scan_points_at_chosen = 0.0;
 };
 
-// The window whose scans' density the rule was first set for.
-inline constexpr double kReferenceWindow = 10.0;
-
 // The points one scan should hold in a voxel for windows of
-// settings.window scans (min_points / 2 at the reference window).
+// settings.window scans (min_points / 2 at the paper's ten, kPaperWindow,
+// for which the rule was first set).
 double scanPointsWanted(const HbaSettings& settings);
 
 // The points of `scan` that share a cubic voxel of edge `size` with each

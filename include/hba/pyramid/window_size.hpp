@@ -19,7 +19,9 @@
 namespace hba::pyramid {
 
 inline constexpr double kWindowPoints = 150000.0;
-inline constexpr int kMinAutomaticWindow = 10;
+// The paper's window (Table I): the least an automatic window holds.
+inline constexpr int kPaperWindow = 10;
+inline constexpr int kMinAutomaticWindow = kPaperWindow;
 inline constexpr int kMaxAutomaticWindow = 60;
 
 struct WindowSize {
