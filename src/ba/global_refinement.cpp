@@ -65,14 +65,17 @@ void solveRounds(const std::vector<const PointCloud*>& scans, const std::vector<
     const auto associated = Clock::now();
     const PlaneProblem& problem = association.problem;
     const std::vector<Pose> before = result.poses;
-    const LmSummary summary = solveSparseLevenbergMarquardt(problem, result.poses, settings.lm, prior,
-                                                            positions, association.cost());
+    const PlaneTotals totals = planeTotals(problem);
+    SparseLmSettings lm = settings.lm;
+    lm.min_step_gain = settings.step_gain *
+                       noiseFittingGain(association.cost(), totals.points, totals.planes, initial.size());
+    const LmSummary summary =
+        solveSparseLevenbergMarquardt(problem, result.poses, lm, prior, positions, association.cost());
     result.seconds_associate += secondsBetween(start, associated);
     result.seconds_solve += secondsBetween(associated, Clock::now());
     result.iterations += summary.iterations;
     result.cg_products += summary.cg_products;
     result.rounds = round + 1;
-    const PlaneTotals totals = planeTotals(problem);
     const double plane_cost_after = problem.cost(result.poses);
     // The LM's objective (planes, motion prior, position priors) is what
     // a round must lower: with priors a round may pay in plane cost to

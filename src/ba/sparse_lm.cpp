@@ -179,7 +179,7 @@ LmSummary solveSparseLevenbergMarquardt(const PlaneProblem& problem, std::vector
         system.reset();
         ++summary.accepted_steps;
         accepted = true;
-        if (gain <= settings.relative_cost_tolerance * previous) break;
+        if (gain <= settings.relative_cost_tolerance * previous || gain < settings.min_step_gain) break;
       }
     }
     if (!accepted) {

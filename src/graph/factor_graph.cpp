@@ -18,6 +18,12 @@ std::size_t FactorGraph::count(std::string_view kind) const {
   return n;
 }
 
+std::vector<CostPiece> FactorModel::newCosts(bool /*whole*/) const {
+  CostPiece piece{newCost(), {}};
+  for (std::size_t k = 0; k < nodes().size(); ++k) piece.node_positions.push_back(k);
+  return {piece};
+}
+
 void checkNode(std::size_t node, std::size_t num_poses, const std::string& label) {
   if (node >= num_poses) {
     throw Error(label + " links node " + std::to_string(node) + " but there are " +

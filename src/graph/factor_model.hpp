@@ -18,6 +18,13 @@ class CostFunction;
 
 namespace hba::graph {
 
+// One Ceres cost of a factor and the nodes it depends on, as positions in
+// the factor's nodes().
+struct CostPiece {
+  ceres::CostFunction* cost = nullptr;  // the caller takes ownership
+  std::vector<std::size_t> node_positions;
+};
+
 // Which PoseGraphSettings robust loss a factor gets.
 enum class LossGroup { Window, Loop, Prior, None };
 
@@ -41,6 +48,12 @@ class FactorModel {
   virtual double cost(const std::vector<Pose>& poses) const = 0;
   // The whitened residual as a new Ceres cost; the caller takes ownership.
   virtual ceres::CostFunction* newCost() const = 0;
+  // The same residual as costs whose squared norms sum to it, each over
+  // the nodes its rows depend on: Ceres forms J^T J per cost, so a factor
+  // whose rows each touch few nodes is cheaper in pieces. `whole`: one cost
+  // (a robust loss must see the whole residual). By default newCost() over
+  // every node.
+  virtual std::vector<CostPiece> newCosts(bool whole) const;
 };
 
 // Checks shared by the kinds; each throws hba::Error starting with `label`.

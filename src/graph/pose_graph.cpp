@@ -119,12 +119,13 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
   gauge_inputs.reserve(factors.size());
   for (const auto& model : factors.models()) {
     GaugeInput gauge{model->nodes(), model->gaugePin()};
-    std::vector<double*> parameters;
-    for (const std::size_t node : gauge.nodes) {
-      parameters.push_back(blocks[node].data());
-      touched[node] = true;
+    for (const std::size_t node : gauge.nodes) touched[node] = true;
+    ceres::LossFunction* loss = lossOf(model->lossGroup());
+    for (const CostPiece& piece : model->newCosts(loss != nullptr)) {
+      std::vector<double*> parameters;
+      for (const std::size_t k : piece.node_positions) parameters.push_back(blocks[gauge.nodes[k]].data());
+      problem.AddResidualBlock(piece.cost, loss, parameters);
     }
-    problem.AddResidualBlock(model->newCost(), lossOf(model->lossGroup()), parameters);
     gauge_inputs.push_back(std::move(gauge));
   }
   const std::vector<GaugeAnchor> anchors =

@@ -22,58 +22,73 @@ using RowMajorJacobian = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajo
 // S with S^T S = information: L^T of a Cholesky factor where it is positive
 // definite (the clamped information always is), the eigen-decomposition's
 // root otherwise. Cholesky is an order of magnitude cheaper for the
-// hundreds of rows of a large window.
-Eigen::MatrixXd squareRoot(const Eigen::MatrixXd& information, const std::string& what) {
+// hundreds of rows of a large window, and its S is upper triangular.
+struct SquareRoot {
+  Eigen::MatrixXd s;
+  bool upper_triangular = false;
+};
+
+SquareRoot squareRoot(const Eigen::MatrixXd& information, const std::string& what) {
   const Eigen::LLT<Eigen::MatrixXd> cholesky(0.5 * (information + information.transpose()));
-  if (cholesky.info() == Eigen::Success && information.allFinite()) return cholesky.matrixU();
-  return informationRoot<Eigen::Dynamic>(information, what);
+  if (cholesky.info() == Eigen::Success && information.allFinite()) return {cholesky.matrixU(), true};
+  return {informationRoot<Eigen::Dynamic>(information, what), false};
 }
 
-// Residual S * [e_1; ...; e_{K-1}], e_k the relative-pose error of frame k
-// from frame 0; parameter blocks are the K PoseBlocks in node order.
+// Rows of the residual S * [e_1; ...; e_{K-1}], e_k the relative-pose error
+// of frame k from frame 0, that depend on the frames from some frame f on
+// only: `relative` holds the measurements of frames f..K-1 and `rows` those
+// rows of S, their columns those frames'. Parameter blocks: frame 0, then
+// frames f..K-1 in node order. f = 1 and every row: the whole factor.
 class WindowShapeCost final : public ceres::CostFunction {
  public:
-  WindowShapeCost(std::vector<Pose> relative, Eigen::MatrixXd sqrt_information)
-      : relative_(std::move(relative)), sqrt_information_(std::move(sqrt_information)) {
-    set_num_residuals(static_cast<int>(6 * relative_.size()));
+  WindowShapeCost(std::vector<Pose> relative, Eigen::MatrixXd rows)
+      : relative_(std::move(relative)), rows_(std::move(rows)) {
+    set_num_residuals(static_cast<int>(rows_.rows()));
     for (std::size_t k = 0; k <= relative_.size(); ++k) mutable_parameter_block_sizes()->push_back(7);
   }
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const Eigen::Index n = sqrt_information_.rows();
+    const Eigen::Index m = rows_.rows();
+    const Eigen::Index n = rows_.cols();
     const Pose first = poseFromBlock(parameters[0]);
     Eigen::VectorXd error(n);
     Eigen::MatrixXd d_first;  // d error / d first's tangent, n x 6
     const bool want_first = jacobians && jacobians[0];
     if (want_first) d_first.setZero(n, 6);
     for (std::size_t k = 1; k <= relative_.size(); ++k) {
-      const Eigen::Index row = static_cast<Eigen::Index>(6 * (k - 1));
+      const Eigen::Index col = static_cast<Eigen::Index>(6 * (k - 1));
       const Pose frame = poseFromBlock(parameters[k]);
       if (!jacobians) {
-        error.segment<6>(row) = relativePoseError(relative_[k - 1], first, frame);
+        error.segment<6>(col) = relativePoseError(relative_[k - 1], first, frame);
         continue;
       }
       const RelativePoseErrorJacobians e = relativePoseErrorJacobians(relative_[k - 1], first, frame);
-      error.segment<6>(row) = e.error;
-      if (want_first) d_first.middleRows<6>(row) = e.d_from;
+      error.segment<6>(col) = e.error;
+      if (want_first) d_first.middleRows<6>(col) = e.d_from;
       if (jacobians[k]) {
-        // Only frame k's own six error rows depend on it.
-        Eigen::Map<RowMajorJacobian> d_frame(jacobians[k], n, 7);
-        d_frame.noalias() = sqrt_information_.middleCols<6>(row) * e.d_to * tangentToAmbient(frame.q);
+        // Only frame k's own six errors depend on it.
+        Eigen::Map<RowMajorJacobian> d_frame(jacobians[k], m, 7);
+        d_frame.noalias() = rows_.middleCols<6>(col) * e.d_to * tangentToAmbient(frame.q);
       }
     }
-    Eigen::Map<Eigen::VectorXd>(residuals, n).noalias() = sqrt_information_ * error;
+    Eigen::Map<Eigen::VectorXd>(residuals, m).noalias() = rows_ * error;
     if (want_first) {
-      Eigen::Map<RowMajorJacobian> d_gauge(jacobians[0], n, 7);
-      d_gauge.noalias() = sqrt_information_ * d_first * tangentToAmbient(first.q);
+      Eigen::Map<RowMajorJacobian> d_gauge(jacobians[0], m, 7);
+      d_gauge.noalias() = rows_ * d_first * tangentToAmbient(first.q);
     }
     return true;
   }
 
  private:
   std::vector<Pose> relative_;
-  Eigen::MatrixXd sqrt_information_;
+  Eigen::MatrixXd rows_;
 };
+
+// Rows of an upper-triangular S per piece: each piece's rows depend on the
+// frames from its first row's frame on, so Ceres' J^T J of a window of K
+// frames costs about a third of the whole factor's, while each piece
+// computes the errors of the frames it sees again.
+constexpr std::size_t kFramesPerPiece = 4;
 
 class WindowShapeFactorModel final : public FactorModel {
  public:
@@ -115,10 +130,35 @@ class WindowShapeFactorModel final : public FactorModel {
   }
 
   ceres::CostFunction* newCost() const override {
-    return new WindowShapeCost(factor_.relative, squareRoot(factor_.information, "window shape information"));
+    return new WindowShapeCost(factor_.relative,
+                               squareRoot(factor_.information, "window shape information").s);
+  }
+
+  std::vector<CostPiece> newCosts(bool whole) const override {
+    SquareRoot root = squareRoot(factor_.information, "window shape information");
+    const std::size_t frames = factor_.relative.size();  // after the first
+    if (whole || !root.upper_triangular || frames <= kFramesPerPiece)
+      return {{new WindowShapeCost(factor_.relative, std::move(root.s)), allPositions()}};
+    std::vector<CostPiece> pieces;
+    for (std::size_t from = 0; from < frames; from += kFramesPerPiece) {
+      const auto row = static_cast<Eigen::Index>(6 * from);
+      const auto rows = static_cast<Eigen::Index>(6 * std::min(kFramesPerPiece, frames - from));
+      const std::vector<Pose> seen(factor_.relative.begin() + static_cast<long>(from),
+                                   factor_.relative.end());
+      CostPiece piece{new WindowShapeCost(seen, root.s.block(row, row, rows, root.s.cols() - row)), {0}};
+      for (std::size_t k = from + 1; k <= frames; ++k) piece.node_positions.push_back(k);
+      pieces.push_back(std::move(piece));
+    }
+    return pieces;
   }
 
  private:
+  std::vector<std::size_t> allPositions() const {
+    std::vector<std::size_t> positions(factor_.nodes.size());
+    for (std::size_t k = 0; k < positions.size(); ++k) positions[k] = k;
+    return positions;
+  }
+
   WindowShapeFactor factor_;
 };
 

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <random>
+#include <string>
 
 #include <ceres/cost_function.h>
 
@@ -52,6 +53,40 @@ FactorGraph oneFactorOfEachKind(std::mt19937& rng) {
   return graph;
 }
 
+// Every kind, and a window long enough for the solver to take it in pieces
+// (FactorModel::newCosts), its nodes out of order.
+FactorGraph everyKindAndALongWindow(std::mt19937& rng) {
+  FactorGraph graph = oneFactorOfEachKind(rng);
+  WindowShapeFactor window{{9, 4, 5, 6, 7, 8, 13, 10, 11, 12}, {}, randomInformation<54>(rng)};
+  for (int k = 0; k < 9; ++k) window.relative.push_back(randomPose(rng, 5.0, 1.2));
+  graph.add(window);
+  return graph;
+}
+
+std::vector<Pose> randomPoses(std::mt19937& rng, std::size_t count) {
+  std::vector<Pose> poses;
+  for (std::size_t k = 0; k < count; ++k) poses.push_back(randomPose(rng));
+  return poses;
+}
+
+// A Ceres cost of a factor and the pose blocks it reads.
+struct PieceAt {
+  std::unique_ptr<ceres::CostFunction> cost;
+  std::vector<PoseBlock> blocks;
+};
+
+// The factor's costs as the solver adds them: whole, or in pieces.
+std::vector<PieceAt> piecesAt(const FactorModel& model, bool whole, const std::vector<Pose>& poses) {
+  std::vector<PieceAt> out;
+  const std::vector<std::size_t> nodes = model.nodes();
+  for (const CostPiece& piece : model.newCosts(whole)) {
+    PieceAt at{std::unique_ptr<ceres::CostFunction>(piece.cost), {}};
+    for (const std::size_t k : piece.node_positions) at.blocks.push_back(toPoseBlock(poses[nodes.at(k)]));
+    out.push_back(std::move(at));
+  }
+  return out;
+}
+
 struct Evaluation {
   Eigen::VectorXd residual;
   std::vector<Eigen::MatrixXd> ambient_jacobians;  // one per parameter block, rows x 7
@@ -79,6 +114,32 @@ Eigen::VectorXd residualAt(const ceres::CostFunction& cost, const std::vector<Po
   return residual;
 }
 
+// Each block's tangent Jacobian (the ambient one times the manifold's lift,
+// what LM solves with) against central differences through the manifold.
+template <int N, typename Manifold>
+void expectTangentJacobiansMatch(const Manifold& manifold, const ceres::CostFunction& cost,
+                                 const std::vector<PoseBlock>& blocks, const std::string& what) {
+  const double h = 1e-6;
+  const Evaluation at = evaluate(cost, blocks);
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    Eigen::Matrix<double, 7, N, Eigen::RowMajor> lift;
+    manifold.PlusJacobian(blocks[b].data(), lift.data());
+    const Eigen::MatrixXd tangent = at.ambient_jacobians[b] * lift;
+    for (int k = 0; k < N; ++k) {
+      Eigen::Matrix<double, N, 1> d = Eigen::Matrix<double, N, 1>::Zero();
+      d[k] = h;
+      const Eigen::Matrix<double, N, 1> minus_d = -d;
+      std::vector<PoseBlock> plus = blocks;
+      std::vector<PoseBlock> minus = blocks;
+      manifold.Plus(blocks[b].data(), d.data(), plus[b].data());
+      manifold.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
+      const Eigen::VectorXd numeric = (residualAt(cost, plus) - residualAt(cost, minus)) / (2 * h);
+      EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()))
+          << what << " block " << b << " k " << k;
+    }
+  }
+}
+
 TEST(FactorCosts, EveryKindIsCounted) {
   std::mt19937 rng(31);
   const FactorGraph graph = oneFactorOfEachKind(rng);
@@ -92,48 +153,52 @@ TEST(FactorCosts, EveryKindIsCounted) {
 TEST(FactorCosts, SquaredResidualIsTheFactorsCost) {
   std::mt19937 rng(32);
   for (int trial = 0; trial < 10; ++trial) {
-    const FactorGraph graph = oneFactorOfEachKind(rng);
-    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng), randomPose(rng)};
+    const FactorGraph graph = everyKindAndALongWindow(rng);
+    const std::vector<Pose> poses = randomPoses(rng, 14);
     for (const auto& model : graph.models()) {
-      const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
-      std::vector<PoseBlock> blocks;
-      for (const std::size_t node : model->nodes()) blocks.push_back(toPoseBlock(poses[node]));
       const double expected = model->cost(poses);
       EXPECT_GT(expected, 1e-3) << model->name();  // far from the measurement
-      EXPECT_NEAR(residualAt(*cost, blocks).squaredNorm(), expected, 1e-9 * expected) << model->name();
-      EXPECT_NEAR(evaluate(*cost, blocks).residual.squaredNorm(), expected, 1e-9 * expected) << model->name();
+      for (const bool whole : {true, false}) {
+        const std::vector<PieceAt> pieces = piecesAt(*model, whole, poses);
+        if (whole) {
+          EXPECT_EQ(pieces.size(), 1u);
+        }
+        double sum = 0.0, evaluated = 0.0;
+        for (const PieceAt& piece : pieces) {
+          sum += residualAt(*piece.cost, piece.blocks).squaredNorm();
+          evaluated += evaluate(*piece.cost, piece.blocks).residual.squaredNorm();
+        }
+        EXPECT_NEAR(sum, expected, 1e-9 * expected) << model->name() << (whole ? " whole" : " in pieces");
+        EXPECT_NEAR(evaluated, expected, 1e-9 * expected) << model->name();
+      }
     }
   }
+}
+
+TEST(FactorCosts, ALongWindowIsSolvedInPiecesOfItsTriangularRoot) {
+  std::mt19937 rng(35);
+  const FactorGraph graph = everyKindAndALongWindow(rng);
+  const FactorModel& window = *graph.models().back();
+  const std::vector<PieceAt> pieces = piecesAt(window, false, randomPoses(rng, 14));
+  // Nine frames after the first, four a piece: each piece reads the gauge
+  // frame and the frames from its own on.
+  ASSERT_EQ(pieces.size(), 3u);
+  EXPECT_EQ(pieces[0].blocks.size(), 10u);
+  EXPECT_EQ(pieces[1].blocks.size(), 6u);
+  EXPECT_EQ(pieces[2].blocks.size(), 2u);
+  EXPECT_EQ(pieces[2].cost->num_residuals(), 6);
 }
 
 TEST(FactorCosts, TangentJacobiansMatchCentralDifferences) {
   std::mt19937 rng(33);
   const WorldPoseManifold manifold;
-  const double h = 1e-6;
   for (int trial = 0; trial < 10; ++trial) {
-    const FactorGraph graph = oneFactorOfEachKind(rng);
-    const std::vector<Pose> poses = {randomPose(rng), randomPose(rng), randomPose(rng), randomPose(rng)};
+    const FactorGraph graph = everyKindAndALongWindow(rng);
+    const std::vector<Pose> poses = randomPoses(rng, 14);
     for (const auto& model : graph.models()) {
-      const std::unique_ptr<ceres::CostFunction> cost(model->newCost());
-      std::vector<PoseBlock> blocks;
-      for (const std::size_t node : model->nodes()) blocks.push_back(toPoseBlock(poses[node]));
-      const Evaluation at = evaluate(*cost, blocks);
-      for (std::size_t b = 0; b < blocks.size(); ++b) {
-        Eigen::Matrix<double, 7, 6, Eigen::RowMajor> lift;
-        manifold.PlusJacobian(blocks[b].data(), lift.data());
-        const Eigen::MatrixXd tangent = at.ambient_jacobians[b] * lift;  // what LM solves with
-        for (int k = 0; k < 6; ++k) {
-          Vec6 d = Vec6::Zero();
-          d[k] = h;
-          const Vec6 minus_d = -d;
-          std::vector<PoseBlock> plus = blocks;
-          std::vector<PoseBlock> minus = blocks;
-          manifold.Plus(blocks[b].data(), d.data(), plus[b].data());
-          manifold.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
-          const Eigen::VectorXd numeric = (residualAt(*cost, plus) - residualAt(*cost, minus)) / (2 * h);
-          EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()))
-              << model->name() << " block " << b << " k " << k;
-        }
+      for (const bool whole : {true, false}) {
+        for (const PieceAt& piece : piecesAt(*model, whole, poses))
+          expectTangentJacobiansMatch<6>(manifold, *piece.cost, piece.blocks, model->name());
       }
     }
   }
@@ -204,25 +269,7 @@ TEST(OrientationHeldManifold, GivesTheSolverTheTranslationColumnsOfTheTangentJac
   std::mt19937 rng(36);
   const RelativePoseCost cost(randomPose(rng, 3.0, 1.0), Mat6::Identity());
   const std::vector<PoseBlock> blocks = {toPoseBlock(randomPose(rng)), toPoseBlock(randomPose(rng))};
-  const Evaluation at = evaluate(cost, blocks);
-  const OrientationHeldManifold held;
-  const double h = 1e-6;
-  for (std::size_t b = 0; b < 2; ++b) {
-    Eigen::Matrix<double, 7, 3, Eigen::RowMajor> lift;
-    held.PlusJacobian(blocks[b].data(), lift.data());
-    const Eigen::MatrixXd tangent = at.ambient_jacobians[b] * lift;
-    for (int k = 0; k < 3; ++k) {
-      Vec3 d = Vec3::Zero();
-      d[k] = h;
-      const Vec3 minus_d = -d;
-      std::vector<PoseBlock> plus = blocks;
-      std::vector<PoseBlock> minus = blocks;
-      held.Plus(blocks[b].data(), d.data(), plus[b].data());
-      held.Plus(blocks[b].data(), minus_d.data(), minus[b].data());
-      const Eigen::VectorXd numeric = (residualAt(cost, plus) - residualAt(cost, minus)) / (2 * h);
-      EXPECT_LT((numeric - tangent.col(k)).norm(), 1e-6 * (1.0 + numeric.norm()));
-    }
-  }
+  expectTangentJacobiansMatch<3>(OrientationHeldManifold(), cost, blocks, "orientation held");
 }
 
 }  // namespace

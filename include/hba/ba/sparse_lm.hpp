@@ -24,6 +24,10 @@ struct SparseLmSettings {
   int max_iterations = 10;                // LM steps (accepted or not)
   double relative_cost_tolerance = 1e-5;  // stop when a step gains less than this share
   double initial_damping = 1e-4;          // mu, relative to the Hessian diagonal
+  // Stop also when a step gains less than this (cost, m^2; 0: off): the
+  // caller's measure of a gain too small to matter (the refinement: a share
+  // of what fitting the points' noise gains).
+  double min_step_gain = 0.0;
   // Inexact steps: the hierarchy has already removed the long-range error,
   // so loose steps suffice (docs/ba.md: tighter ones gave the same maps, in
   // more time). The cap also keeps the steps off bends hundreds of frames
