@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
+#include "clamped_inverse.hpp"
 #include "graph_test_utils.hpp"
 #include "hba/core/error.hpp"
 #include "hba/graph/information.hpp"
@@ -154,6 +157,48 @@ TEST(RelativePoseInformation, RejectsBadArguments) {
   bad = InformationSettings{};
   bad.min_eigen_ratio = 0.0;
   EXPECT_THROW(relativePoseInformation(H, poses, 0, 1, bad), Error);
+}
+
+}  // namespace
+}  // namespace hba::graph
+
+namespace hba::graph {
+namespace {
+
+// A symmetric matrix of n rows with the given eigenvalues, in random axes.
+Eigen::MatrixXd withEigenvalues(const Eigen::VectorXd& values, std::mt19937& rng) {
+  std::normal_distribution<double> normal;
+  const auto n = values.size();
+  Eigen::MatrixXd random(n, n);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (Eigen::Index c = 0; c < n; ++c) random(r, c) = normal(rng);
+  }
+  const Eigen::MatrixXd axes = Eigen::HouseholderQR<Eigen::MatrixXd>(random).householderQ();
+  return axes * values.asDiagonal() * axes.transpose();
+}
+
+TEST(ClampedInverse, IsTheInverseWhereNoEigenvalueIsRaisedAndRaisesThoseBelowTheFloor) {
+  std::mt19937 rng(41);
+  // A window's size: eigenvalues from 1e9 down to 1e9 * 2e-6 (none below a
+  // 1e-6 floor), then one at 1e-9 of the largest (raised to the floor).
+  const Eigen::Index n = 312;
+  Eigen::VectorXd values(n);
+  for (Eigen::Index k = 0; k < n; ++k) values[k] = 1e9 * std::pow(2e-6, double(k) / double(n - 1));
+  const Eigen::MatrixXd well = withEigenvalues(values, rng);
+  const auto inverse = clampedInverse(well, 1e-6);
+  ASSERT_TRUE(inverse);
+  EXPECT_LT(relativeDifference(*inverse * well, Eigen::MatrixXd::Identity(n, n)), 1e-6);
+
+  values[n - 1] = 1.0;  // 1e-9 of the largest
+  const Eigen::MatrixXd weak = withEigenvalues(values, rng);
+  const auto clamped = clampedInverse(weak, 1e-6);
+  ASSERT_TRUE(clamped);
+  const Eigen::VectorXd got = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(*clamped).eigenvalues();
+  EXPECT_NEAR(got.maxCoeff(), 1.0 / (1e-6 * 1e9), 1e-6 * got.maxCoeff());  // the raised one
+  EXPECT_NEAR(got.minCoeff(), 1.0 / 1e9, 1e-6 / 1e9);
+
+  EXPECT_FALSE(clampedInverse(Eigen::MatrixXd::Zero(6, 6), 1e-6));
+  EXPECT_FALSE(clampedInverse(-well, 1e-6));
 }
 
 }  // namespace
