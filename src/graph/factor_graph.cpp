@@ -19,9 +19,11 @@ std::size_t FactorGraph::count(std::string_view kind) const {
 }
 
 std::vector<CostPiece> FactorModel::newCosts(bool /*whole*/) const {
-  CostPiece piece{newCost(), {}};
-  for (std::size_t k = 0; k < nodes().size(); ++k) piece.node_positions.push_back(k);
-  return {piece};
+  std::vector<CostPiece> pieces(1);
+  pieces[0].cost.reset(newCost());
+  pieces[0].node_positions.resize(nodes().size());
+  for (std::size_t k = 0; k < pieces[0].node_positions.size(); ++k) pieces[0].node_positions[k] = k;
+  return pieces;
 }
 
 void checkNode(std::size_t node, std::size_t num_poses, const std::string& label) {

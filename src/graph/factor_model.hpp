@@ -5,23 +5,22 @@
 // declaration in hba/graph/factors.hpp: the solver, the cost sum, the
 // validation and the gauge rule go through this interface only.
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
+
+#include <ceres/cost_function.h>
 
 #include "gauge_anchors.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/graph/factor_graph.hpp"
-
-namespace ceres {
-class CostFunction;
-}
 
 namespace hba::graph {
 
 // One Ceres cost of a factor and the nodes it depends on, as positions in
 // the factor's nodes().
 struct CostPiece {
-  ceres::CostFunction* cost = nullptr;  // the caller takes ownership
+  std::unique_ptr<ceres::CostFunction> cost;
   std::vector<std::size_t> node_positions;
 };
 

@@ -121,10 +121,10 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
     GaugeInput gauge{model->nodes(), model->gaugePin()};
     for (const std::size_t node : gauge.nodes) touched[node] = true;
     ceres::LossFunction* loss = lossOf(model->lossGroup());
-    for (const CostPiece& piece : model->newCosts(loss != nullptr)) {
+    for (CostPiece& piece : model->newCosts(loss != nullptr)) {
       std::vector<double*> parameters;
       for (const std::size_t k : piece.node_positions) parameters.push_back(blocks[gauge.nodes[k]].data());
-      problem.AddResidualBlock(piece.cost, loss, parameters);
+      problem.AddResidualBlock(piece.cost.release(), loss, parameters);
     }
     gauge_inputs.push_back(std::move(gauge));
   }

@@ -137,15 +137,19 @@ class WindowShapeFactorModel final : public FactorModel {
   std::vector<CostPiece> newCosts(bool whole) const override {
     SquareRoot root = squareRoot(factor_.information, "window shape information");
     const std::size_t frames = factor_.relative.size();  // after the first
-    if (whole || !root.upper_triangular || frames <= kFramesPerPiece)
-      return {{new WindowShapeCost(factor_.relative, std::move(root.s)), allPositions()}};
     std::vector<CostPiece> pieces;
+    if (whole || !root.upper_triangular || frames <= kFramesPerPiece) {
+      pieces.push_back(
+          {std::make_unique<WindowShapeCost>(factor_.relative, std::move(root.s)), allPositions()});
+      return pieces;
+    }
     for (std::size_t from = 0; from < frames; from += kFramesPerPiece) {
       const auto row = static_cast<Eigen::Index>(6 * from);
       const auto rows = static_cast<Eigen::Index>(6 * std::min(kFramesPerPiece, frames - from));
       const std::vector<Pose> seen(factor_.relative.begin() + static_cast<long>(from),
                                    factor_.relative.end());
-      CostPiece piece{new WindowShapeCost(seen, root.s.block(row, row, rows, root.s.cols() - row)), {0}};
+      CostPiece piece{
+          std::make_unique<WindowShapeCost>(seen, root.s.block(row, row, rows, root.s.cols() - row)), {0}};
       for (std::size_t k = from + 1; k <= frames; ++k) piece.node_positions.push_back(k);
       pieces.push_back(std::move(piece));
     }

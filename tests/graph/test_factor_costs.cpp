@@ -79,8 +79,8 @@ struct PieceAt {
 std::vector<PieceAt> piecesAt(const FactorModel& model, bool whole, const std::vector<Pose>& poses) {
   std::vector<PieceAt> out;
   const std::vector<std::size_t> nodes = model.nodes();
-  for (const CostPiece& piece : model.newCosts(whole)) {
-    PieceAt at{std::unique_ptr<ceres::CostFunction>(piece.cost), {}};
+  for (CostPiece& piece : model.newCosts(whole)) {
+    PieceAt at{std::move(piece.cost), {}};
     for (const std::size_t k : piece.node_positions) at.blocks.push_back(toPoseBlock(poses[nodes.at(k)]));
     out.push_back(std::move(at));
   }
