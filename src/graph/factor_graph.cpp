@@ -1,5 +1,6 @@
 #include "hba/graph/factor_graph.hpp"
 
+#include <numeric>
 #include <string>
 
 #include "factor_model.hpp"
@@ -22,7 +23,7 @@ std::vector<CostPiece> FactorModel::newCosts(bool /*whole*/) const {
   std::vector<CostPiece> pieces(1);
   pieces[0].cost.reset(newCost());
   pieces[0].node_positions.resize(nodes().size());
-  for (std::size_t k = 0; k < pieces[0].node_positions.size(); ++k) pieces[0].node_positions[k] = k;
+  std::iota(pieces[0].node_positions.begin(), pieces[0].node_positions.end(), std::size_t{0});
   return pieces;
 }
 

@@ -135,14 +135,11 @@ class WindowShapeFactorModel final : public FactorModel {
   }
 
   std::vector<CostPiece> newCosts(bool whole) const override {
-    SquareRoot root = squareRoot(factor_.information, "window shape information");
     const std::size_t frames = factor_.relative.size();  // after the first
+    if (whole || frames <= kFramesPerPiece) return FactorModel::newCosts(true);
+    const SquareRoot root = squareRoot(factor_.information, "window shape information");
+    if (!root.upper_triangular) return FactorModel::newCosts(true);
     std::vector<CostPiece> pieces;
-    if (whole || !root.upper_triangular || frames <= kFramesPerPiece) {
-      pieces.push_back(
-          {std::make_unique<WindowShapeCost>(factor_.relative, std::move(root.s)), allPositions()});
-      return pieces;
-    }
     for (std::size_t from = 0; from < frames; from += kFramesPerPiece) {
       const auto row = static_cast<Eigen::Index>(6 * from);
       const auto rows = static_cast<Eigen::Index>(6 * std::min(kFramesPerPiece, frames - from));
@@ -157,12 +154,6 @@ class WindowShapeFactorModel final : public FactorModel {
   }
 
  private:
-  std::vector<std::size_t> allPositions() const {
-    std::vector<std::size_t> positions(factor_.nodes.size());
-    for (std::size_t k = 0; k < positions.size(); ++k) positions[k] = k;
-    return positions;
-  }
-
   WindowShapeFactor factor_;
 };
 
