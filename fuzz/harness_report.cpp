@@ -7,7 +7,7 @@
 
 #include "harness.hpp"
 #include "harness_checks.hpp"
-#include "pyramid/output_report.hpp"
+#include "pipeline/output_report.hpp"
 
 namespace hba::fuzz {
 namespace fs = std::filesystem;
@@ -18,16 +18,16 @@ void feedReportJson(const fs::path& input) {
   text << in.rdbuf();
   nlohmann::json report;
   try {
-    report = pyramid::parseOutputReport(text.str(), "report.json");
+    report = pipeline::parseOutputReport(text.str(), "report.json");
   } catch (const Error&) {
     return;
   }
   // hba view refuses a run of several sessions or against a map.
   static_cast<void>(report.contains("sessions") || report.contains("map"));
   for (const char* key : {"dataset", "poses", "pose_format", "pose_frame"}) {
-    rejectOnlyWithError([&] { pyramid::reportInputText(report, "report.json", key); });
+    rejectOnlyWithError([&] { pipeline::reportInputText(report, "report.json", key); });
   }
-  rejectOnlyWithError([&] { pyramid::reportInputFlag(report, "report.json", "scans_in_world"); });
+  rejectOnlyWithError([&] { pipeline::reportInputFlag(report, "report.json", "scans_in_world"); });
   // As the page embeds it (render/report_page.cpp, scriptJson).
   nlohmann::json header = {{"report", report}};
   static_cast<void>(header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));

@@ -5,7 +5,7 @@
 
 #include "harness.hpp"
 #include "hba/core/error.hpp"
-#include "hba/pyramid/settings_file.hpp"
+#include "hba/settings/settings_file.hpp"
 
 namespace hba::fuzz {
 namespace fs = std::filesystem;
@@ -25,10 +25,10 @@ std::string readAll(const fs::path& input) {
 void feedSettingsYaml(const fs::path& input) {
   const std::string text = readAll(input);
   try {
-    pyramid::HbaSettings settings;
-    pyramid::applySettingsYaml(text, "fuzz.yaml", settings);
-    pyramid::checkSettings(settings);
-    pyramid::settingsToJson(settings).dump();
+    HbaSettings settings;
+    settings::applySettingsYaml(text, "fuzz.yaml", settings);
+    settings::checkSettings(settings);
+    settings::settingsToJson(settings).dump();
   } catch (const Error&) {
     // The documented outcome for a bad settings file.
   }

@@ -16,7 +16,7 @@
 #include "hba/core/error.hpp"
 #include "hba/io/scan_formats.hpp"
 #include "hba/pipeline/deskew_passes.hpp"
-#include "hba/pyramid/settings_file.hpp"
+#include "hba/settings/settings_file.hpp"
 #include "hba/voxel/downsampled_scan_source.hpp"
 #include "json_text.hpp"
 #include "memory_check.hpp"
@@ -31,9 +31,9 @@ namespace fs = std::filesystem;
 using namespace optimize;
 
 void run(const Args& args) {
-  pyramid::HbaSettings settings = mergeSettings(args);
+  HbaSettings settings = mergeSettings(args);
   if (args.print_config) {
-    std::cout << pyramid::settingsToYaml(settings);
+    std::cout << settings::settingsToYaml(settings);
     return;
   }
   // Required unless --print-config (CLI11 cannot say "unless").
@@ -41,12 +41,12 @@ void run(const Args& args) {
   if (args.output.empty()) throw CLI::RequiredError("--output");
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
-  settings.threads = pyramid::resolvedThreadCount(settings);
+  settings.threads = pipeline::resolvedThreadCount(settings);
   // Kept clouds and maps go to the temporary folder: a wrong TMPDIR is
   // refused before any work, naming it.
   temporaryFolder();
   // Under mpirun every process runs the method, sharing its work (which
-  // stage runs where: kStages, src/pyramid/hierarchical_ba.cpp); the first
+  // stage runs where: kStages, src/pipeline/hierarchical_ba.cpp); the first
   // alone checks the conventions and writes the outputs.
   const dist::Group& group = processGroup();
   if (!args.map.empty() || !args.fixed.empty()) {
@@ -63,13 +63,15 @@ void run(const Args& args) {
   refuseProtectedFolder(args.output);
   io::Dataset dataset = args.data.open();
   refuseOutputInsideInput(args.output, dataset);
-  const pyramid::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
+  const pipeline::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, dataset, dataset.size());
   // One source of the scans for the memory estimate, the convention check,
   // the optimization and the picture.
   const io::DatasetScanSource scans(dataset);
-  // A run that cannot fit is refused before any output or heavy work.
-  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
+  // The run worked out once, from the settings and a few scans; one that
+  // cannot fit is refused before any output or heavy work.
+  const pipeline::Plan plan = pipeline::planRun(scans, settings);
+  const nlohmann::json memory = checkMemory(plan, args.no_memory_check);
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
   std::optional<StagingFolder> staging;
@@ -82,13 +84,13 @@ void run(const Args& args) {
                    : nlohmann::json();
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
                dataset.size(), dataset.posesFile().string());
-  spdlog::debug("settings: {}", jsonText(pyramid::settingsToJson(settings)));  // also in report.json
+  spdlog::debug("settings: {}", jsonText(settings::settingsToJson(settings)));  // also in report.json
   spdlog::info("threads: {}{}", settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
-  pipeline::DatasetRun run = pipeline::runWithDeskewPasses(dataset, scans, dataset.trajectory().poses,
-                                                           settings, closures, args.deskew_passes, group);
-  const pyramid::HbaResult& result = run.result;
+  pipeline::DatasetRun run = pipeline::runWithDeskewPasses(dataset, scans, dataset.trajectory().poses, plan,
+                                                           closures, args.deskew_passes, group);
+  const pipeline::HbaResult& result = run.result;
   if (!group.root()) return;
   const fs::path& out = staging->path();
 

@@ -5,7 +5,7 @@
 #include "core/input_file.hpp"
 #include "hba/core/error.hpp"
 #include "hba/io/pose_file.hpp"
-#include "pyramid/output_report.hpp"
+#include "pipeline/output_report.hpp"
 #include "recording_entry.hpp"
 
 namespace hba::cli {
@@ -17,15 +17,15 @@ bool isOptimizeOutput(const std::filesystem::path& folder) {
 nlohmann::json readOutputReport(const std::filesystem::path& folder) {
   if (!isOptimizeOutput(folder))
     failAt(folder, "is not an hba optimize output (no report.json and pose.json)");
-  return pyramid::parseOutputReport(readTextFile(folder / "report.json"), folder / "report.json");
+  return pipeline::parseOutputReport(readTextFile(folder / "report.json"), folder / "report.json");
 }
 
 std::string outputInput(const nlohmann::json& report, const std::filesystem::path& folder, const char* key) {
-  return pyramid::reportInputText(report, folder / "report.json", key);
+  return pipeline::reportInputText(report, folder / "report.json", key);
 }
 
 bool outputInputFlag(const nlohmann::json& report, const std::filesystem::path& folder, const char* key) {
-  return pyramid::reportInputFlag(report, folder / "report.json", key);
+  return pipeline::reportInputFlag(report, folder / "report.json", key);
 }
 
 namespace {

@@ -15,7 +15,7 @@
 #include "commands.hpp"
 #include "core/remove_on_interrupt.hpp"
 #include "hba/core/error.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 #include "hba/version.hpp"
 #include "log_file.hpp"
 #include "number_checks.hpp"
@@ -86,8 +86,8 @@ int run(int argc, char** argv) {
   bool quiet = false;
   std::string log_file;
   app.add_option("-j,--threads", threads, "Worker threads (0 = all cores)")
-      ->check(hba::cli::numberIn({1, hba::pyramid::kMostThreads, false, false, "all cores"},
-                                 hba::NumberKind::Integer));
+      ->check(
+          hba::cli::numberIn({1, hba::kMostThreads, false, false, "all cores"}, hba::NumberKind::Integer));
   app.add_flag("-v,--verbose", verbose, "Print debug messages");
   app.add_flag("-q,--quiet", quiet, "Print warnings and errors only");
   app.add_option("--log-file", log_file, "Also write every message, with times, to this file");

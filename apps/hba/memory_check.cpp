@@ -8,25 +8,25 @@
 
 #include "core/available_memory.hpp"
 #include "hba/core/error.hpp"
-#include "hba/pyramid/memory_estimate.hpp"
+#include "hba/pipeline/memory_estimate.hpp"
+#include "hba/pipeline/window_size.hpp"
 #include "hba/pyramid/window_plan.hpp"
-#include "hba/pyramid/window_size.hpp"
 
 namespace hba::cli::optimize {
 namespace {
-using pyramid::MemoryEstimate;
-using pyramid::Stage;
+using pipeline::MemoryEstimate;
+using pipeline::Stage;
 
 double mib(double bytes) { return bytes / (1024.0 * 1024.0); }
 
 // A change of `settings` (the first of a few, each smaller) whose run fits
 // in `available` bytes, said for the refusal; empty when none does.
-std::string fittingChange(std::size_t frames, const pyramid::ScanDensity& density,
-                          const pyramid::HbaSettings& settings, Stage stage, double available) {
-  auto peak = [&](const pyramid::HbaSettings& changed) {
-    return pyramid::estimateMemory(frames, density, changed).peakBytes();
+std::string fittingChange(std::size_t frames, const pipeline::ScanDensity& density,
+                          const HbaSettings& settings, Stage stage, double available) {
+  auto peak = [&](const HbaSettings& changed) {
+    return pipeline::estimateMemory(frames, density, changed).peakBytes();
   };
-  pyramid::HbaSettings changed = settings;
+  HbaSettings changed = settings;
   switch (stage) {
     case Stage::GlobalBa:
       for (int layers = pyramid::layerCount(frames, settings) + 1;
@@ -66,14 +66,14 @@ std::string fittingChange(std::size_t frames, const pyramid::ScanDensity& densit
   return "";
 }
 
-nlohmann::json toJson(const MemoryEstimate& estimate, const pyramid::ScanDensity& density,
+nlohmann::json toJson(const MemoryEstimate& estimate, const pipeline::ScanDensity& density,
                       const std::optional<AvailableMemory>& available) {
   nlohmann::json stages = nlohmann::json::array();
-  for (const pyramid::StageMemory& s : estimate.stages) {
-    stages.push_back({{"stage", pyramid::stageName(s.stage)}, {"mib", mib(s.bytes)}, {"detail", s.detail}});
+  for (const pipeline::StageMemory& s : estimate.stages) {
+    stages.push_back({{"stage", pipeline::stageName(s.stage)}, {"mib", mib(s.bytes)}, {"detail", s.detail}});
   }
   nlohmann::json json = {{"peak_mib", mib(estimate.peakBytes())},
-                         {"peak_stage", pyramid::stageName(estimate.largest().stage)},
+                         {"peak_stage", pipeline::stageName(estimate.largest().stage)},
                          {"stages", stages},
                          {"scans_sampled", density.sampled},
                          {"points_per_scan", density.points}};
@@ -86,30 +86,28 @@ nlohmann::json toJson(const MemoryEstimate& estimate, const pyramid::ScanDensity
 
 }  // namespace
 
-nlohmann::json checkMemory(const io::ScanSource& scans, const pyramid::HbaSettings& given, bool ignore) {
-  const pyramid::ScanDensity density = pyramid::sampleScanDensity(scans, given);
-  // The windows the run will use (an automatic window from the same density).
-  const pyramid::HbaSettings settings =
-      pyramid::withWindowSize(given, pyramid::chooseWindowSize(given, density.sampled_points));
-  const MemoryEstimate estimate = pyramid::estimateMemory(scans.size(), density, settings);
+nlohmann::json checkMemory(const pipeline::Plan& plan, bool ignore) {
+  const pipeline::ScanDensity& density = plan.density;
+  const HbaSettings& settings = plan.settings;
+  const MemoryEstimate& estimate = plan.memory;
   const std::optional<AvailableMemory> available = availableMemory();
-  const pyramid::StageMemory& peak = estimate.largest();
+  const pipeline::StageMemory& peak = estimate.largest();
   std::string stages;
-  for (const pyramid::StageMemory& s : estimate.stages)
+  for (const pipeline::StageMemory& s : estimate.stages)
     stages +=
-        fmt::format("{}{} {}", stages.empty() ? "" : ", ", pyramid::stageName(s.stage), humanBytes(s.bytes));
+        fmt::format("{}{} {}", stages.empty() ? "" : ", ", pipeline::stageName(s.stage), humanBytes(s.bytes));
   spdlog::debug("memory estimate: peak about {} in the {} ({}); by stage: {}; available: {}",
-                humanBytes(peak.bytes), pyramid::stageName(peak.stage), peak.detail, stages,
+                humanBytes(peak.bytes), pipeline::stageName(peak.stage), peak.detail, stages,
                 available ? humanBytes(static_cast<double>(available->bytes)) + " (" + available->source + ")"
                           : "unknown");
   const nlohmann::json json = toJson(estimate, density, available);
   if (!available || peak.bytes <= static_cast<double>(available->bytes)) return json;
 
   const double room = static_cast<double>(available->bytes);
-  const std::string change = fittingChange(scans.size(), density, settings, peak.stage, room);
+  const std::string change = fittingChange(plan.frames, density, settings, peak.stage, room);
   const std::string message = fmt::format(
       "not enough memory: this run's {} ({}) needs about {}, and {} are available ({}); {}",
-      pyramid::stageName(peak.stage), peak.detail, humanBytes(peak.bytes), humanBytes(room),
+      pipeline::stageName(peak.stage), peak.detail, humanBytes(peak.bytes), humanBytes(room),
       available->source,
       change.empty() ? "no smaller setting tried fits: a coarser --downsample-scans holds fewer points"
                      : change);

@@ -4,8 +4,7 @@
 // being killed by the kernel without a word (docs/pyramid.md, "Memory").
 #include <nlohmann/json.hpp>
 
-#include "hba/io/scan_source.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/pipeline/plan.hpp"
 
 namespace hba::cli::optimize {
 
@@ -14,6 +13,6 @@ namespace hba::cli::optimize {
 // report.json. Throws hba::Error, naming the stage, its figures, the memory
 // available and settings that would fit, when the estimate exceeds the
 // memory available; with `ignore` (--no-memory-check) it warns instead.
-nlohmann::json checkMemory(const io::ScanSource& scans, const pyramid::HbaSettings& settings, bool ignore);
+nlohmann::json checkMemory(const pipeline::Plan& plan, bool ignore);
 
 }  // namespace hba::cli::optimize

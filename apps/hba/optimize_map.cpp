@@ -58,7 +58,7 @@ pipeline::PriorMap readFixedMap(const Args& args) {
 
 }  // namespace
 
-void runWithMap(const Args& args, pyramid::HbaSettings settings) {
+void runWithMap(const Args& args, HbaSettings settings) {
   if (!args.more_sessions.empty()) {
     throw Error(
         "--map and --fixed take one new session: give the others as the map, or run them as sessions "
@@ -79,9 +79,9 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
   refuseOutputInsideInput(args.output, dataset);
   const pipeline::PriorMap map = readFixedMap(args);
   spdlog::info("map {}: {} points at {} m", map.name, map.cloud.size(), pipeline::kPriorMapVoxel);
-  const pyramid::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
+  const pipeline::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
   const io::DatasetScanSource scans(dataset);
-  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
+  const nlohmann::json memory = checkMemory(pipeline::planRun(scans, settings), args.no_memory_check);
 
   StagingFolder staging(args.output, args.force, "hba optimize");
   announceReplacement(staging);
@@ -90,7 +90,7 @@ void runWithMap(const Args& args, pyramid::HbaSettings settings) {
       checkConventions(args, voxel::DownsampledScanSource(scans, settings.scan_voxel), dataset);
   const pipeline::MapRun run =
       pipeline::runInMap(map, scans, dataset.trajectory().poses, settings, closures, args.data.dir);
-  const pyramid::HbaResult& result = run.result;
+  const pipeline::HbaResult& result = run.result;
   const std::vector<Pose> in_map = pipeline::inMapFrame(map, result.poses);
   writeOptimizedPoses(out, dataset, in_map);
   nlohmann::json report = reportJson(result, dataset, args.data, settings, conventions);

@@ -13,12 +13,12 @@
 #include "hba/core/error.hpp"
 #include "hba/core/memory_budget.hpp"
 #include "hba/io/pose_file.hpp"
-#include "hba/pyramid/settings_file.hpp"
 #include "hba/render/map_picture.hpp"
 #include "hba/render/report_page.hpp"
+#include "hba/settings/settings_file.hpp"
 #include "json_text.hpp"
-#include "pyramid/convention_check.hpp"
-#include "pyramid/report_json.hpp"
+#include "pipeline/convention_check.hpp"
+#include "pipeline/report_json.hpp"
 #include "recording_entry.hpp"
 #include "version_text.hpp"
 
@@ -43,24 +43,24 @@ std::optional<Trajectory> readGroundTruth(const Args& args, const io::Dataset& d
   return gt;
 }
 
-nlohmann::json windowErrorsReport(const pyramid::HbaResult& result, const std::vector<Pose>& input,
+nlohmann::json windowErrorsReport(const pipeline::HbaResult& result, const std::vector<Pose>& input,
                                   const Trajectory& gt) {
-  const std::vector<pyramid::LayerWindowErrors> rows = pyramid::windowErrors(
+  const std::vector<pipeline::LayerWindowErrors> rows = pipeline::windowErrors(
       result.report.window_records, input, result.hierarchy_poses, result.poses, gt.poses);
   spdlog::info(
       "windows against the ground truth (RMS of each window's frames from its first: deg, m; "
       "report.json's window_errors):");
   spdlog::info("  {:>5} {:>6} {:>17} {:>17} {:>17} {:>17} {:>17}", "layer", "pairs", "input", "window start",
                "window result", "hierarchy", "final");
-  auto cell = [](const pyramid::RelativeErrorRms& e) {
+  auto cell = [](const pipeline::RelativeErrorRms& e) {
     return fmt::format("{:.4f} {:.4f}", e.rotation_rms_deg, e.translation_rms_m);
   };
-  for (const pyramid::LayerWindowErrors& row : rows) {
+  for (const pipeline::LayerWindowErrors& row : rows) {
     spdlog::info("  {:>5} {:>6} {:>17} {:>17} {:>17} {:>17} {:>17}",
                  fmt::format("{}{}", row.layer, row.global ? "g" : ""), row.pairs, cell(row.input),
                  cell(row.start), cell(row.window), cell(row.hierarchy), cell(row.final));
   }
-  return pyramid::windowErrorsToJson(rows);
+  return pipeline::windowErrorsToJson(rows);
 }
 
 void announceReplacement(const StagingFolder& staging) {
@@ -74,7 +74,7 @@ namespace {
 // The scans as the optimization kept them (parsed and downsampled once, at
 // `scan_voxel`) when that is at least as fine as `voxel`, with
 // `scans_voxel` set to it; `scans` otherwise.
-const io::ScanSource& scansFor(double voxel, const io::ScanSource& scans, const pyramid::HbaResult& result,
+const io::ScanSource& scansFor(double voxel, const io::ScanSource& scans, const pipeline::HbaResult& result,
                                double scan_voxel, double& scans_voxel) {
   if (!result.scans || result.scans->size() != scans.size() || scan_voxel > voxel) return scans;
   scans_voxel = scan_voxel;
@@ -83,7 +83,7 @@ const io::ScanSource& scansFor(double voxel, const io::ScanSource& scans, const 
 
 }  // namespace
 
-bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+bool writePicture(const io::ScanSource& scans, const pipeline::HbaResult& result, double scan_voxel,
                   const std::vector<Pose>& before, const std::optional<Trajectory>& gt, const fs::path& out) {
   const std::vector<Pose>& optimized = result.poses;
   const fs::path png = out / "before_after.png";
@@ -103,7 +103,7 @@ bool writePicture(const io::ScanSource& scans, const pyramid::HbaResult& result,
   return true;
 }
 
-bool writeReportPage(const io::ScanSource& scans, const pyramid::HbaResult& result, double scan_voxel,
+bool writeReportPage(const io::ScanSource& scans, const pipeline::HbaResult& result, double scan_voxel,
                      const std::vector<Pose>& before, const std::optional<Trajectory>& gt,
                      const nlohmann::json& report, const std::string& title, const fs::path& out) {
   spdlog::info("writing report.html");
@@ -171,19 +171,19 @@ std::vector<std::string> writeEveryScanPoses(const fs::path& out, const io::Data
   return written;
 }
 
-pyramid::ClosureInputs readClosureInputs(const Args& args, const std::vector<const io::Dataset*>& datasets,
-                                         const std::vector<std::size_t>& starts, std::size_t frames) {
+pipeline::ClosureInputs readClosureInputs(const Args& args, const std::vector<const io::Dataset*>& datasets,
+                                          const std::vector<std::size_t>& starts, std::size_t frames) {
   std::vector<const Trajectory*> sessions;
   for (const io::Dataset* dataset : datasets) sessions.push_back(&dataset->trajectory());
   return pipeline::readClosureFiles(args.closure_files, sessions, starts, frames);
 }
 
 // Defaults, then the YAML file, then the flags given on the command line.
-pyramid::HbaSettings mergeSettings(const Args& args) {
-  pyramid::HbaSettings settings;
-  if (!args.config.empty()) pyramid::applySettingsFile(args.config, settings);
+HbaSettings mergeSettings(const Args& args) {
+  HbaSettings settings;
+  if (!args.config.empty()) settings::applySettingsFile(args.config, settings);
   args.settings.applyTo(settings);
-  pyramid::checkSettings(settings);
+  settings::checkSettings(settings);
   return settings;
 }
 
@@ -191,12 +191,13 @@ pyramid::HbaSettings mergeSettings(const Args& args) {
 // before hours of work on it, naming the flag that fixes it.
 nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, const io::Dataset& dataset) {
   if (args.no_convention_check) return "skipped (--no-convention-check)";
-  pyramid::GivenConventions given;
+  pipeline::GivenConventions given;
   given.invert_poses = args.data.invert_poses;
   given.scans_in_world = dataset.scansInWorld();
   given.extrinsic = !dataset.inputFrame().empty();
-  const pyramid::ConventionCheck check = pyramid::checkConventions(source, dataset.trajectory().poses, given);
-  if (check.verdict != pyramid::ConventionVerdict::AsGiven)
+  const pipeline::ConventionCheck check =
+      pipeline::checkConventions(source, dataset.trajectory().poses, given);
+  if (check.verdict != pipeline::ConventionVerdict::AsGiven)
     throw Error(dataset.root().string() + ": " + check.message);
   if (check.stretches == 0) {
     spdlog::info("convention check: the path has no stretch long enough to tell");
@@ -220,10 +221,10 @@ nlohmann::json checkConventions(const Args& args, const io::ScanSource& source, 
           {"turned_body", check.turned}};
 }
 
-nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& dataset,
-                          const DatasetArgs& data, const pyramid::HbaSettings& settings,
+nlohmann::json reportJson(const pipeline::HbaResult& result, const io::Dataset& dataset,
+                          const DatasetArgs& data, const HbaSettings& settings,
                           const nlohmann::json& conventions) {
-  nlohmann::json report = pyramid::reportToJson(result.report);
+  nlohmann::json report = pipeline::reportToJson(result.report);
   report["convention_check"] = conventions;
   report["hba"] = {{"version", HBA_VERSION}, {"revision", HBA_REVISION}};
   report["input"] = {
@@ -237,7 +238,7 @@ nlohmann::json reportJson(const pyramid::HbaResult& result, const io::Dataset& d
       {"scans_in_world", dataset.scansInWorld()}};
   if (const rec::Recording* recording = dataset.recording())
     report["input"]["recording"] = recordingEntry(*recording, data);
-  report["settings"] = pyramid::settingsToJson(settings);
+  report["settings"] = settings::settingsToJson(settings);
   return report;
 }
 

@@ -64,7 +64,7 @@ void refuseRepeatedSessions(const std::vector<std::string>& dirs) {
 
 }  // namespace
 
-void runSessions(const Args& args, pyramid::HbaSettings settings) {
+void runSessions(const Args& args, HbaSettings settings) {
   refuseOverrides(args.data);
   std::vector<std::string> dirs{args.data.dir};
   dirs.insert(dirs.end(), args.more_sessions.begin(), args.more_sessions.end());
@@ -80,9 +80,10 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   for (const io::Dataset& d : datasets) sessions_in.push_back(&d);
   const pipeline::SessionScans session_scans(sessions_in, dirs);
   const io::ConcatenatedScanSource& scans = session_scans.all();
-  pyramid::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
+  pipeline::ClosureInputs closures = readClosureInputs(args, sessions_in, scans.starts(), scans.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, datasets[0], scans.size());
-  const nlohmann::json memory = checkMemory(scans, settings, args.no_memory_check);
+  const pipeline::Plan plan = pipeline::planRun(scans, settings);
+  const nlohmann::json memory = checkMemory(plan, args.no_memory_check);
 
   StagingFolder staging(args.output, args.force, "hba optimize");
   announceReplacement(staging);
@@ -106,7 +107,7 @@ void runSessions(const Args& args, pyramid::HbaSettings settings) {
   const pipeline::PlacedSessions placed = pipeline::placeSessions(inputs, how, settings.scan_voxel);
   const std::vector<Pose> initial = pipeline::sessionsInOneFrame(inputs, placed, closures);
   spdlog::info("{} sessions, {} scans in all", datasets.size(), scans.size());
-  const pyramid::HbaResult result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
+  const pipeline::HbaResult result = pipeline::runHierarchicalBa(scans, initial, plan, closures);
 
   nlohmann::json sessions = nlohmann::json::array();
   for (std::size_t k = 0; k < datasets.size(); ++k) {

@@ -6,9 +6,9 @@
 
 namespace hba::cli {
 
-using pyramid::Setting;
-using pyramid::SettingType;
-using pyramid::SettingValue;
+using settings::Setting;
+using settings::SettingType;
+using settings::SettingValue;
 
 namespace {
 
@@ -30,11 +30,11 @@ std::string describe(const Setting& setting) {
 CLI::Validator numberOf(const Setting& setting) {
   return CLI::Validator(
       [&setting](std::string& text) -> std::string {
-        const pyramid::ParsedSetting parsed = pyramid::parseSettingNumber(setting, text);
-        if (parsed.problem.empty()) text = pyramid::valueText(parsed.value);
+        const settings::ParsedSetting parsed = settings::parseSettingNumber(setting, text);
+        if (parsed.problem.empty()) text = settings::valueText(parsed.value);
         return parsed.problem;
       },
-      pyramid::rangeText(setting));
+      settings::rangeText(setting));
 }
 
 // One option under `name` writing into `slot`.
@@ -66,7 +66,7 @@ CLI::Option* addOption(CLI::App* group, const Setting& setting, const std::strin
 }  // namespace
 
 void SettingFlags::addTo(CLI::App* command) {
-  const std::vector<Setting>& table = pyramid::settingTable();
+  const std::vector<Setting>& table = settings::settingTable();
   given_.assign(table.size(), std::nullopt);
   CLI::App* group = command->add_option_group(
       "Settings", "Settings (also in a --config YAML file; docs/settings.md lists them all)");
@@ -77,7 +77,7 @@ void SettingFlags::addTo(CLI::App* command) {
     const std::string help = describe(setting);
     CLI::Option* option = addOption(group, setting, setting.flag, slot, help);
     if (setting.type != SettingType::Switch && !setting.shorthand())
-      option->default_str(pyramid::valueText(setting.default_value));
+      option->default_str(settings::valueText(setting.default_value));
     // Earlier names still read, listed apart, and an error names the one
     // typed (CLI11 names a hidden option "").
     for (const std::string& old : setting.old_flags)
@@ -85,15 +85,15 @@ void SettingFlags::addTo(CLI::App* command) {
   }
 }
 
-void SettingFlags::applyTo(pyramid::HbaSettings& settings) const {
-  const std::vector<Setting>& table = pyramid::settingTable();
+void SettingFlags::applyTo(HbaSettings& settings) const {
+  const std::vector<Setting>& table = settings::settingTable();
   for (const bool shorthands : {true, false}) {
     for (std::size_t i = 0; i < table.size(); ++i) {
       const Setting& setting = table[i];
       if (setting.shorthand() != shorthands || !given_[i]) continue;
       // Each value's range was checked by its flag; what settings hold
       // together (stride below window), by checkSettings.
-      pyramid::applySetting(setting, *given_[i], settings);
+      settings::applySetting(setting, *given_[i], settings);
     }
   }
 }

@@ -1,12 +1,12 @@
 #pragma once
 // The flags of `hba optimize` that set settings, made from the setting table
-// (hba/pyramid/setting_table.hpp): each declared flag becomes an option with
+// (hba/settings/setting_table.hpp): each declared flag becomes an option with
 // the setting's help, default and range.
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <vector>
 
-#include "hba/pyramid/setting_table.hpp"
+#include "hba/settings/setting_table.hpp"
 
 namespace hba::cli {
 
@@ -17,10 +17,10 @@ class SettingFlags {
   void addTo(CLI::App* command);
   // The values given on the command line, on top of `settings`
   // (shorthands first, so that --voxel-local beside --voxel wins).
-  void applyTo(pyramid::HbaSettings& settings) const;
+  void applyTo(HbaSettings& settings) const;
 
  private:
-  std::vector<std::optional<pyramid::SettingValue>> given_;  // by table index
+  std::vector<std::optional<settings::SettingValue>> given_;  // by table index
 };
 
 }  // namespace hba::cli

@@ -29,8 +29,8 @@ int main() {
     scans.push_back(hba::sim::simulateFrame(simulation, i));
 
   const hba::io::MemoryScanSource source(std::move(scans));
-  const hba::pyramid::HbaResult result =
-      hba::pyramid::runHierarchicalBa(source, simulation.initial, hba::pyramid::HbaSettings());
+  const hba::pipeline::HbaResult result =
+      hba::pipeline::runHierarchicalBa(source, simulation.initial, hba::HbaSettings());
 
   const double before = meanError(simulation.truth.poses, simulation.initial);
   const double after = meanError(simulation.truth.poses, result.poses);

@@ -18,11 +18,11 @@
 #include "hba/rec/recording.hpp"
 
 // The method: settings, closures and priors, the run and its report.
-#include "hba/pyramid/closure_inputs.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/report.hpp"
-#include "hba/pyramid/settings.hpp"
-#include "hba/pyramid/settings_file.hpp"
+#include "hba/pipeline/closure_inputs.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
+#include "hba/pipeline/report.hpp"
+#include "hba/settings/settings.hpp"
+#include "hba/settings/settings_file.hpp"
 
 // Judging a result: trajectory errors, merged maps, map entropy.
 #include "hba/eval/map_entropy.hpp"

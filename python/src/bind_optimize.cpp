@@ -10,13 +10,13 @@
 #include "hba/io/dataset.hpp"
 #include "hba/pipeline/closure_files.hpp"
 #include "hba/pipeline/deskew_passes.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
 #include "hba/pipeline/prior_map.hpp"
 #include "hba/pipeline/sessions.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
-#include "hba/pyramid/settings_file.hpp"
+#include "hba/settings/settings_file.hpp"
 #include "json_to_python.hpp"
 #include "numpy_convert.hpp"
-#include "pyramid/report_json.hpp"
+#include "pipeline/report_json.hpp"
 #include "settings_kwargs.hpp"
 
 namespace py = pybind11;
@@ -40,16 +40,16 @@ std::string fileName(const py::object& name, const char* what) {
 }
 
 // report.json's library part: the run's report and the settings it ran with.
-nlohmann::json libraryReport(const pyramid::HbaReport& report, const pyramid::HbaSettings& settings) {
-  nlohmann::json json = pyramid::reportToJson(report);
-  json["settings"] = pyramid::settingsToJson(settings);
+nlohmann::json libraryReport(const pipeline::HbaReport& report, const HbaSettings& settings) {
+  nlohmann::json json = pipeline::reportToJson(report);
+  json["settings"] = settings::settingsToJson(settings);
   return json;
 }
 
 // --loops and --priors as the tool reads them; priors go to frames by their
 // stamps, which only a dataset has.
-pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<Pose>& initial,
-                                     const pipeline::ClosureFiles& files) {
+pipeline::ClosureInputs closureInputs(const py::object& scans, const std::vector<Pose>& initial,
+                                      const pipeline::ClosureFiles& files) {
   if (files.loops.empty() && files.priors.empty()) return {};
   Trajectory stamped;
   stamped.poses = initial;
@@ -67,7 +67,7 @@ pyramid::ClosureInputs closureInputs(const py::object& scans, const std::vector<
 OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::object& loops,
                         const py::object& priors, double prior_max_gap, int deskew_passes,
                         const py::kwargs& kwargs) {
-  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  const HbaSettings settings = settingsFromKwargs(kwargs);
   const bool is_dataset = py::isinstance<io::Dataset>(scans);
   if (poses.is_none() && !is_dataset)
     throw Error("poses: required with arrays of scans (only a dataset has its own)");
@@ -83,19 +83,20 @@ OptimizeResult optimize(const py::object& scans, const py::object& poses, const 
   const std::unique_ptr<io::ScanSource> source =
       dataset ? std::make_unique<io::DatasetScanSource>(*dataset) : scanSourceFrom(scans);
   // Poses and scans that differ in number: the run below refuses them.
-  const pyramid::ClosureInputs closures =
+  const pipeline::ClosureInputs closures =
       initial.size() == source->size()
           ? closureInputs(scans, initial,
                           {fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap})
-          : pyramid::ClosureInputs{};
+          : pipeline::ClosureInputs{};
   pipeline::DatasetRun run;
   {
     // Python threads run on while hba works; nothing below touches Python.
     const py::gil_scoped_release release;
     if (dataset) {
-      run = pipeline::runWithDeskewPasses(*dataset, *source, initial, settings, closures, deskew_passes);
+      run = pipeline::runWithDeskewPasses(*dataset, *source, initial, pipeline::planRun(*source, settings),
+                                          closures, deskew_passes);
     } else {
-      run.result = pyramid::runHierarchicalBa(*source, initial, settings, closures);
+      run.result = pipeline::runHierarchicalBa(*source, initial, settings, closures);
     }
   }
   nlohmann::json report = libraryReport(run.result.report, settings);
@@ -124,7 +125,7 @@ pipeline::PriorMap priorMapFrom(const py::object& map, const py::object& map_pos
 
 OptimizeResult optimizeInMap(const io::Dataset& dataset, const py::object& map, const py::object& map_poses,
                              const py::object& poses, const py::object& loops, const py::kwargs& kwargs) {
-  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  const HbaSettings settings = settingsFromKwargs(kwargs);
   const std::vector<Pose> initial =
       poses.is_none() ? dataset.trajectory().poses : posesFromArray(poses, "poses");
   // Refused before the map is merged from its scans.
@@ -135,10 +136,10 @@ OptimizeResult optimizeInMap(const io::Dataset& dataset, const py::object& map, 
   const io::DatasetScanSource scans(dataset);
   pipeline::ClosureFiles files;
   files.loops = fileName(loops, "loops");
-  const pyramid::ClosureInputs closures =
+  const pipeline::ClosureInputs closures =
       initial.size() == scans.size()
           ? pipeline::readClosureFiles(files, {&dataset.trajectory()}, {0}, scans.size())
-          : pyramid::ClosureInputs{};
+          : pipeline::ClosureInputs{};
   const pipeline::PriorMap prior_map = priorMapFrom(map, map_poses);
   pipeline::MapRun run;
   {
@@ -175,7 +176,7 @@ pipeline::SessionPlacement placementFrom(const py::object& align, std::size_t se
 OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& align,
                                 const py::object& loops, const py::object& priors, double prior_max_gap,
                                 const py::kwargs& kwargs) {
-  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
+  const HbaSettings settings = settingsFromKwargs(kwargs);
   std::vector<const io::Dataset*> sessions;
   for (std::size_t k = 0; k < datasets.size(); ++k) {
     if (!py::isinstance<io::Dataset>(datasets[k])) {
@@ -188,17 +189,17 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
   for (std::size_t k = 0; k < sessions.size(); ++k) names.push_back("datasets[" + std::to_string(k) + "]");
   const pipeline::SessionScans session_scans(sessions, names);
   const io::ConcatenatedScanSource& scans = session_scans.all();
-  pyramid::ClosureInputs closures =
+  pipeline::ClosureInputs closures =
       pipeline::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
                                  session_scans.trajectories(), scans.starts(), scans.size());
   const pipeline::SessionPlacement how = placementFrom(align, sessions.size());
-  pyramid::HbaResult result;
+  pipeline::HbaResult result;
   pipeline::PlacedSessions placed;
   {
     const py::gil_scoped_release release;
     placed = pipeline::placeSessions(session_scans.inputs(), how, settings.scan_voxel);
     const std::vector<Pose> initial = pipeline::sessionsInOneFrame(session_scans.inputs(), placed, closures);
-    result = pyramid::runHierarchicalBa(scans, initial, settings, closures);
+    result = pipeline::runHierarchicalBa(scans, initial, settings, closures);
   }
   nlohmann::json report = libraryReport(result.report, settings);
   report["sessions"] = nlohmann::json::array();
@@ -223,8 +224,8 @@ Returns an hba.Result: .poses in the map's frame, .report with 'map' (the
 placement and the refinement against the map).)";
 
 py::dict settingsDict(const py::kwargs& kwargs) {
-  const pyramid::HbaSettings settings = settingsFromKwargs(kwargs);
-  nlohmann::json out = pyramid::settingsToJson(settings);
+  const HbaSettings settings = settingsFromKwargs(kwargs);
+  nlohmann::json out = settings::settingsToJson(settings);
   out["threads"] = settings.threads;
   return py::dict(toPython(out));
 }

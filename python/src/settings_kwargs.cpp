@@ -8,8 +8,8 @@
 #include <string>
 
 #include "hba/core/error.hpp"
-#include "hba/pyramid/setting_table.hpp"
-#include "hba/pyramid/settings_file.hpp"
+#include "hba/settings/setting_table.hpp"
+#include "hba/settings/settings_file.hpp"
 
 namespace py = pybind11;
 
@@ -21,8 +21,8 @@ const char* const kSource = "hba.optimize";
 // The setting a keyword names ("window", an alias such as "scan_voxel", or
 // "local.voxel_size" inside a section's dict); null for an unknown name,
 // which the settings reader refuses with a "did you mean".
-const pyramid::Setting* settingNamed(const std::string& name) {
-  for (const pyramid::Setting& s : pyramid::settingTable()) {
+const settings::Setting* settingNamed(const std::string& name) {
+  for (const settings::Setting& s : settings::settingTable()) {
     if (s.key == name) return &s;
     for (const std::string& alias : s.aliases) {
       if (alias == name) return &s;
@@ -32,9 +32,9 @@ const pyramid::Setting* settingNamed(const std::string& name) {
 }
 
 [[noreturn]] void refuse(const std::string& name, const std::string& problem) {
-  const pyramid::Setting* setting = settingNamed(name);
+  const settings::Setting* setting = settingNamed(name);
   throw Error(std::string(kSource) + ": setting '" + name + "' " + problem +
-              (setting ? "; it takes " + pyramid::rangeText(*setting) : std::string()));
+              (setting ? "; it takes " + settings::rangeText(*setting) : std::string()));
 }
 
 std::string reprOf(const py::handle& value) { return py::repr(value); }
@@ -60,10 +60,10 @@ int threadCount(const py::handle& value) {
   std::optional<long long> number;
   if (!py::isinstance<py::bool_>(value) && PyIndex_Check(value.ptr())) number = asLongLong(value);
   // hba -j's limit.
-  if (!number || *number < 0 || *number > pyramid::kMostThreads) {
+  if (!number || *number < 0 || *number > kMostThreads) {
     throw Error(std::string(kSource) +
                 ": threads must be an integer >= 0 (0 = as many as allowed) and at most " +
-                std::to_string(pyramid::kMostThreads) + " (as hba -j), got " + reprOf(value));
+                std::to_string(kMostThreads) + " (as hba -j), got " + reprOf(value));
   }
   return static_cast<int>(*number);
 }
@@ -83,10 +83,10 @@ nlohmann::json settingValue(const py::handle& value, const std::string& name) {
   if (py::isinstance<py::str>(value)) {
     // YAML would read the text "10" as a number: a string is a name, for the
     // settings that take one.
-    const pyramid::Setting* setting = settingNamed(name);
-    if (setting && setting->type != pyramid::SettingType::Choice) {
+    const settings::Setting* setting = settingNamed(name);
+    if (setting && setting->type != settings::SettingType::Choice) {
       refuse(name, "is the string " + reprOf(value) + ", not a " +
-                       (setting->type == pyramid::SettingType::Switch ? "bool" : "number"));
+                       (setting->type == settings::SettingType::Switch ? "bool" : "number"));
     }
     return value.cast<std::string>();
   }
@@ -105,8 +105,8 @@ nlohmann::json settingValue(const py::handle& value, const std::string& name) {
 
 }  // namespace
 
-pyramid::HbaSettings settingsFromKwargs(const py::kwargs& kwargs) {
-  pyramid::HbaSettings settings;
+HbaSettings settingsFromKwargs(const py::kwargs& kwargs) {
+  HbaSettings settings;
   nlohmann::json given = nlohmann::json::object();
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key);
@@ -116,10 +116,10 @@ pyramid::HbaSettings settingsFromKwargs(const py::kwargs& kwargs) {
     }
     given[name] = settingValue(value, name);
   }
-  pyramid::applySettingsYaml(given.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kSource,
-                             settings);
+  settings::applySettingsYaml(given.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kSource,
+                              settings);
   try {
-    pyramid::checkSettings(settings);
+    settings::checkSettings(settings);
   } catch (const Error& e) {
     throw Error(std::string(kSource) + ": " + e.what());
   }

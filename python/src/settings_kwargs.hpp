@@ -5,12 +5,12 @@
 // file, so names, ranges and "did you mean" messages are the CLI's.
 #include <pybind11/pybind11.h>
 
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 
 namespace hba::python {
 
 // HbaSettings() with the keywords applied and checked; `threads` sets
 // HbaSettings::threads (the CLI's -j). Throws hba::Error.
-pyramid::HbaSettings settingsFromKwargs(const pybind11::kwargs& kwargs);
+HbaSettings settingsFromKwargs(const pybind11::kwargs& kwargs);
 
 }  // namespace hba::python

@@ -12,14 +12,14 @@
 
 namespace hba::pipeline {
 
-pyramid::ClosureInputs readClosureFiles(const ClosureFiles& files,
-                                        const std::vector<const Trajectory*>& sessions,
-                                        const std::vector<std::size_t>& starts, std::size_t frames) {
+pipeline::ClosureInputs readClosureFiles(const ClosureFiles& files,
+                                         const std::vector<const Trajectory*>& sessions,
+                                         const std::vector<std::size_t>& starts, std::size_t frames) {
   if (starts.size() < sessions.size()) {
     throw Error(
         fmt::format("closure files: {} sessions but {} session starts", sessions.size(), starts.size()));
   }
-  pyramid::ClosureInputs inputs;
+  pipeline::ClosureInputs inputs;
   if (!files.loops.empty()) {
     for (const io::LoopRecord& record : io::readLoopFile(files.loops, frames)) {
       inputs.loops.push_back({record.from, record.to, record.relative});

@@ -7,19 +7,20 @@
 namespace hba::pipeline {
 
 DatasetRun runWithDeskewPasses(io::Dataset& dataset, const io::ScanSource& scans,
-                               const std::vector<Pose>& input, const pyramid::HbaSettings& settings,
-                               const pyramid::ClosureInputs& closures, int passes, const dist::Group& group) {
+                               const std::vector<Pose>& input, const Plan& plan,
+                               const pipeline::ClosureInputs& closures, int passes,
+                               const dist::Group& group) {
   if (passes < 1) throw ValueError("deskew passes: " + std::to_string(passes) + " (at least 1)");
   DatasetRun run;
-  run.result = pyramid::runHierarchicalBa(scans, input, settings, closures, group);
+  run.result = pipeline::runHierarchicalBa(scans, input, plan, closures, group);
   double seconds_before = 0.0;  // of the earlier passes
   for (int pass = 2; dataset.pointTimes() && pass <= passes; ++pass) {
-    pyramid::HbaReport& report = run.result.report;
+    pipeline::HbaReport& report = run.result.report;
     run.earlier_passes.push_back({report.largest_translation_update, report.seconds_total - seconds_before});
     seconds_before = report.seconds_total;
     spdlog::info("raw sweeps: pass {} of {}, deskewed by the poses of pass {}", pass, passes, pass - 1);
     dataset.deskewBy(run.result.poses);
-    run.result = pyramid::runHierarchicalBa(scans, run.result.poses, settings, closures, group);
+    run.result = pipeline::runHierarchicalBa(scans, run.result.poses, plan, closures, group);
     // The report speaks of the whole run: against the input, in all passes' time.
     const PoseChange total = largestChange(input, run.result.poses);
     run.result.report.largest_translation_update = total.translation_m;

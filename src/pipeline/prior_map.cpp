@@ -74,7 +74,7 @@ PriorMap priorMapFromDataset(io::Dataset dataset, std::vector<Pose> poses, std::
 }
 
 MapRun runInMap(const PriorMap& map, const io::ScanSource& scans, const std::vector<Pose>& poses,
-                const pyramid::HbaSettings& settings, const pyramid::ClosureInputs& closures,
+                const HbaSettings& settings, const pipeline::ClosureInputs& closures,
                 const std::string& session_name) {
   MapRun run;
   const voxel::DownsampledScanSource session(scans, settings.scan_voxel);
@@ -93,9 +93,9 @@ MapRun runInMap(const PriorMap& map, const io::ScanSource& scans, const std::vec
                session_name, a.agreeing, a.verified, a.tried);
   for (const Pose& p : poses) run.placed.push_back(a.world_from_session * p);
   // The one refinement is the one against the map, below.
-  pyramid::HbaSettings alone = settings;
+  HbaSettings alone = settings;
   alone.refine = false;
-  run.result = pyramid::runHierarchicalBa(scans, run.placed, alone, closures);
+  run.result = pipeline::runHierarchicalBa(scans, run.placed, alone, closures);
 
   // Refined against the map: its planes pull the session onto them.
   const std::vector<PointCloud> clouds =

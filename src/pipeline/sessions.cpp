@@ -76,7 +76,7 @@ PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const Se
 }
 
 std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
-                                     pyramid::ClosureInputs& closures) {
+                                     pipeline::ClosureInputs& closures) {
   std::vector<Pose> initial;
   for (std::size_t k = 0; k < sessions.size(); ++k) {
     if (k > 0) closures.session_starts.push_back(initial.size());

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "hba/dist/group.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 #include "io/cloud_store.hpp"
 #include "layer.hpp"
 #include "timed_clouds.hpp"

@@ -7,8 +7,9 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/graph/pose_graph.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/layer_report.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "hba/settings/settings.hpp"
 #include "io/cloud_store.hpp"
 
 namespace hba::pyramid {

@@ -1,7 +1,7 @@
 #pragma once
 #include <vector>
 
-#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pyramid/layer_report.hpp"
 #include "window_summary.hpp"
 
 namespace hba::pyramid {

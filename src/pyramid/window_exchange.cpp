@@ -6,8 +6,8 @@
 #include <string>
 
 #include "dist/bytes.hpp"
+#include "factor_bytes.hpp"
 #include "hba/core/error.hpp"
-#include "shared_outcomes.hpp"
 
 namespace hba::pyramid {
 namespace {

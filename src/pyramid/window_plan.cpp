@@ -1,6 +1,7 @@
 #include "hba/pyramid/window_plan.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "hba/core/error.hpp"
@@ -74,6 +75,29 @@ int maxLayerCount(std::size_t frames, int window, int stride) {
     ++layers;
   }
   return layers;
+}
+
+int paperLayerCount(std::size_t frames, int window, int stride, int threads) {
+  const double n = std::max(threads, 1);
+  const double N = static_cast<double>(frames);
+  const double s = stride;
+  const double w = window;
+  const double arg = 3.0 * N * N * (s * s * s - s) * n / (w * w * w);
+  int layers = arg > 1.0 ? static_cast<int>(std::floor(0.5 * std::log(arg) / std::log(s))) : 1;
+  return std::clamp(layers, 1, maxLayerCount(frames, window, stride));
+}
+
+int defaultLayerCount(std::size_t frames, const HbaSettings& settings) {
+  constexpr int kPaperThreads = 8;  // Table I of the paper
+  return paperLayerCount(frames, settings.window, settings.stride, kPaperThreads);
+}
+
+int layerCount(std::size_t frames, const HbaSettings& settings) {
+  if (settings.window <= 0 || settings.stride <= 0)
+    throw Error("layerCount: the window is automatic; choose it first (window_size.hpp)");
+  return settings.layers > 0
+             ? std::min(settings.layers, maxLayerCount(frames, settings.window, settings.stride))
+             : defaultLayerCount(frames, settings);
 }
 
 }  // namespace hba::pyramid

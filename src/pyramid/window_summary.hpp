@@ -2,7 +2,7 @@
 #include <cstddef>
 
 #include "hba/ba/window_ba.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 #include "layer.hpp"
 
 namespace hba::pyramid {

@@ -11,7 +11,7 @@ deb=$(ls "$work"/package/hba_*.deb)
 test "$(dpkg-deb -f "$deb" Package)" = hba
 dpkg-deb -x "$deb" "$work/root"
 test -f "$work/root/usr/lib/cmake/hba/hbaConfig.cmake"
-test -f "$work/root/usr/include/hba/pyramid/hierarchical_ba.hpp"
+test -f "$work/root/usr/include/hba/pipeline/hierarchical_ba.hpp"
 test -f "$work/root/usr/share/doc/hba/LICENSE"
 if [ -n "${3:-}" ]; then  # the Python module, when the build has one
   ls "$work"/root/usr/lib/python3/dist-packages/hba.*.so > /dev/null

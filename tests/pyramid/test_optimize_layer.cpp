@@ -8,7 +8,7 @@
 
 #include "bottom_up.hpp"
 #include "hba/core/error.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 #include "keyframe.hpp"
 #include "simulated_sequence.hpp"
 #include "timed_clouds.hpp"
@@ -18,8 +18,8 @@
 namespace hba::pyramid {
 namespace {
 
-const test::Sequence& drive() {
-  static const test::Sequence sequence = test::simulateSequence(test::smallDriveConfig(24));
+const hba::test::Sequence& drive() {
+  static const hba::test::Sequence sequence = hba::test::simulateSequence(hba::test::smallDriveConfig(24));
   return sequence;
 }
 

@@ -7,7 +7,7 @@
 
 #include "dist/bytes.hpp"
 #include "hba/core/error.hpp"
-#include "shared_outcomes.hpp"
+#include "pipeline/shared_outcomes.hpp"
 #include "window_exchange.hpp"
 
 namespace hba::pyramid {

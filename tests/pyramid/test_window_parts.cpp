@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "hand_made_plan.hpp"
-#include "hba/pyramid/settings.hpp"
+#include "hba/settings/settings.hpp"
 #include "keyframe.hpp"
 #include "simulated_sequence.hpp"
 #include "window_run.hpp"
@@ -12,8 +12,8 @@
 namespace hba::pyramid {
 namespace {
 
-const test::Sequence& drive() {
-  static const test::Sequence sequence = test::simulateSequence(test::smallDriveConfig(16));
+const hba::test::Sequence& drive() {
+  static const hba::test::Sequence sequence = hba::test::simulateSequence(hba::test::smallDriveConfig(16));
   return sequence;
 }
 

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "hba/core/error.hpp"
-#include "hba/pyramid/settings.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "hba/settings/settings.hpp"
 
 namespace hba::pyramid {
 namespace {

@@ -3,19 +3,19 @@
 // its outcome written into `report` where the pipeline writes it.
 #include <vector>
 
-#include "hba/pyramid/hierarchical_ba.hpp"
-#include "pyramid/refine_settings.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
 #include "refine/refinement.hpp"
+#include "settings/refine_settings.hpp"
 
 namespace hba::refine {
 
 inline std::vector<Pose> refineAs3Layers(const io::ScanSource& scans, const std::vector<Pose>& initial,
-                                         const std::vector<Pose>& hierarchy,
-                                         const pyramid::HbaSettings& settings, pyramid::HbaReport& report) {
+                                         const std::vector<Pose>& hierarchy, const HbaSettings& settings,
+                                         pipeline::HbaReport& report) {
   HierarchyFacts facts;
   facts.layers = 3;
   RefineOutcome out =
-      refineAndCheck(scans, initial, hierarchy, facts, {}, pyramid::refineSettingsOf(settings));
+      refineAndCheck(scans, initial, hierarchy, facts, {}, settings::refineSettingsOf(settings));
   report.consistency = out.consistency;
   report.refinement = out.refinement;
   report.warnings = out.notes.warnings;

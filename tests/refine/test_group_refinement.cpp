@@ -12,11 +12,10 @@
 #include "simulated_sequence.hpp"
 
 namespace hba::refine {
-using pyramid::HbaReport;
-using pyramid::HbaSettings;
+using pipeline::HbaReport;
 namespace {
 
-using pyramid::test::Sequence;
+using test::Sequence;
 
 // 1.25 laps of a 100 m block: the last 25 m drive over the first.
 const Sequence& lap() {
@@ -27,7 +26,7 @@ const Sequence& lap() {
     config.downsample_voxel = 0.2;
     config.drift.translation = 0.02;
     config.drift.rotation_deg_per_m = 0.02;
-    return pyramid::test::simulateSequence(config);
+    return test::simulateSequence(config);
   }();
   return sequence;
 }

@@ -18,11 +18,10 @@
 #include "simulated_sequence.hpp"
 
 namespace hba::refine {
-using pyramid::HbaReport;
-using pyramid::HbaSettings;
+using pipeline::HbaReport;
 namespace {
 
-using pyramid::test::Sequence;
+using test::Sequence;
 
 const Sequence& simulated() {
   static const Sequence sequence = [] {
@@ -31,7 +30,7 @@ const Sequence& simulated() {
     config.trajectory.frames = 60;
     config.sensor = sim::sensorPreset(sim::SensorModel::Livox);
     config.drift.translation = 0.02;
-    return pyramid::test::simulateSequence(config);
+    return test::simulateSequence(config);
   }();
   return sequence;
 }

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "hba/core/pose.hpp"  // Trajectory
-#include "hba/pyramid/closure_inputs.hpp"
+#include "hba/pipeline/closure_inputs.hpp"
 
 namespace hba::pipeline {
 
@@ -24,8 +24,8 @@ struct ClosureFiles {
 // its first frame `starts[k]` (an entry beyond the sessions, the frame
 // count, is ignored), and each prior goes, by its stamp, to the
 // session whose scans it falls among. Logs what it read.
-pyramid::ClosureInputs readClosureFiles(const ClosureFiles& files,
-                                        const std::vector<const Trajectory*>& sessions,
-                                        const std::vector<std::size_t>& starts, std::size_t frames);
+pipeline::ClosureInputs readClosureFiles(const ClosureFiles& files,
+                                         const std::vector<const Trajectory*>& sessions,
+                                         const std::vector<std::size_t>& starts, std::size_t frames);
 
 }  // namespace hba::pipeline

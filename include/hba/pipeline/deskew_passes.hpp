@@ -12,7 +12,7 @@
 #include "hba/dist/group.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
 
 namespace hba::pipeline {
 
@@ -24,7 +24,7 @@ struct DeskewPass {
 struct DatasetRun {
   // The last pass's result; its report speaks of the whole run: the largest
   // update against the input, the time of every pass.
-  pyramid::HbaResult result;
+  pipeline::HbaResult result;
   std::vector<DeskewPass> earlier_passes;  // empty: one pass
 };
 
@@ -32,9 +32,10 @@ struct DatasetRun {
 // io::DatasetScanSource of it, so that deskewBy reaches them) from
 // `initial`, `passes` times in all when the dataset has point times, else
 // once. `dataset` is left deskewed by the last pass's start poses.
+// Every pass runs by `plan` (planRun over `scans`, before the first).
 DatasetRun runWithDeskewPasses(io::Dataset& dataset, const io::ScanSource& scans,
-                               const std::vector<Pose>& initial, const pyramid::HbaSettings& settings,
-                               const pyramid::ClosureInputs& closures, int passes,
+                               const std::vector<Pose>& initial, const Plan& plan,
+                               const pipeline::ClosureInputs& closures, int passes,
                                const dist::Group& group = dist::singleProcess());
 
 // report.json's "deskew": the point times read and the passes made; null

@@ -14,7 +14,7 @@
 #include "hba/core/point_cloud.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
-#include "hba/pyramid/hierarchical_ba.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
 
 namespace hba::pipeline {
 
@@ -44,7 +44,7 @@ struct MapRun {
   // The method's result (hierarchy without its own refinement, then refined
   // against the map), poses in the map's point coordinates (inMapFrame
   // turns them into the map's frame).
-  pyramid::HbaResult result;
+  pipeline::HbaResult result;
   std::size_t map_points_near = 0;  // of the map, near the session: what it was refined against
   double plane_rms_before_m = 0.0;
   double plane_rms_after_m = 0.0;
@@ -54,7 +54,7 @@ struct MapRun {
 // runs the method on it there, and refines it against the map. Throws
 // hba::Error, naming the session and the map, when it cannot be placed.
 MapRun runInMap(const PriorMap& map, const io::ScanSource& scans, const std::vector<Pose>& poses,
-                const pyramid::HbaSettings& settings, const pyramid::ClosureInputs& closures,
+                const HbaSettings& settings, const pipeline::ClosureInputs& closures,
                 const std::string& session_name);
 
 // Poses in the map's point coordinates moved into the map's own frame.

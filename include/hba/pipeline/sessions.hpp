@@ -15,7 +15,7 @@
 #include "hba/core/pose.hpp"
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
-#include "hba/pyramid/closure_inputs.hpp"
+#include "hba/pipeline/closure_inputs.hpp"
 
 namespace hba::pipeline {
 
@@ -65,7 +65,7 @@ PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const Se
 // Every session's poses moved into the first one's frame, one session after
 // the other; `closures.session_starts` gets each later session's first frame.
 std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
-                                     pyramid::ClosureInputs& closures);
+                                     pipeline::ClosureInputs& closures);
 
 // A registration's search for report.json (its places, pairs and verdicts);
 // each pair is logged at debug level under `label`.

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "hba/settings/settings.hpp"
+
 namespace hba::pyramid {
 
 struct Window {
@@ -39,5 +41,16 @@ std::size_t planFrames(const std::vector<Window>& windows);
 // window (the top layer then holds at least `window` frames, or the whole
 // sequence if it is shorter). Layer i+1 has one frame per window of layer i.
 int maxLayerCount(std::size_t frames, int window, int stride);
+
+// The paper's optimal layer count l* = floor(1/2 log_s(3 N^2 (s^3 - s) n / w^3)),
+// clamped to [1, the number of layers the sequence can hold].
+int paperLayerCount(std::size_t frames, int window, int stride, int threads);
+// The layer count hba uses when settings.layers == 0: the paper's formula
+// with its own n = 8 threads, whatever this machine has, so that the same
+// command builds the same pyramid (and gives the same poses) everywhere.
+int defaultLayerCount(std::size_t frames, const HbaSettings& settings);
+// The layers a run of `settings` over `frames` builds: settings.layers, at
+// most what the sequence holds, or (0) the default rule.
+int layerCount(std::size_t frames, const HbaSettings& settings);
 
 }  // namespace hba::pyramid

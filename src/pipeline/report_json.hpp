@@ -1,0 +1,17 @@
+#pragma once
+// The run report as JSON (the body of report.json written by `hba optimize`).
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+#include "hba/pipeline/hierarchical_ba.hpp"
+#include "hba/pipeline/window_errors.hpp"
+
+namespace hba::pipeline {
+
+nlohmann::json reportToJson(const HbaReport& report);
+
+// report.json's `window_errors`: one object per layer and round.
+nlohmann::json windowErrorsToJson(const std::vector<LayerWindowErrors>& rows);
+
+}  // namespace hba::pipeline
