@@ -38,7 +38,7 @@ void run(const Args& args) {
   }
   // Required unless --print-config (CLI11 cannot say "unless").
   if (args.data.dir.empty()) throw CLI::RequiredError("DIR");
-  if (args.output.empty()) throw CLI::RequiredError("--output");
+  if (args.output.empty() && !args.print_plan) throw CLI::RequiredError("--output");
   // -j (a tbb::global_control in main), passed down explicitly: the pose
   // graph's Ceres solve runs on it too.
   settings.threads = pipeline::resolvedThreadCount(settings);
@@ -49,6 +49,8 @@ void run(const Args& args) {
   // stage runs where: kStages, src/pipeline/hierarchical_ba.cpp); the first
   // alone checks the conventions and writes the outputs.
   const dist::Group& group = processGroup();
+  if (args.print_plan && (!args.map.empty() || !args.fixed.empty() || !args.more_sessions.empty()))
+    throw CLI::ValidationError("--print-plan", "plans one dataset: not with --map, --fixed or more sessions");
   if (!args.map.empty() || !args.fixed.empty()) {
     if (group.size() > 1)
       throw Error("--map and --fixed do not run under mpirun yet: run them in one process");
@@ -60,9 +62,9 @@ void run(const Args& args) {
     return runSessions(args, settings);
   }
 
-  refuseProtectedFolder(args.output);
+  if (!args.print_plan) refuseProtectedFolder(args.output);
   io::Dataset dataset = args.data.open();
-  refuseOutputInsideInput(args.output, dataset);
+  if (!args.print_plan) refuseOutputInsideInput(args.output, dataset);
   const pipeline::ClosureInputs closures = readClosureInputs(args, {&dataset}, {0}, dataset.size());
   const std::optional<Trajectory> gt = readGroundTruth(args, dataset, dataset.size());
   // One source of the scans for the memory estimate, the convention check,
@@ -71,6 +73,10 @@ void run(const Args& args) {
   // The run worked out once, from the settings and a few scans; one that
   // cannot fit is refused before any output or heavy work.
   const pipeline::Plan plan = pipeline::planRun(scans, settings);
+  if (args.print_plan) {
+    std::cout << pipeline::planToJson(plan).dump(2) << "\n";
+    return;
+  }
   const nlohmann::json memory = checkMemory(plan, args.no_memory_check);
   // Everything is written beside OUT and moved into place at the end: no
   // half-written folder, no earlier run's files beside this run's.
@@ -151,6 +157,10 @@ void registerOptimizeCommand(CLI::App& app) {
   command->add_flag("--print-config", args->print_config,
                     "Print every setting (defaults, --config, flags) as a commented YAML file for "
                     "--config, and stop");
+  command->add_flag("--print-plan", args->print_plan,
+                    "Print what the run would do, as JSON (windows, final voxel, layers, threads, the "
+                    "memory it needs; from the settings and a few scans read), and stop: nothing is "
+                    "optimized or written");
   command->add_flag("--force", args->force, "Replace a non-empty output folder (as a whole, at the end)");
   command
       ->add_option("--gt", args->ground_truth,

@@ -11,6 +11,7 @@
 #include "hba/pipeline/memory_estimate.hpp"
 #include "hba/pipeline/window_size.hpp"
 #include "hba/pyramid/window_plan.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace hba::cli::optimize {
 namespace {
@@ -68,15 +69,7 @@ std::string fittingChange(std::size_t frames, const pipeline::ScanDensity& densi
 
 nlohmann::json toJson(const MemoryEstimate& estimate, const pipeline::ScanDensity& density,
                       const std::optional<AvailableMemory>& available) {
-  nlohmann::json stages = nlohmann::json::array();
-  for (const pipeline::StageMemory& s : estimate.stages) {
-    stages.push_back({{"stage", pipeline::stageName(s.stage)}, {"mib", mib(s.bytes)}, {"detail", s.detail}});
-  }
-  nlohmann::json json = {{"peak_mib", mib(estimate.peakBytes())},
-                         {"peak_stage", pipeline::stageName(estimate.largest().stage)},
-                         {"stages", stages},
-                         {"scans_sampled", density.sampled},
-                         {"points_per_scan", density.points}};
+  nlohmann::json json = pipeline::memoryEstimateJson(estimate, density);
   if (available) {
     json["available_mib"] = mib(static_cast<double>(available->bytes));
     json["available_from"] = available->source;

@@ -35,6 +35,7 @@ struct Args {
   bool no_memory_check = false;
   bool force = false;
   bool print_config = false;
+  bool print_plan = false;  // the run's plan as JSON, and stop
   bool every_scan = false;  // a recording's every scan's pose, keyframes or not
   int deskew_passes = 2;    // raw sweeps: runs, each deskewing by the poses the last one found
 };

@@ -64,6 +64,22 @@ pipeline::ClosureInputs closureInputs(const py::object& scans, const std::vector
   return pipeline::readClosureFiles(files, {&stamped}, {0}, initial.size());
 }
 
+// hba.plan: what hba.optimize would do with these scans and keywords, as
+// `hba optimize --print-plan` prints it.
+py::dict plan(const py::object& scans, const py::kwargs& kwargs) {
+  const HbaSettings settings = settingsFromKwargs(kwargs);
+  std::optional<io::Dataset> dataset;
+  if (py::isinstance<io::Dataset>(scans)) dataset.emplace(scans.cast<const io::Dataset&>());
+  const std::unique_ptr<io::ScanSource> source =
+      dataset ? std::make_unique<io::DatasetScanSource>(*dataset) : scanSourceFrom(scans);
+  nlohmann::json json;
+  {
+    const py::gil_scoped_release release;
+    json = pipeline::planToJson(pipeline::planRun(*source, settings));
+  }
+  return py::dict(toPython(json));
+}
+
 OptimizeResult optimize(const py::object& scans, const py::object& poses, const py::object& loops,
                         const py::object& priors, double prior_max_gap, int deskew_passes,
                         const py::kwargs& kwargs) {
@@ -286,6 +302,11 @@ void bindOptimize(py::module_& m) {
   m.def("optimize_sessions", &optimizeSessions, py::arg("datasets"), py::kw_only(),
         py::arg("align") = "register", py::arg("loops") = py::none(), py::arg("priors") = py::none(),
         py::arg("prior_max_gap") = pipeline::ClosureFiles{}.prior_max_gap_s, kOptimizeSessionsDoc);
+  m.def("plan", &plan, py::arg("scans"),
+        "What hba.optimize(scans, **settings) would do, worked out from the settings and a few scans "
+        "read, as a dict: frames, windows (automatic: from the scans' density), final_voxel, layers, "
+        "threads and memory_estimate, as `hba optimize DIR --print-plan` prints them; raises hba.Error "
+        "as hba.optimize does.");
   m.def("settings", &settingsDict,
         "Every setting hba.optimize would run with for these keywords (defaults for the rest), as "
         "the dict report['settings'] holds, plus 'threads'; raises hba.Error as hba.optimize does.");

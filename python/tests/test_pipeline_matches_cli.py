@@ -13,7 +13,7 @@ import unittest
 import numpy as np
 
 import hba
-from support import main, run_cli
+from support import HBA_CLI, main, run_cli
 
 BAG_WRITER = os.environ.get("HBA_ROS1_BAG_WRITER", "")
 
@@ -36,6 +36,41 @@ class TempCase(unittest.TestCase):
     @classmethod
     def path(cls, *names):
         return os.path.join(cls.tmp.name, *names)
+
+
+class PlanMatchesCli(TempCase):
+    """The run's plan, worked out before it (windows, final voxel, layers, threads, memory)."""
+
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.data = cls.path("sim")
+        run_cli("simulate", "--frames", 40, "--seed", 3, "-o", cls.data)
+
+    def cli_plan(self, *flags):
+        out = subprocess.run([HBA_CLI, "-j", "1", "optimize", self.data, "--print-plan", *map(str, flags)], check=True,
+                             stdout=subprocess.PIPE, text=True).stdout
+        return json.loads(out)
+
+    def test_the_plan_is_the_clis(self):
+        plan = hba.plan(hba.open_dataset(self.data), threads=1)
+        self.assertEqual(plan, self.cli_plan())
+        self.assertEqual(plan["frames"], 40)
+        self.assertEqual(plan["threads"], 1)
+        self.assertTrue(plan["windows"]["automatic"])
+        # The run does what the plan said.
+        report = hba.optimize(hba.open_dataset(self.data), threads=1).report
+        self.assertEqual(report["windows"], plan["windows"])
+        self.assertEqual(report["final_voxel"], plan["final_voxel"])
+        self.assertEqual(report["layers"], plan["layers"])
+
+    def test_settings_change_the_plan_alike(self):
+        plan = hba.plan(hba.open_dataset(self.data), threads=1, window=12, layers=2)
+        self.assertEqual(plan, self.cli_plan("--window", 12, "--layers", 2))
+        self.assertEqual(plan["windows"]["window"], 12)
+        self.assertEqual(plan["layers"], 2)
+        with self.assertRaisesRegex(hba.Error, "stride"):
+            hba.plan(hba.open_dataset(self.data), window=10, stride=10)
 
 
 class DeskewPassesMatchCli(TempCase):

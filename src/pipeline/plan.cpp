@@ -9,6 +9,7 @@
 #include "hba/core/error.hpp"
 #include "hba/pyramid/window_plan.hpp"
 #include "hba/settings/settings_file.hpp"
+#include "report_json.hpp"
 
 namespace hba::pipeline {
 
@@ -17,6 +18,15 @@ int resolvedThreadCount(const HbaSettings& settings) {
   const std::size_t allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
   return static_cast<int>(
       std::max<std::size_t>(1, std::min<std::size_t>(allowed, tbb::info::default_concurrency())));
+}
+
+nlohmann::json planToJson(const Plan& plan) {
+  return {{"frames", plan.frames},
+          {"windows", windowSizeJson(plan.windows)},
+          {"final_voxel", finalVoxelJson(plan.final_voxel)},
+          {"layers", plan.layers},
+          {"threads", plan.settings.threads},
+          {"memory_estimate", memoryEstimateJson(plan.memory, plan.density)}};
 }
 
 Plan planRun(const io::ScanSource& scans, const HbaSettings& settings) {

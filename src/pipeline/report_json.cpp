@@ -136,6 +136,33 @@ nlohmann::json consistencyJson(const ConsistencyReport& c) {
 
 }  // namespace
 
+nlohmann::json windowSizeJson(const WindowSize& w) {
+  return {{"window", w.window},
+          {"stride", w.stride},
+          {"automatic", w.automatic},
+          {"points_per_scan", w.points_per_scan}};
+}
+
+nlohmann::json finalVoxelJson(const FinalVoxel& v) {
+  return {{"setting_m", v.setting},
+          {"chosen_m", v.chosen},
+          {"coarsened", v.coarsened},
+          {"scan_points_at_setting", v.scan_points_at_setting},
+          {"scan_points_at_chosen", v.scan_points_at_chosen}};
+}
+
+nlohmann::json memoryEstimateJson(const MemoryEstimate& estimate, const ScanDensity& density) {
+  constexpr double kMiB = 1024.0 * 1024.0;
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageMemory& s : estimate.stages)
+    stages.push_back({{"stage", stageName(s.stage)}, {"mib", s.bytes / kMiB}, {"detail", s.detail}});
+  return {{"peak_mib", estimate.peakBytes() / kMiB},
+          {"peak_stage", stageName(estimate.largest().stage)},
+          {"stages", stages},
+          {"scans_sampled", density.sampled},
+          {"points_per_scan", density.points}};
+}
+
 nlohmann::json reportToJson(const HbaReport& r) {
   return {{"frames", r.frames},
           {"largest_update",
@@ -144,17 +171,8 @@ nlohmann::json reportToJson(const HbaReport& r) {
           {"refinement", refinementJson(r.refinement)},
           {"consistency", consistencyJson(r.consistency)},
           {"layers", r.layers},
-          {"windows",
-           {{"window", r.windows.window},
-            {"stride", r.windows.stride},
-            {"automatic", r.windows.automatic},
-            {"points_per_scan", r.windows.points_per_scan}}},
-          {"final_voxel",
-           {{"setting_m", r.final_voxel.setting},
-            {"chosen_m", r.final_voxel.chosen},
-            {"coarsened", r.final_voxel.coarsened},
-            {"scan_points_at_setting", r.final_voxel.scan_points_at_setting},
-            {"scan_points_at_chosen", r.final_voxel.scan_points_at_chosen}}},
+          {"windows", windowSizeJson(r.windows)},
+          {"final_voxel", finalVoxelJson(r.final_voxel)},
           {"threads", r.threads},
           {"processes", r.processes},
           // "converged: false" read as a failure after the default single pass.

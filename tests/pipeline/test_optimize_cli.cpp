@@ -220,6 +220,30 @@ TEST_F(OptimizeSimulated, DirectAssignAndSingleBaModesRun) {
   }
 }
 
+// --print-plan says what the run would do and stops: no -o, nothing written,
+// and the run then does what it said.
+TEST_F(OptimizeSimulated, PrintsItsPlanAndThenRunsIt) {
+  run(hba() + " -q simulate --frames 40 --seed 2 -o " + data().string());
+  const auto before = std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator());
+  const test::CommandResult printed =
+      test::runCommand(hba() + " -q -j 2 optimize " + data().string() + " --window 8 --print-plan");
+  ASSERT_EQ(printed.exit_code, 0) << printed.output;
+  const nlohmann::json plan = nlohmann::json::parse(printed.output);
+  EXPECT_EQ(plan.at("frames"), 40);
+  EXPECT_EQ(plan.at("threads"), 2);
+  EXPECT_EQ(plan.at("windows").at("window"), 8);
+  EXPECT_EQ(plan.at("windows").at("stride"), 4);
+  EXPECT_GT(plan.at("memory_estimate").at("peak_mib").get<double>(), 0.0);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), before);
+
+  run(hba() + " -q -j 2 optimize " + data().string() + " --window 8 --no-render -o " + out().string());
+  const nlohmann::json report = test::readJson(out() / "report.json");
+  EXPECT_EQ(report.at("windows"), plan.at("windows"));
+  EXPECT_EQ(report.at("final_voxel"), plan.at("final_voxel"));
+  EXPECT_EQ(report.at("layers"), plan.at("layers"));
+  EXPECT_EQ(report.at("threads"), plan.at("threads"));
+}
+
 TEST_F(OptimizeSimulated, RefusesToWriteIntoTheInput) {
   run(hba() + " -q simulate --frames 12 --seed 8 -o " + data().string());
   const test::CommandResult result =

@@ -6,6 +6,8 @@
 // check and the report all take it from here, by value.
 #include <cstddef>
 
+#include <nlohmann/json.hpp>
+
 #include "hba/io/scan_source.hpp"
 #include "hba/pipeline/final_voxel.hpp"
 #include "hba/pipeline/memory_estimate.hpp"
@@ -30,6 +32,12 @@ struct Plan {
 // density; a few of them are read). Throws hba::Error where a setting is
 // out of its range or the thread count is.
 Plan planRun(const io::ScanSource& scans, const HbaSettings& settings);
+
+// The plan as `hba optimize --print-plan` and `hba.plan` give it: frames,
+// windows, final_voxel, layers and threads as report.json says them, and
+// the memory estimate (report.json's memory_estimate, without the memory
+// available).
+nlohmann::json planToJson(const Plan& plan);
 
 // The threads a run of `settings` uses: settings.threads, or (0) as many as
 // this process allows (hba -j, a tbb::global_control, or the machine's cores).
