@@ -46,7 +46,7 @@ void run(const Args& args) {
   // refused before any work, naming it.
   temporaryFolder();
   // Under mpirun every process runs the method, sharing its work (which
-  // stage runs where: kStages, src/pipeline/hierarchical_ba.cpp); the first
+  // stage runs where: runStages, src/pipeline/hierarchical_ba.cpp); the first
   // alone checks the conventions and writes the outputs.
   const dist::Group& group = processGroup();
   if (args.print_plan && (!args.map.empty() || !args.fixed.empty() || !args.more_sessions.empty()))

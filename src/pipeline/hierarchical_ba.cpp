@@ -1,5 +1,6 @@
-// The whole method as a list of stages (docs/architecture.md): closures,
-// the paper's pyramid, the refinement, the anchoring on priors.
+// The whole method as its stages (docs/architecture.md): closures, the
+// paper's pyramid, the refinement, the anchoring on priors; the report
+// assembled from what each found.
 #include "hba/pipeline/hierarchical_ba.hpp"
 
 #include <spdlog/spdlog.h>
@@ -17,30 +18,7 @@
 
 namespace hba::pipeline {
 
-void logStageTimes(Run& run);  // stage_times.cpp
-
 namespace {
-
-// Where a stage runs in a group of processes. The refinement runs in every
-// process, each with its share of the planes; the stages after it are the
-// first process's, which sends the others its poses at the end.
-enum class Where { EveryProcess, FirstProcess };
-
-struct Stage {
-  const char* name;
-  void (*run)(Run&);
-  Where where;
-};
-
-// clang-format off
-constexpr Stage kStages[] = {
-    {"closures",    closeLoops,     Where::EveryProcess},
-    {"pyramid",     buildPyramid,   Where::EveryProcess},
-    {"refinement",  refineMap,      Where::EveryProcess},
-    {"anchoring",   anchorOnPriors, Where::FirstProcess},
-    {"stage times", logStageTimes,  Where::FirstProcess},
-};
-// clang-format on
 
 void validate(const io::ScanSource& scans, const std::vector<Pose>& initial, const ClosureInputs& closures) {
   if (initial.size() != scans.size()) {
@@ -85,34 +63,82 @@ void logPlan(const Plan& plan) {
   }
 }
 
-// What the first process reports once every stage ran: the final move,
-// and the input back where no plane was found at all.
-void finish(Run& run) {
-  HbaReport& report = run.report;
-  const PoseChange total = largestChange(run.input, run.poses);
+// What each stage found, and how long each took, in the order they ran.
+struct Outcomes {
+  ClosedStart start;
+  PyramidOutcome pyramid;
+  RefinedMap refined;
+  Anchoring anchored;
+  std::vector<std::pair<std::string, double>> stage_seconds;
+  std::vector<Pose> poses;  // the final ones, near start.shift
+};
+
+template <typename Stage>
+auto timed(const char* name, Outcomes& outcomes, Stage&& stage) {
+  const auto start = Clock::now();
+  auto outcome = stage();
+  outcomes.stage_seconds.emplace_back(name, secondsSince(start));
+  return outcome;
+}
+
+// Which process runs what: the closures, the pyramid and the refinement run
+// in every process of a group, each with its share (a window, a candidate,
+// a plane); the anchoring and the last word on the poses are the first
+// process's, which sends the others its poses at the end.
+Outcomes runStages(const RunInput& in) {
+  Outcomes o;
+  o.start = timed("closures", o, [&] { return closeLoops(in); });
+  o.pyramid = timed("pyramid", o, [&] { return buildPyramid(in, o.start); });
+  o.refined = timed("refinement", o, [&] { return refineMap(in, o.start, o.pyramid); });
+  o.poses = o.refined.outcome.poses;
+  if (in.group.root()) {
+    o.anchored = timed("anchoring", o, [&] { return anchorOnPriors(in, o.start, o.refined); });
+    if (o.anchored.ran) o.poses = o.anchored.poses;
+    logStageTimes(o.stage_seconds);
+  }
+  return o;
+}
+
+// The report's parts the stages found.
+void assembleReport(const Outcomes& o, HbaReport& report) {
+  report.closure = o.start.closed.report;
+  report.closure.anchoring_move_m = o.anchored.move_m;
+  report.closure.anchoring_priors_dropped = o.anchored.priors_dropped;
+  const PyramidOutcome& p = o.pyramid;
+  report.layer_reports = p.layers;
+  report.iterations = p.iterations;
+  report.window_records = p.windows;
+  report.rounds_stopped = p.rounds_stopped;
+  report.rounds_reason = p.rounds_reason;
+  const refine::RefineOutcome& r = o.refined.outcome;
+  report.consistency = r.consistency;
+  report.refinement = r.refinement;
+  report.warnings.insert(report.warnings.end(), r.notes.warnings.begin(), r.notes.warnings.end());
+  report.seconds_read = p.seconds_read;
+  report.seconds_downsample = p.seconds_downsample;
+  report.seconds_voxelize = p.seconds_voxelize + r.notes.seconds_voxelize;
+  report.seconds_solve = p.seconds_solve + r.notes.seconds_solve;
+  report.seconds_keyframes = p.seconds_keyframes;
+  report.seconds_graph = p.seconds_graph;
+}
+
+// What the first process says once every stage ran: the final move, and
+// the input back where no plane was found at all.
+void finish(const Outcomes& o, std::vector<Pose>& poses, HbaReport& report) {
+  const PoseChange total = largestChange(o.start.input, poses);
   report.largest_translation_update = total.translation_m;
   report.largest_rotation_update = total.rotation_deg;
   spdlog::info("largest pose update against the input: {:.4f} m, {:.4f} deg", total.translation_m,
                total.rotation_deg);
   // A converged input is a fixed point: say so, as the reason nothing moved.
-  if (total.translation_m == 0.0 && total.rotation_deg == 0.0 && run.converged_at_start) {
+  if (total.translation_m == 0.0 && total.rotation_deg == 0.0 &&
+      o.refined.outcome.refinement.converged_at_start) {
     spdlog::info("the input is converged: its poses are returned unchanged");
   }
-  if (run.planes_found == 0) {
+  if (o.pyramid.planes_found == 0) {
     warn(report, "no plane features found: poses returned unchanged");
-    run.poses = run.input;
+    poses = o.start.input;
   }
-}
-
-void runStages(Run& run) {
-  for (const Stage& stage : kStages) {
-    if (stage.where == Where::FirstProcess && !run.group.root()) continue;
-    const auto start = Clock::now();
-    stage.run(run);
-    run.stage_seconds.emplace_back(stage.name, secondsSince(start));
-  }
-  if (run.group.root()) finish(run);
-  if (run.group.size() > 1) run.poses = posesFromRoot(run.group, run.poses);
 }
 
 }  // namespace
@@ -160,23 +186,26 @@ HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>
   // refinement read them all again, and the result hands them on.
   const auto layer_one =
       std::make_shared<const pyramid::TimedClouds>(scans, resolved.scan_voxel, /*keep=*/true);
-  Run run(*layer_one, resolved, group);
-  run.report = std::move(report);
-  run.layers = run.report.layers;
-  run.origin = initial.front().t;
-  run.input = translated(initial, -run.origin);
-  run.closures = closures;
-  for (auto& prior : run.closures.priors) prior.position -= run.origin;
+  RunInput in(*layer_one, resolved, group);
+  in.layers = report.layers;
+  const Vec3 origin = initial.front().t;
+  in.input = translated(initial, -origin);
+  in.closures = closures;
+  for (auto& prior : in.closures.priors) prior.position -= origin;
   // Every parallel part runs on the resolved threads: TBB's within the
   // arena, Ceres's through the pose graph's settings.
   tbb::task_arena arena(resolved.threads);
-  arena.execute([&] { runStages(run); });
-  result.report = std::move(run.report);
-  result.report.seconds_total = secondsSince(start);
-  const Vec3 back = run.origin + run.shift;
-  result.poses = translated(run.poses, back);
-  result.hierarchy_poses = translated(run.hierarchy, back);
-  for (WindowRecord& record : result.report.window_records) {
+  Outcomes outcomes;
+  arena.execute([&] { outcomes = runStages(in); });
+  assembleReport(outcomes, report);
+  std::vector<Pose> poses = std::move(outcomes.poses);
+  if (group.root()) finish(outcomes, poses, report);
+  if (group.size() > 1) poses = posesFromRoot(group, poses);
+  report.seconds_total = secondsSince(start);
+  const Vec3 back = origin + outcomes.start.shift;
+  result.poses = translated(poses, back);
+  result.hierarchy_poses = translated(outcomes.pyramid.poses, back);
+  for (WindowRecord& record : report.window_records) {
     record.start = translated(record.start, back);
     record.optimized = translated(record.optimized, back);
   }

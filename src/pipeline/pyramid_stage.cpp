@@ -43,7 +43,8 @@ void logLayer(const LayerReport& r) {
 }
 
 // Each window of `layer` as it began and as its BA left it.
-void recordWindows(const pyramid::Layer& layer, const pyramid::LayerOutcome& outcome, HbaReport& report) {
+void recordWindows(const pyramid::Layer& layer, const pyramid::LayerOutcome& outcome,
+                   std::vector<WindowRecord>& records) {
   for (const pyramid::WindowOutcome& window : outcome.windows) {
     WindowRecord record;
     record.iteration = outcome.report.iteration;
@@ -54,7 +55,7 @@ void recordWindows(const pyramid::Layer& layer, const pyramid::LayerOutcome& out
     record.nodes.assign(layer.nodes.begin() + first, layer.nodes.begin() + end);
     record.start.assign(layer.poses.begin() + first, layer.poses.begin() + end);
     record.optimized = window.optimized;
-    report.window_records.push_back(std::move(record));
+    records.push_back(std::move(record));
   }
 }
 
@@ -65,7 +66,7 @@ std::pair<double, double> splitWall(double wall, double first, double second) {
   return {wall * first / sum, wall * second / sum};
 }
 
-void addStageTimes(const pyramid::StageTimes& times, HbaReport& report) {
+void addStageTimes(const pyramid::StageTimes& times, PyramidOutcome& report) {
   const auto [read, downsample] = splitWall(times.load, times.load_parts.read, times.load_parts.downsample);
   const auto [voxelize, solve] = splitWall(times.ba, times.associate, times.solve);
   report.seconds_read += read;
@@ -75,71 +76,75 @@ void addStageTimes(const pyramid::StageTimes& times, HbaReport& report) {
   report.seconds_keyframes += times.keyframes;
 }
 
-// The bottom-up pass, each layer logged and reported as it ends.
-pyramid::Pyramid bottomUp(Run& run, int iteration, pyramid::StageTimes& times) {
-  pyramid::LayerWatch watch{run.group};
+// The bottom-up pass from `out.poses`, each layer logged and reported as it
+// ends.
+pyramid::Pyramid bottomUp(const RunInput& in, int iteration, pyramid::StageTimes& times,
+                          PyramidOutcome& out) {
+  pyramid::LayerWatch watch{in.group};
   auto layer_start = Clock::now();
   watch.layer_done = [&](int level, const pyramid::Layer& layer, pyramid::LayerOutcome& outcome) {
     outcome.report.iteration = iteration;
     outcome.report.layer = level;
-    outcome.report.global = level == run.layers;
+    outcome.report.global = level == in.layers;
     outcome.report.seconds = secondsSince(layer_start);
     logLayer(outcome.report);
-    if (iteration == 1 && level == 1) run.layer_one_points = outcome.report.cloud_points;
-    run.planes_found += outcome.report.planes;
-    run.report.layer_reports.push_back(outcome.report);
-    recordWindows(layer, outcome, run.report);
+    if (iteration == 1 && level == 1) out.layer_one_points = outcome.report.cloud_points;
+    out.planes_found += outcome.report.planes;
+    out.layers.push_back(outcome.report);
+    recordWindows(layer, outcome, out.windows);
     layer_start = Clock::now();
   };
-  pyramid::Pyramid built = pyramid::bottomUp(run.scans, run.poses, run.layers, run.settings, watch);
+  pyramid::Pyramid built = pyramid::bottomUp(in.scans, out.poses, in.layers, in.settings, watch);
   times = watch.times;
   return built;
 }
 
 // The top-down pass, with the closure stage's loops and priors, reported.
-std::vector<Pose> topDown(Run& run, const pyramid::Pyramid& built, int iteration) {
-  const auto start = Clock::now();
-  const pyramid::TopDown down = pyramid::topDown(built, run.closed.loops, run.closed.priors, run.settings);
+std::vector<Pose> topDown(const RunInput& in, const ClosedStart& start, const pyramid::Pyramid& built,
+                          int iteration, PyramidOutcome& out) {
+  const auto began = Clock::now();
+  const pyramid::TopDown down = pyramid::topDown(built, start.closed.loops, start.closed.priors, in.settings);
   IterationReport iteration_report;
   iteration_report.iteration = iteration;
   if (down.factors > 0) {
     iteration_report.factors = down.factors;
     iteration_report.graph_cost_before = down.cost_before;
     iteration_report.graph_cost_after = down.cost_after;
-    iteration_report.seconds_graph = secondsSince(start);
-    run.report.seconds_graph += iteration_report.seconds_graph;
+    iteration_report.seconds_graph = secondsSince(began);
+    out.seconds_graph += iteration_report.seconds_graph;
     spdlog::info("  pose graph: {} poses, {} factors, cost {:.4g} -> {:.4g}, {:.2f} s", down.poses.size(),
                  down.factors, down.cost_before, down.cost_after, iteration_report.seconds_graph);
   }
-  run.report.iterations.push_back(iteration_report);
+  out.iterations.push_back(iteration_report);
   return down.poses;
 }
 
 }  // namespace
 
-void buildPyramid(Run& run) {
-  HbaReport& report = run.report;
-  OuterRounds rounds(run.settings);
-  for (int iteration = 1; iteration <= run.settings.outer_iterations; ++iteration) {
-    spdlog::info("iteration {}/{}: {} layers", iteration, run.settings.outer_iterations, run.layers);
+PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start) {
+  PyramidOutcome out;
+  out.poses = start.closed.start;
+  OuterRounds rounds(in.settings);
+  for (int iteration = 1; iteration <= in.settings.outer_iterations; ++iteration) {
+    spdlog::info("iteration {}/{}: {} layers", iteration, in.settings.outer_iterations, in.layers);
     pyramid::StageTimes times;
-    const pyramid::Pyramid built = bottomUp(run, iteration, times);
-    addStageTimes(times, report);
-    std::vector<Pose> updated = topDown(run, built, iteration);
+    const pyramid::Pyramid built = bottomUp(in, iteration, times, out);
+    addStageTimes(times, out);
+    std::vector<Pose> updated = topDown(in, start, built, iteration, out);
     // The first process's pose graph speaks for all: members with other
     // thread counts (other machines) then still stop at the same iteration.
-    if (run.group.size() > 1) updated = posesFromRoot(run.group, updated);
-    const PoseChange u = largestChange(run.poses, updated);
-    report.iterations.back().max_translation_update = u.translation_m;
-    report.iterations.back().max_rotation_update = u.rotation_deg;
+    if (in.group.size() > 1) updated = posesFromRoot(in.group, updated);
+    const PoseChange u = largestChange(out.poses, updated);
+    out.iterations.back().max_translation_update = u.translation_m;
+    out.iterations.back().max_rotation_update = u.rotation_deg;
     spdlog::info("  largest pose update: {:.4f} m, {:.4f} deg", u.translation_m, u.rotation_deg);
-    run.poses = std::move(updated);
+    out.poses = std::move(updated);
     if (rounds.stopAfter(iteration, u)) break;
   }
-  run.hierarchy = run.poses;
-  report.rounds_stopped = toString(rounds.why());
-  report.rounds_reason = rounds.reason();
-  spdlog::info("{}", report.rounds_reason);
+  out.rounds_stopped = toString(rounds.why());
+  out.rounds_reason = rounds.reason();
+  spdlog::info("{}", out.rounds_reason);
+  return out;
 }
 
 }  // namespace hba::pipeline

@@ -1,16 +1,14 @@
-// A stage that changes nothing: it logs how long each stage before it took.
+// The stages' times, logged once they all ran.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <string>
-
-#include "run.hpp"
+#include "stages.hpp"
 
 namespace hba::pipeline {
 
-void logStageTimes(Run& run) {
+void logStageTimes(const std::vector<std::pair<std::string, double>>& stage_seconds) {
   std::string line;
-  for (const auto& [name, seconds] : run.stage_seconds) {
+  for (const auto& [name, seconds] : stage_seconds) {
     line += fmt::format("{}{} {:.2f} s", line.empty() ? "" : ", ", name, seconds);
   }
   spdlog::info("stages: {}", line);

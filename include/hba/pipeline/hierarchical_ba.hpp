@@ -43,7 +43,7 @@ struct HbaResult {
 // reads only the scans of its windows there, and all get the same poses,
 // those of one process. The closures and the refinement are shared the
 // same way; the anchoring on priors runs in the first member only
-// (kStages in src/pipeline/hierarchical_ba.cpp says which stage runs where).
+// (runStages in src/pipeline/hierarchical_ba.cpp says which stage runs where).
 HbaResult runHierarchicalBa(const io::ScanSource& scans, const std::vector<Pose>& initial,
                             const HbaSettings& settings, const ClosureInputs& closures = {},
                             const dist::Group& group = dist::singleProcess());
