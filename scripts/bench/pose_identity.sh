@@ -74,13 +74,17 @@ cli = np.concatenate([hba.read_poses(p) for p in sys.argv[2:]])
 if np.array_equal(poses, cli):
     print('identical')
     sys.exit(0)
-gap = np.abs(poses - cli).max()
-# Last bits only (1e-16 m, an ulp): seen on the simulated runs, the same at
-# every run and thread count, so a difference of code, not of timing (the
-# module and the tool each carry their own copies of inline code, such as
-# Eigen's templates); not pinned down yet.
-print('within %.1e (last bits)' % gap if gap < 1e-12 else 'DIFFER by %.3g' % gap)
-sys.exit(0 if gap < 1e-12 else 1)
+# pose.json's reader renormalizes each quaternion it reads, which can move
+# the last bit of a rotation (hba::Pose's constructor): the poses in memory
+# are the tool's bit for bit (every stage's poses hashed in both processes
+# matched on the 1000-frame simulation), so the translations must be identical and
+# the rotations may differ by an ulp.
+same_t = np.array_equal(poses[:, :3, 3], cli[:, :3, 3])
+gap = np.abs(poses[:, :3, :3] - cli[:, :3, :3]).max()
+ok = same_t and gap < 1e-15
+print('identical (translations; rotations within %.1e, the reader renormalizing)' % gap if ok
+      else 'DIFFER (translations %s, rotations by %.3g)' % ('identical' if same_t else 'differ', gap))
+sys.exit(0 if ok else 1)
 " "$WORK" $(cd "$WORK/new/$name" && find "$PWD" -name pose.json | sort) >"$WORK/python.txt"; then
     echo "$name: the Python module's poses $(cat "$WORK/python.txt")"
   else
