@@ -9,7 +9,6 @@
 #include "core/available_memory.hpp"
 #include "hba/core/error.hpp"
 #include "hba/pipeline/memory_estimate.hpp"
-#include "hba/pipeline/window_size.hpp"
 #include "hba/pyramid/window_plan.hpp"
 #include "pipeline/report_json.hpp"
 

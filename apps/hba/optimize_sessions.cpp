@@ -95,8 +95,7 @@ void runSessions(const Args& args, HbaSettings settings) {
         datasets[k]));
   }
 
-  // Each later session placed in the first one's frame.
-  const std::vector<pipeline::SessionInput>& inputs = session_scans.inputs();
+  // Each later session placed in the first one's frame, then one run.
   pipeline::SessionPlacement how;
   if (args.align == "identity") {
     how.method = pipeline::SessionPlacement::Method::Identity;
@@ -104,10 +103,10 @@ void runSessions(const Args& args, HbaSettings settings) {
     how.method = pipeline::SessionPlacement::Method::Given;
     how.given = readAlignmentFile(args.align, datasets.size() - 1);
   }
-  const pipeline::PlacedSessions placed = pipeline::placeSessions(inputs, how, settings.scan_voxel);
-  const std::vector<Pose> initial = pipeline::sessionsInOneFrame(inputs, placed, closures);
-  spdlog::info("{} sessions, {} scans in all", datasets.size(), scans.size());
-  const pipeline::HbaResult result = pipeline::runHierarchicalBa(scans, initial, plan, closures);
+  const pipeline::SessionsRun run = pipeline::runSessions(session_scans, how, plan, closures);
+  const pipeline::PlacedSessions& placed = run.placed;
+  const pipeline::HbaResult& result = run.result;
+  const std::vector<Pose>& initial = run.initial;
 
   nlohmann::json sessions = nlohmann::json::array();
   for (std::size_t k = 0; k < datasets.size(); ++k) {

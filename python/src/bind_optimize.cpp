@@ -209,14 +209,13 @@ OptimizeResult optimizeSessions(const py::sequence& datasets, const py::object& 
       pipeline::readClosureFiles({fileName(loops, "loops"), fileName(priors, "priors"), prior_max_gap},
                                  session_scans.trajectories(), scans.starts(), scans.size());
   const pipeline::SessionPlacement how = placementFrom(align, sessions.size());
-  pipeline::HbaResult result;
-  pipeline::PlacedSessions placed;
+  pipeline::SessionsRun run;
   {
     const py::gil_scoped_release release;
-    placed = pipeline::placeSessions(session_scans.inputs(), how, settings.scan_voxel);
-    const std::vector<Pose> initial = pipeline::sessionsInOneFrame(session_scans.inputs(), placed, closures);
-    result = pipeline::runHierarchicalBa(scans, initial, settings, closures);
+    run = pipeline::runSessions(session_scans, how, pipeline::planRun(scans, settings), closures);
   }
+  const pipeline::HbaResult& result = run.result;
+  const pipeline::PlacedSessions& placed = run.placed;
   nlohmann::json report = libraryReport(result.report, settings);
   report["sessions"] = nlohmann::json::array();
   for (std::size_t k = 0; k < sessions.size(); ++k) {

@@ -53,8 +53,7 @@ void logPlan(const Plan& plan) {
         "sparse scans ({:.1f} points of a scan in a {:g} m voxel, fewer than {:.1f}): the windows' planes "
         "end "
         "at {:g} m voxels ({:.1f} points), not {:g} m",
-        voxel.scan_points_at_setting, voxel.setting,
-        scanPointsWanted(withWindowSize(plan.settings, plan.windows)), voxel.chosen,
+        voxel.scan_points_at_setting, voxel.setting, scanPointsWanted(plan.settings), voxel.chosen,
         voxel.scan_points_at_chosen, voxel.setting);
   }
   if (plan.windows.automatic) {

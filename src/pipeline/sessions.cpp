@@ -112,4 +112,14 @@ nlohmann::json alignmentReport(const closure::SessionAlignment& a, const std::st
           {"pairs", pairs}};
 }
 
+SessionsRun runSessions(const SessionScans& scans, const SessionPlacement& how, const Plan& plan,
+                        ClosureInputs& closures) {
+  SessionsRun run;
+  run.placed = placeSessions(scans.inputs(), how, plan.settings.scan_voxel);
+  run.initial = sessionsInOneFrame(scans.inputs(), run.placed, closures);
+  spdlog::info("{} sessions, {} scans in all", scans.inputs().size(), scans.all().size());
+  run.result = runHierarchicalBa(scans.all(), run.initial, plan, closures);
+  return run;
+}
+
 }  // namespace hba::pipeline

@@ -2,8 +2,9 @@
 // Several sessions of one place, each in its own frame, optimized as one
 // sequence in the first session's frame (docs/closure.md, "Several
 // sessions"). `hba optimize A B ...` and hba.optimize_sessions make the same
-// calls: readClosureFiles, placeSessions, sessionsInOneFrame, then
-// runHierarchicalBa on the sessions' scans one after the other.
+// calls: readClosureFiles, then runSessions (placeSessions,
+// sessionsInOneFrame, runHierarchicalBa on the sessions' scans one after
+// the other).
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -16,6 +17,7 @@
 #include "hba/io/dataset.hpp"
 #include "hba/io/scan_source.hpp"
 #include "hba/pipeline/closure_inputs.hpp"
+#include "hba/pipeline/hierarchical_ba.hpp"
 
 namespace hba::pipeline {
 
@@ -66,6 +68,17 @@ PlacedSessions placeSessions(const std::vector<SessionInput>& sessions, const Se
 // the other; `closures.session_starts` gets each later session's first frame.
 std::vector<Pose> sessionsInOneFrame(const std::vector<SessionInput>& sessions, const PlacedSessions& placed,
                                      pipeline::ClosureInputs& closures);
+
+// Several sessions as one run: each later one placed in the first one's
+// frame (`how`), then the method over all their scans by `plan` (planRun
+// over scans.all()). `closures` gets each later session's first frame.
+struct SessionsRun {
+  PlacedSessions placed;
+  std::vector<Pose> initial;  // every session's poses in the first one's frame: the run's start
+  HbaResult result;           // every session's poses, one after the other
+};
+SessionsRun runSessions(const SessionScans& scans, const SessionPlacement& how, const Plan& plan,
+                        ClosureInputs& closures);
 
 // A registration's search for report.json (its places, pairs and verdicts);
 // each pair is logged at debug level under `label`.
