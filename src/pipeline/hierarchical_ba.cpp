@@ -8,6 +8,9 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/stopwatch.hpp"
 #include "hba/core/error.hpp"

@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/stopwatch.hpp"
 #include "hba/graph/pose_graph.hpp"

@@ -2,6 +2,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "stages.hpp"
 
 namespace hba::pipeline {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "hba/closure/closure_graph.hpp"
 #include "settings/refine_settings.hpp"

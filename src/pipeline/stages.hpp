@@ -5,6 +5,7 @@
 // another's report: the run's report is assembled from their outcomes.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "closure_stage.hpp"

@@ -1,5 +1,6 @@
 #include "pyramid.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
