@@ -31,7 +31,7 @@ namespace fs = std::filesystem;
 using namespace optimize;
 
 void run(const Args& args) {
-  HbaSettings settings = mergeSettings(args);
+  const HbaSettings settings = mergeSettings(args);
   if (args.print_config) {
     std::cout << settings::settingsToYaml(settings);
     return;
@@ -39,9 +39,6 @@ void run(const Args& args) {
   // Required unless --print-config (CLI11 cannot say "unless").
   if (args.data.dir.empty()) throw CLI::RequiredError("DIR");
   if (args.output.empty() && !args.print_plan) throw CLI::RequiredError("--output");
-  // -j (a tbb::global_control in main), passed down explicitly: the pose
-  // graph's Ceres solve runs on it too.
-  settings.threads = pipeline::resolvedThreadCount(settings);
   // Kept clouds and maps go to the temporary folder: a wrong TMPDIR is
   // refused before any work, naming it.
   temporaryFolder();
@@ -91,7 +88,9 @@ void run(const Args& args) {
   spdlog::info("dataset: {} ({} layout), {} scans, poses from {}", dataset.root().string(), dataset.layout(),
                dataset.size(), dataset.posesFile().string());
   spdlog::debug("settings: {}", jsonText(settings::settingsToJson(settings)));  // also in report.json
-  spdlog::info("threads: {}{}", settings.threads,
+  // -j (a tbb::global_control in main), resolved once by the plan: the pose
+  // graph's Ceres solve runs on it too.
+  spdlog::info("threads: {}{}", plan.settings.threads,
                group.size() > 1 ? fmt::format(" in each of {} processes", group.size()) : "");
 
   pipeline::DatasetRun run = pipeline::runWithDeskewPasses(dataset, scans, dataset.trajectory().poses, plan,
