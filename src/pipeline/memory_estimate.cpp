@@ -121,9 +121,9 @@ const StageMemory& MemoryEstimate::largest() const {
                            [](const StageMemory& a, const StageMemory& b) { return a.bytes < b.bytes; });
 }
 
-MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, const HbaSettings& given) {
-  // The windows the run will use: an automatic one from the same density.
-  const HbaSettings settings = withWindowSize(given, chooseWindowSize(given, density.points));
+MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, const HbaSettings& settings) {
+  if (settings.window < 1 || settings.stride < 1)
+    throw Error("memory estimate: the window is automatic; plan the run first (plan.hpp)");
   MemoryEstimate estimate;
   estimate.layers = pyramid::layerCount(frames, settings);
   estimate.top_frames = topFrames(frames, estimate.layers, settings);

@@ -20,6 +20,11 @@ const StageMemory* stageOf(const MemoryEstimate& estimate, Stage stage) {
   return found == estimate.stages.end() ? nullptr : &*found;
 }
 
+// `settings` with the window a run of `density` plans (plan.hpp).
+HbaSettings sized(const HbaSettings& settings, const ScanDensity& density) {
+  return withWindowSize(settings, chooseWindowSize(settings, density.points));
+}
+
 HbaSettings oneLayer() {
   HbaSettings settings;
   settings.layers = 1;
@@ -30,14 +35,14 @@ HbaSettings oneLayer() {
 // the memory, and the issue's 4717 scans need far more than 24 GB.
 TEST(MemoryEstimate, TheGlobalBaGrowsWithTheSquareOfItsFrames) {
   const ScanDensity none;  // no points: the dense part alone
-  const double base = estimateMemory(2, none, oneLayer()).peakBytes();
-  const double k1000 = estimateMemory(1000, none, oneLayer()).peakBytes() - base;
-  const double k2000 = estimateMemory(2000, none, oneLayer()).peakBytes() - base;
+  const double base = estimateMemory(2, none, sized(oneLayer(), none)).peakBytes();
+  const double k1000 = estimateMemory(1000, none, sized(oneLayer(), none)).peakBytes() - base;
+  const double k2000 = estimateMemory(2000, none, sized(oneLayer(), none)).peakBytes() - base;
   EXPECT_NEAR(k2000 / k1000, 4.0, 0.01);
   ScanDensity livox;
   livox.points = 4000;
   livox.refine_points = 2000;
-  const MemoryEstimate issue = estimateMemory(4717, livox, oneLayer());
+  const MemoryEstimate issue = estimateMemory(4717, livox, sized(oneLayer(), livox));
   EXPECT_EQ(issue.largest().stage, Stage::GlobalBa);
   EXPECT_EQ(issue.top_frames, 4717u);
   EXPECT_GT(issue.peakBytes(), 40 * kGiB);
@@ -45,7 +50,7 @@ TEST(MemoryEstimate, TheGlobalBaGrowsWithTheSquareOfItsFrames) {
       << issue.largest().detail;
   // The default pyramid over the same scans: its top layer is small.
   HbaSettings defaults;
-  const MemoryEstimate pyramid = estimateMemory(4717, livox, defaults);
+  const MemoryEstimate pyramid = estimateMemory(4717, livox, sized(defaults, livox));
   EXPECT_GT(pyramid.layers, 1);
   EXPECT_LT(pyramid.peakBytes(), 2 * kGiB);
 }
@@ -53,14 +58,17 @@ TEST(MemoryEstimate, TheGlobalBaGrowsWithTheSquareOfItsFrames) {
 TEST(MemoryEstimate, TheLayersAreTheRunsOwn) {
   HbaSettings settings;
   settings.window = 10;  // the paper's windows and the default rule: 314 frames -> 62 -> 12 (hku1)
-  const MemoryEstimate estimate = estimateMemory(314, ScanDensity{}, settings);
+  const MemoryEstimate estimate = estimateMemory(314, ScanDensity{}, sized(settings, ScanDensity{}));
   // The default stride (half the window) resolved, as the run resolves it.
   EXPECT_EQ(estimate.layers,
             pyramid::layerCount(314, withWindowSize(settings, chooseWindowSize(settings, 0.0))));
   EXPECT_EQ(estimate.layers, 3);
   EXPECT_EQ(estimate.top_frames, 12u);
   settings.layers = 99;  // more than the sequence holds
-  EXPECT_EQ(estimateMemory(314, ScanDensity{}, settings).layers, pyramid::maxLayerCount(314, 10, 5));
+  EXPECT_EQ(estimateMemory(314, ScanDensity{}, sized(settings, ScanDensity{})).layers,
+            pyramid::maxLayerCount(314, 10, 5));
+  // An automatic window is the plan's to work out (plan.hpp), not the estimate's.
+  EXPECT_THROW(estimateMemory(314, ScanDensity{}, HbaSettings()), Error);
 }
 
 // A block holds refine_max_points at most; beyond one block, the rigid
@@ -70,17 +78,17 @@ TEST(MemoryEstimate, TheRefinementHoldsOneBlockAtMost) {
   density.points = 1e5;
   density.refine_points = 1e5;
   HbaSettings settings;
-  const MemoryEstimate small = estimateMemory(100, density, settings);
-  const MemoryEstimate large = estimateMemory(1000, density, settings);
+  const MemoryEstimate small = estimateMemory(100, density, sized(settings, density));
+  const MemoryEstimate large = estimateMemory(1000, density, sized(settings, density));
   ASSERT_TRUE(stageOf(small, Stage::Refinement));
   ASSERT_TRUE(stageOf(large, Stage::Refinement));
   EXPECT_FALSE(stageOf(small, Stage::RefinementGroups));
   EXPECT_TRUE(stageOf(large, Stage::RefinementGroups));
   // 1000 frames hold as much at once as 200 (20 M points, one whole block).
   EXPECT_DOUBLE_EQ(stageOf(large, Stage::Refinement)->bytes,
-                   stageOf(estimateMemory(200, density, settings), Stage::Refinement)->bytes);
+                   stageOf(estimateMemory(200, density, sized(settings, density)), Stage::Refinement)->bytes);
   EXPECT_LT(stageOf(small, Stage::Refinement)->bytes, stageOf(large, Stage::Refinement)->bytes);
-  EXPECT_TRUE(stageOf(estimateMemory(1000, density, oneLayer()), Stage::SelfCheck));
+  EXPECT_TRUE(stageOf(estimateMemory(1000, density, sized(oneLayer(), density)), Stage::SelfCheck));
 }
 
 std::vector<PointCloud> gridScans(const std::vector<int>& sides) {

@@ -65,9 +65,10 @@ struct MemoryEstimate {
   double peakBytes() const { return largest().bytes; }
 };
 
-// The estimate for `frames` scans of `density` under `settings` (their
-// layer count resolved as the run resolves it; settings.threads windows at
-// once, 0 = one).
+// The estimate for `frames` scans of `density` under `settings`: the
+// window and stride worked out (planRun does it; an automatic window throws),
+// the layer count resolved as the run resolves it, settings.threads windows
+// at once (0 = one).
 MemoryEstimate estimateMemory(std::size_t frames, const ScanDensity& density, const HbaSettings& settings);
 
 }  // namespace hba::pipeline
