@@ -153,7 +153,8 @@ class RecordingMatchesCli(TempCase):
             raise RuntimeError("the bag writer failed: " + written.stdout)
         # Keyframes: about one in three clouds.
         steps = np.linalg.norm(np.diff(dataset.poses[:, :3, 3], axis=0), axis=1)
-        cls.keyframe_distance = 3.0 * steps.mean()
+        # A Python float: numpy 2 (Debian 13) gives repr(np.float64) as "np.float64(...)".
+        cls.keyframe_distance = float(3.0 * steps.mean())
         run_cli("-j", "1", "optimize", cls.bag, "--keyframe-distance", repr(cls.keyframe_distance), "-o",
                 cls.path("out"), "--every-scan", "--no-render", "--no-report-page")
         cls.cli_poses, cls.cli_report = cli_output(cls.path("out"))
