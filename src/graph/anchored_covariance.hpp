@@ -22,6 +22,11 @@ void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pos
 std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian, std::size_t anchor,
                                                   const InformationSettings& settings);
 
+// The same frames' information, weak directions raised as for that
+// covariance (its inverse); nullopt where it is.
+std::optional<Eigen::MatrixXd> anchoredInformation(const Eigen::MatrixXd& hessian, std::size_t anchor,
+                                                   const InformationSettings& settings);
+
 // The frame that holds the gauge: the window's first, as in the BA itself.
 inline constexpr std::size_t kGaugeFrame = 0;
 

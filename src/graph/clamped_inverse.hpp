@@ -13,4 +13,8 @@ namespace hba::graph {
 // eigenvalue is not positive (no information at all) or not finite.
 std::optional<Eigen::MatrixXd> clampedInverse(const Eigen::MatrixXd& matrix, double min_eigen_ratio);
 
+// The same symmetric part with the same eigenvalues raised, not inverted:
+// clampedInverse(m) is its inverse. nullopt where clampedInverse is.
+std::optional<Eigen::MatrixXd> clampedUp(const Eigen::MatrixXd& matrix, double min_eigen_ratio);
+
 }  // namespace hba::graph

@@ -46,14 +46,29 @@ void validateWindowHessian(const Eigen::MatrixXd& hessian, const std::vector<Pos
   }
 }
 
-std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian, std::size_t anchor,
-                                                  const InformationSettings& settings) {
+namespace {
+
+// The Fisher information of the frames but `anchor`, the anchor held fixed.
+Eigen::MatrixXd anchoredFisher(const Eigen::MatrixXd& hessian, std::size_t anchor,
+                               const InformationSettings& settings) {
   // cost / (2 sigma^2) is the negative log-likelihood of Gaussian distances.
   const double to_fisher = 1.0 / (2.0 * settings.point_sigma * settings.point_sigma);
   // Holding the anchor fixed removes the 6-dim gauge freedom: the relative
   // pose is invariant to a rigid motion of the whole window, so any such
   // choice yields the same covariance for it.
-  return clampedInverse(withoutFrame(hessian, anchor) * to_fisher, settings.min_eigen_ratio);
+  return withoutFrame(hessian, anchor) * to_fisher;
+}
+
+}  // namespace
+
+std::optional<Eigen::MatrixXd> anchoredCovariance(const Eigen::MatrixXd& hessian, std::size_t anchor,
+                                                  const InformationSettings& settings) {
+  return clampedInverse(anchoredFisher(hessian, anchor, settings), settings.min_eigen_ratio);
+}
+
+std::optional<Eigen::MatrixXd> anchoredInformation(const Eigen::MatrixXd& hessian, std::size_t anchor,
+                                                   const InformationSettings& settings) {
+  return clampedUp(anchoredFisher(hessian, anchor, settings), settings.min_eigen_ratio);
 }
 
 Mat6 relativeInformationFromAnchored(const std::optional<Eigen::MatrixXd>& covariance,

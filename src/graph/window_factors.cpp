@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <string>
 
+#include <Eigen/LU>
+
 #include "anchored_covariance.hpp"
-#include "clamped_inverse.hpp"
 #include "hba/core/error.hpp"
 #include "hba/core/relative_pose_error.hpp"
 
@@ -86,28 +87,32 @@ WindowShapeFactor windowShapeFactor(const Eigen::MatrixXd& hessian,
   for (std::size_t k = 1; k < poses.size(); ++k) factor.relative.push_back(relative(poses[0], poses[k]));
   // No information at all: a factor that barely holds the frames.
   const Eigen::MatrixXd fallback = settings.fallback_information * Eigen::MatrixXd::Identity(size, size);
-  const auto covariance = anchoredCovariance(hessian, kGaugeFrame, settings);
-  if (!covariance) {
+  const auto information = anchoredInformation(hessian, kGaugeFrame, settings);
+  if (!information) {
     factor.information = fallback;
     return factor;
   }
   // Linearized at the measurement (E = I): e_k ~ J_k d_k with frame 0 held,
-  // so cov(e_i, e_j) = J_i cov(d_i, d_j) J_j^T, block by block.
-  std::vector<Mat6> jacobians;
+  // so the errors' covariance is J C J^T and their information
+  // J^-T C^-1 J^-1, block by block. J_k is a rotation in each of its 3x3
+  // blocks (R_k^T): the errors' covariance has the same eigenvalues as C,
+  // so raising C's weak ones (clampedUp) leaves none to raise in it, and
+  // no second eigen-decomposition of hundreds of rows is needed.
+  std::vector<Mat6> inverse_jacobians;
   for (std::size_t k = 1; k < poses.size(); ++k) {
-    jacobians.push_back(relativePoseErrorJacobians(factor.relative[k - 1], poses[0], poses[k]).d_to);
+    inverse_jacobians.push_back(
+        relativePoseErrorJacobians(factor.relative[k - 1], poses[0], poses[k]).d_to.inverse());
   }
-  Eigen::MatrixXd error_covariance(size, size);
+  factor.information.resize(size, size);
   for (std::size_t i = 0; i < frames; ++i) {
     for (std::size_t j = 0; j < frames; ++j) {
       const auto row = static_cast<Eigen::Index>(6 * i);
       const auto col = static_cast<Eigen::Index>(6 * j);
-      error_covariance.block<6, 6>(row, col) =
-          jacobians[i] * covariance->block<6, 6>(row, col) * jacobians[j].transpose();
+      factor.information.block<6, 6>(row, col) =
+          inverse_jacobians[i].transpose() * information->block<6, 6>(row, col) * inverse_jacobians[j];
     }
   }
-  const auto information = clampedInverse(error_covariance, settings.min_eigen_ratio);
-  factor.information = information ? *information : fallback;
+  if (!factor.information.allFinite()) factor.information = fallback;
   return factor;
 }
 

@@ -201,5 +201,31 @@ TEST(ClampedInverse, IsTheInverseWhereNoEigenvalueIsRaisedAndRaisesThoseBelowThe
   EXPECT_FALSE(clampedInverse(-well, 1e-6));
 }
 
+TEST(ClampedUp, IsTheMatrixWhereNoEigenvalueIsRaisedAndTheClampedInversesInverse) {
+  std::mt19937 rng(42);
+  const Eigen::Index n = 60;
+  Eigen::VectorXd values(n);
+  for (Eigen::Index k = 0; k < n; ++k) values[k] = 1e9 * std::pow(2e-6, double(k) / double(n - 1));
+  const Eigen::MatrixXd well = withEigenvalues(values, rng);
+  const auto same = clampedUp(well, 1e-6);
+  ASSERT_TRUE(same);
+  EXPECT_LT(relativeDifference(*same, well), 1e-15);
+
+  values[n - 1] = 1.0;  // 1e-9 of the largest: raised to 1e3
+  values[n - 2] = 0.0;  // no information at all: raised too
+  const Eigen::MatrixXd weak = withEigenvalues(values, rng);
+  const auto raised = clampedUp(weak, 1e-6);
+  const auto inverse = clampedInverse(weak, 1e-6);
+  ASSERT_TRUE(raised && inverse);
+  const Eigen::VectorXd got = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(*raised).eigenvalues();
+  EXPECT_NEAR(got[0], 1e3, 1e-6 * 1e3);
+  EXPECT_NEAR(got[1], 1e3, 1e-6 * 1e3);
+  EXPECT_NEAR(got[2], values[n - 3], 1e-6 * values[n - 3]);
+  EXPECT_LT(relativeDifference(*raised * *inverse, Eigen::MatrixXd::Identity(n, n)), 1e-6);
+
+  EXPECT_FALSE(clampedUp(Eigen::MatrixXd::Zero(6, 6), 1e-6));
+  EXPECT_FALSE(clampedUp(-well, 1e-6));
+}
+
 }  // namespace
 }  // namespace hba::graph

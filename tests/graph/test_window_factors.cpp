@@ -3,8 +3,11 @@
 #include <random>
 #include <set>
 
+#include "anchored_covariance.hpp"
+#include "clamped_inverse.hpp"
 #include "graph_test_utils.hpp"
 #include "hba/core/error.hpp"
+#include "hba/core/relative_pose_error.hpp"
 #include "hba/graph/pose_graph.hpp"
 #include "hba/graph/window_factors.hpp"
 
@@ -185,6 +188,49 @@ TEST(WindowShapeFactor, InPiecesOrWholeTheGraphEndsAlike) {
   for (const std::size_t node : nodes) {
     EXPECT_LT((a.poses[node].t - b.poses[node].t).norm(), 1e-9) << node;
     EXPECT_LT(a.poses[node].q.angularDistance(b.poses[node].q), 1e-9) << node;
+  }
+}
+
+// The information of the errors e_k (frame k from frame 0) is, by its
+// definition, the inverse of their covariance J C J^T, C the frames'
+// clamped covariance with frame 0 held and J_k = d e_k / d frame k. The
+// factor forms it from the raised Hessian instead, without inverting
+// twice; both must agree, also where weak directions are raised.
+Eigen::MatrixXd informationFromTheCovariance(const Window& w, const InformationSettings& settings) {
+  const auto covariance = anchoredCovariance(w.hessian, kGaugeFrame, settings);
+  const std::size_t frames = w.poses.size() - 1;
+  const auto size = static_cast<Eigen::Index>(6 * frames);
+  Eigen::MatrixXd error_covariance(size, size);
+  std::vector<Mat6> jacobians;
+  for (std::size_t k = 1; k <= frames; ++k) {
+    jacobians.push_back(
+        relativePoseErrorJacobians(relative(w.poses[0], w.poses[k]), w.poses[0], w.poses[k]).d_to);
+  }
+  for (std::size_t i = 0; i < frames; ++i) {
+    for (std::size_t j = 0; j < frames; ++j) {
+      const auto row = static_cast<Eigen::Index>(6 * i);
+      const auto col = static_cast<Eigen::Index>(6 * j);
+      error_covariance.block<6, 6>(row, col) =
+          jacobians[i] * covariance->block<6, 6>(row, col) * jacobians[j].transpose();
+    }
+  }
+  return *clampedInverse(error_covariance, settings.min_eigen_ratio);
+}
+
+TEST(WindowShapeFactor, IsTheInverseOfTheErrorsCovarianceAlsoWhereWeakDirectionsAreRaised) {
+  std::mt19937 rng(39);
+  const InformationSettings settings;
+  for (const double along_x : {400.0, 1e-9, 0.0}) {  // a corridor along every frame's x at the last two
+    Window w = makeWindow(rng, 12);
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (std::size_t i = 0; i + 1 < w.poses.size(); ++i) pairs.emplace_back(i, i + 1);
+    Vec6 weights;
+    weights << along_x, 300.0, 200.0, 5e4, 4e4, 3e4;
+    w.hessian = test::pairwiseHessian(w.poses, pairs, Mat6(weights.asDiagonal()));
+    const Eigen::MatrixXd expected = informationFromTheCovariance(w, settings);
+    const WindowShapeFactor shape = windowShapeFactor(w.hessian, w.poses, evenNodes(12), settings);
+    EXPECT_LT((shape.information - expected).norm(), 1e-8 * expected.norm()) << along_x;
+    EXPECT_LT((shape.information - shape.information.transpose()).norm(), 1e-12 * expected.norm());
   }
 }
 
