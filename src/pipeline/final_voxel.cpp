@@ -5,14 +5,10 @@
 #include <vector>
 
 #include "hba/core/error.hpp"
-#include "hba/pipeline/memory_estimate.hpp"
-#include "hba/voxel/downsample.hpp"
 #include "hba/voxel/voxel_key.hpp"
 
 namespace hba::pipeline {
 namespace {
-
-constexpr std::size_t kSampledScans = 16;
 
 // Σ n² and Σ n over the cells of `scan` at `size`.
 std::pair<double, double> cellSums(const PointCloud& scan, double size) {
@@ -56,13 +52,7 @@ FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
   return out;
 }
 
-FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const io::ScanSource& scans) {
-  std::vector<PointCloud> sample;
-  // Read only when the choice depends on it.
-  const bool measure = settings.adapt_final_voxel && settings.local.final_voxel_size > 0.0 &&
-                       settings.local.final_voxel_size < settings.local.planes.voxel_size;
-  for (const std::size_t i : measure ? spreadSample(scans.size(), kSampledScans) : std::vector<std::size_t>{})
-    sample.push_back(voxel::downsample(scans.load(i), settings.scan_voxel));
+FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const std::vector<PointCloud>& sample) {
   return chooseFinalVoxel(settings, [&sample](double size) {
     double squares = 0.0, points = 0.0;
     for (const PointCloud& scan : sample) {

@@ -102,14 +102,16 @@ Outcomes runStages(const RunInput& in) {
 }
 
 // The report's parts the stages found.
-void assembleReport(const Outcomes& o, HbaReport& report) {
+// The pyramid's records (a window's poses each: megabytes at 20 000
+// frames) move into the report; finish() reads none of them.
+void assembleReport(Outcomes& o, HbaReport& report) {
   report.closure = o.start.closed.report;
   report.closure.anchoring_move_m = o.anchored.move_m;
   report.closure.anchoring_priors_dropped = o.anchored.priors_dropped;
-  const PyramidOutcome& p = o.pyramid;
-  report.layer_reports = p.layers;
-  report.iterations = p.iterations;
-  report.window_records = p.windows;
+  PyramidOutcome& p = o.pyramid;
+  report.layer_reports = std::move(p.layers);
+  report.iterations = std::move(p.iterations);
+  report.window_records = std::move(p.windows);
   report.rounds_stopped = p.rounds_stopped;
   report.rounds_reason = p.rounds_reason;
   const refine::RefineOutcome& r = o.refined.outcome;

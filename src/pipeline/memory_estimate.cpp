@@ -71,20 +71,27 @@ std::vector<std::size_t> spreadSample(std::size_t n, std::size_t samples) {
   return indices;
 }
 
-ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& settings, std::size_t samples) {
+ScanSample readScanSample(const io::ScanSource& scans, double scan_voxel, std::size_t samples) {
+  ScanSample out;
+  if (scans.size() == 0 || samples == 0) return out;
+  out.indices = spreadSample(scans.size(), samples);
+  for (const std::size_t i : out.indices) out.clouds.push_back(voxel::downsample(scans.load(i), scan_voxel));
+  return out;
+}
+
+ScanDensity densityOf(const io::ScanSource& scans, const ScanSample& sample, const HbaSettings& settings) {
   ScanDensity density;
   const std::size_t n = scans.size();
-  if (n == 0 || samples == 0) return density;
-  const std::vector<std::size_t> sample = spreadSample(n, samples);
-  const std::size_t count = sample.size();
+  const std::size_t count = sample.clouds.size();
+  if (n == 0 || count == 0) return density;
   double points = 0.0, refine_points = 0.0, sampled_hint = 0.0;
-  for (const std::size_t i : sample) {
-    const PointCloud scan = voxel::downsample(scans.load(i), settings.scan_voxel);
+  for (std::size_t k = 0; k < count; ++k) {
+    const PointCloud& scan = sample.clouds[k];
     points += static_cast<double>(scan.size());
     refine_points += static_cast<double>(settings.refine_scan_voxel > 0.0
                                              ? voxel::downsample(scan, settings.refine_scan_voxel, 2).size()
                                              : scan.size());
-    sampled_hint += scans.sizeHint(i);
+    sampled_hint += scans.sizeHint(sample.indices[k]);
   }
   // Per scan on average, the sample's points per unit of size hint times
   // the average hint of all scans.
@@ -97,6 +104,10 @@ ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& se
   density.sampled_points = points / static_cast<double>(count);
   density.refine_points = refine_points * scale;
   return density;
+}
+
+ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& settings, std::size_t samples) {
+  return densityOf(scans, readScanSample(scans, settings.scan_voxel, samples), settings);
 }
 
 std::string stageName(Stage stage) {

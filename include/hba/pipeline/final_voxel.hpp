@@ -18,9 +18,9 @@
 // to MME -3.297 where 2 m voxels left it at -3.281; ten-scan windows at 1 m
 // made its map blurrier (docs/pyramid.md, "Automatic windows").
 #include <functional>
+#include <vector>
 
 #include "hba/core/point_cloud.hpp"
-#include "hba/io/scan_source.hpp"
 #include "hba/pipeline/window_size.hpp"
 #include "hba/settings/settings.hpp"
 
@@ -53,9 +53,9 @@ double scanPointsPerVoxel(const PointCloud& scan, double size);
 FinalVoxel chooseFinalVoxel(const HbaSettings& settings,
                             const std::function<double(double)>& points_per_voxel);
 
-// The same, measured on up to 16 scans spread over `scans`, downsampled
-// to settings.scan_voxel as the windows see them.
-FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const io::ScanSource& scans);
+// The same, measured on scans downsampled to settings.scan_voxel as the
+// windows see them (the plan's sample: readScanSample).
+FinalVoxel chooseFinalVoxel(const HbaSettings& settings, const std::vector<PointCloud>& sample);
 
 // `settings` whose windows' and top BA's association ends at `voxel.chosen`
 // or their own final voxel, whichever is coarser (never above their root).

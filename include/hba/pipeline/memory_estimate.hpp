@@ -32,10 +32,21 @@ struct ScanDensity {
 // last included: the scans a run reads to learn the sequence's density.
 std::vector<std::size_t> spreadSample(std::size_t n, std::size_t samples);
 
-// Reads up to `samples` scans spread over `scans` (as given: sensor frame,
-// full density) and downsamples them as the run would. Scans whose source
-// tells their size (a file's bytes) are weighted by it, so that a sequence
-// of uneven scans is counted by all of them.
+// Up to `samples` scans spread over a sequence (spreadSample), read as
+// given (sensor frame, full density) and downsampled at the scan voxel, as
+// the run's windows see them: what the plan learns the density from.
+struct ScanSample {
+  std::vector<std::size_t> indices;
+  std::vector<PointCloud> clouds;
+};
+ScanSample readScanSample(const io::ScanSource& scans, double scan_voxel, std::size_t samples = 16);
+
+// The sequence's density from such a sample. Scans whose source tells
+// their size (a file's bytes) are weighted by it, so that a sequence of
+// uneven scans is counted by all of them.
+ScanDensity densityOf(const io::ScanSource& scans, const ScanSample& sample, const HbaSettings& settings);
+
+// readScanSample at settings.scan_voxel, then densityOf.
 ScanDensity sampleScanDensity(const io::ScanSource& scans, const HbaSettings& settings,
                               std::size_t samples = 16);
 
