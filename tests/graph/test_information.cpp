@@ -222,6 +222,13 @@ TEST(ClampedUp, IsTheMatrixWhereNoEigenvalueIsRaisedAndTheClampedInversesInverse
   EXPECT_NEAR(got[1], 1e3, 1e-6 * 1e3);
   EXPECT_NEAR(got[2], values[n - 3], 1e-6 * values[n - 3]);
   EXPECT_LT(relativeDifference(*raised * *inverse, Eigen::MatrixXd::Identity(n, n)), 1e-6);
+  // The few raised directions found alone (inverse iteration) give the
+  // matrix the whole eigen-decomposition gives.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(weak);
+  const Eigen::VectorXd floored = eigen.eigenvalues().cwiseMax(1e-6 * eigen.eigenvalues().maxCoeff());
+  const Eigen::MatrixXd expected =
+      eigen.eigenvectors() * floored.asDiagonal() * eigen.eigenvectors().transpose();
+  EXPECT_LT(relativeDifference(*raised, expected), 1e-12);
 
   EXPECT_FALSE(clampedUp(Eigen::MatrixXd::Zero(6, 6), 1e-6));
   EXPECT_FALSE(clampedUp(-well, 1e-6));
