@@ -79,7 +79,7 @@ constexpr int kMostIterations = 40;
 // S + sum (floor - l_i) v_i v_i^T, from those eigenpairs alone: inverse
 // iteration on a subspace a little larger than their count, then its
 // Rayleigh-Ritz pairs. A window's Hessian of hundreds of rows raises one
-// or two; its full eigen-decomposition cost ten times this. nullopt where
+// or two; its full eigen-decomposition costs several times this. nullopt where
 // they are too many or did not converge (the full decomposition then).
 std::optional<Eigen::MatrixXd> raisedFew(const Spectrum& s) {
   const Eigen::Index n = s.symmetric.rows();
