@@ -177,13 +177,19 @@ Eigen::MatrixXd withEigenvalues(const Eigen::VectorXd& values, std::mt19937& rng
   return axes * values.asDiagonal() * axes.transpose();
 }
 
+// n eigenvalues from 1e9 down to 1e9 * 2e-6: none below a 1e-6 floor.
+Eigen::VectorXd wellPosedSpectrum(Eigen::Index n) {
+  Eigen::VectorXd values(n);
+  for (Eigen::Index k = 0; k < n; ++k) values[k] = 1e9 * std::pow(2e-6, double(k) / double(n - 1));
+  return values;
+}
+
 TEST(ClampedInverse, IsTheInverseWhereNoEigenvalueIsRaisedAndRaisesThoseBelowTheFloor) {
   std::mt19937 rng(41);
   // A window's size: eigenvalues from 1e9 down to 1e9 * 2e-6 (none below a
   // 1e-6 floor), then one at 1e-9 of the largest (raised to the floor).
   const Eigen::Index n = 312;
-  Eigen::VectorXd values(n);
-  for (Eigen::Index k = 0; k < n; ++k) values[k] = 1e9 * std::pow(2e-6, double(k) / double(n - 1));
+  Eigen::VectorXd values = wellPosedSpectrum(n);
   const Eigen::MatrixXd well = withEigenvalues(values, rng);
   const auto inverse = clampedInverse(well, 1e-6);
   ASSERT_TRUE(inverse);
@@ -204,8 +210,7 @@ TEST(ClampedInverse, IsTheInverseWhereNoEigenvalueIsRaisedAndRaisesThoseBelowThe
 TEST(ClampedUp, IsTheMatrixWhereNoEigenvalueIsRaisedAndTheClampedInversesInverse) {
   std::mt19937 rng(42);
   const Eigen::Index n = 60;
-  Eigen::VectorXd values(n);
-  for (Eigen::Index k = 0; k < n; ++k) values[k] = 1e9 * std::pow(2e-6, double(k) / double(n - 1));
+  Eigen::VectorXd values = wellPosedSpectrum(n);
   const Eigen::MatrixXd well = withEigenvalues(values, rng);
   const auto same = clampedUp(well, 1e-6);
   ASSERT_TRUE(same);
