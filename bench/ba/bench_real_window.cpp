@@ -3,10 +3,13 @@
 // downsampled as layer 1 does (0.1 m), at their input poses. Skipped when
 // the variable is unset. Example:
 //   HBA_BENCH_WINDOW=../shared/data/hku1 build/bin/bench_ba --benchmark_filter=RealWindow
+// The RealBlock benchmarks take a refinement block instead: the first
+// $HBA_BENCH_BLOCK_SCANS (300) scans at the refinement's 0.2 m.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <optional>
+#include <string>
 
 #include "hba/ba/association.hpp"
 #include "hba/ba/lm_solver.hpp"
@@ -48,6 +51,25 @@ const std::optional<RealWindow>& realWindow() {
   return window;
 }
 
+// The first scans of the same sequence as a refinement block loads them.
+const std::optional<RealWindow>& realBlock() {
+  static const std::optional<RealWindow> block = []() -> std::optional<RealWindow> {
+    const char* dir = std::getenv("HBA_BENCH_WINDOW");
+    if (dir == nullptr) return std::nullopt;
+    const char* count = std::getenv("HBA_BENCH_BLOCK_SCANS");
+    const io::Dataset data = io::Dataset::open(dir);
+    RealWindow b;
+    const std::size_t scans = std::min<std::size_t>(data.size(), count ? std::stoul(count) : 300);
+    for (std::size_t i = 0; i < scans; ++i) {
+      b.scans.push_back(voxel::downsample(data.loadScan(i), 0.2, 2));
+      b.poses.push_back(data.trajectory().poses[i]);
+      b.points += b.scans.back().size();
+    }
+    return b;
+  }();
+  return block;
+}
+
 voxel::PlaneSettings planesAt(double voxel) {
   voxel::PlaneSettings settings;
   settings.voxel_size = voxel;
@@ -73,6 +95,16 @@ void BM_RealWindowExtractPlanes(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(w->points));
 }
 BENCHMARK(BM_RealWindowExtractPlanes)->Arg(4)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// A refinement block's association (its points at 1 m voxels).
+void BM_RealBlockExtractPlanes(benchmark::State& state) {
+  const auto& b = realBlock();
+  if (!b) return state.SkipWithError("HBA_BENCH_WINDOW is not set");
+  const auto settings = planesAt(1.0);
+  for (auto _ : state) benchmark::DoNotOptimize(voxel::extractPlanes(b->pointers(), b->poses, settings));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(b->points));
+}
+BENCHMARK(BM_RealBlockExtractPlanes)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_RealWindowAssociate(benchmark::State& state) {
   const auto& w = realWindow();

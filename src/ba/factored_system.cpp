@@ -85,7 +85,7 @@ FactoredSystem::FactoredSystem(const PlaneProblem& problem, const MotionPrior& p
     spread_.chunk_begin = sumChunks(index.plane_begin, frames_);
     spread_.end_chunk = spread_.chunk_begin.size() - 1;
   }
-  z_.resize(18 * index.frame_of.size());
+  z_.reset(new float[18 * index.frame_of.size()]);
   weights_.resize(planes);
   gradient_.setZero(6 * static_cast<Eigen::Index>(frames_));
   diagonal_.assign(frames_, Mat6::Zero());

@@ -9,6 +9,7 @@
 // summing its own chunks (plane_spread.hpp).
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -74,7 +75,11 @@ class FactoredSystem {
   // unless the problem is spread over a group).
   PlaneSpread spread_;
   std::size_t frames_ = 0;
-  std::vector<float> z_;  // 3x6 per observation, rows contiguous
+  // 3x6 per observation, rows contiguous. Not zeroed: every entry is
+  // written by the parallel linearization, which then also takes the pages
+  // the system first touches (hundreds of MB in a refinement block, which
+  // zeroing touched on one thread, each LM step).
+  std::unique_ptr<float[]> z_;
   std::vector<Eigen::Vector3f> weights_;
   std::vector<PriorBlock> prior_;
   Eigen::VectorXd gradient_;

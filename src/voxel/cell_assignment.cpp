@@ -26,7 +26,14 @@ constexpr std::int64_t kPackedSpan = std::int64_t{1} << kPackedBits;
 // The lowest cell of a cloud and whether all its cells pack into 64 bits.
 struct CellBounds {
   VoxelKey low;
+  VoxelKey span;  // cells along each axis
   bool packable = false;
+  // Cells of the box the cloud spans (saturating: huge boxes just count as huge).
+  std::uint64_t boxCells() const {
+    if (!packable) return ~std::uint64_t{0};
+    return static_cast<std::uint64_t>(span.x) * static_cast<std::uint64_t>(span.y) *
+           static_cast<std::uint64_t>(span.z);
+  }
 };
 
 CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
@@ -44,6 +51,7 @@ CellBounds boundsOf(const std::vector<Vec3f>& points, double size) {
   const VoxelKey top = VoxelKey::of(high.cast<double>(), size);
   bounds.packable = top.x - bounds.low.x < kPackedSpan && top.y - bounds.low.y < kPackedSpan &&
                     top.z - bounds.low.z < kPackedSpan;
+  bounds.span = {top.x - bounds.low.x + 1, top.y - bounds.low.y + 1, top.z - bounds.low.z + 1};
   return bounds;
 }
 
@@ -69,12 +77,32 @@ void forEachPoint(std::size_t points, const Body& body) {
   forEachPoint(0, points, points >= kParallelFrom, body);
 }
 
+// Cell numbers in a grid over the whole box a small cloud spans, indexed by
+// the cell itself: what KeyNumbers gives for the same keys in the same
+// order, without a hash or a probe (a window's points at 1 m fill a box of
+// a few hundred thousand cells).
+class GridNumbers {
+ public:
+  explicit GridNumbers(std::uint64_t cells) : slots_(cells, 0) {}
+  void prefetch(std::uint64_t cell) const { __builtin_prefetch(&slots_[cell]); }
+  std::uint32_t insert(std::uint64_t cell, bool& inserted) {
+    std::uint32_t& slot = slots_[cell];
+    inserted = slot == 0;
+    if (inserted) slot = ++numbered_;  // stored one up: 0 is "not met"
+    return slot - 1;
+  }
+
+ private:
+  std::vector<std::uint32_t> slots_;
+  std::uint32_t numbered_ = 0;
+};
+
 // Numbers the cells of points [begin, end) in their first-hit order with
 // `table`, from 0: each point's number into cell_of_point, each new cell's
 // first point into `first`. Keys are taken a chunk at a time, just before
 // they are numbered, so that they stay in the cache.
-template <typename Key, typename KeyOfPoint>
-void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, KeyNumbers<Key>& table,
+template <typename Key, typename KeyOfPoint, typename Table>
+void numberRange(std::size_t begin, std::size_t end, const KeyOfPoint& keyOf, Table& table,
                  std::vector<std::uint32_t>& cell_of_point, std::vector<std::uint32_t>& first) {
   constexpr std::size_t kLookahead = 16;                // points between a prefetch and its use
   constexpr std::size_t kChunk = std::size_t{1} << 16;  // keys held at once
@@ -132,7 +160,7 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
   const std::size_t ranges = rangesFor(n);
   if (ranges == 1) {  // scans and windows: thousands of calls, no task to start
     KeyNumbers<Key> table(n / per_cell);
-    numberRange(0, n, keyOf, table, out.cell_of_point, out.first_point_of_cell);
+    numberRange<Key>(0, n, keyOf, table, out.cell_of_point, out.first_point_of_cell);
     return out;
   }
   const std::vector<std::size_t> start = rangeStarts(n, ranges);
@@ -140,7 +168,7 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
   std::vector<std::vector<std::uint32_t>> first(ranges);
   tbb::parallel_for(std::size_t{0}, ranges, [&](std::size_t k) {
     tables[k].emplace((start[k + 1] - start[k]) / per_cell);
-    numberRange(start[k], start[k + 1], keyOf, *tables[k], out.cell_of_point, first[k]);
+    numberRange<Key>(start[k], start[k + 1], keyOf, *tables[k], out.cell_of_point, first[k]);
   });
   out.first_point_of_cell = std::move(first[0]);
   KeyNumbers<Key>& numbered = *tables[0];
@@ -168,10 +196,31 @@ CellAssignment numberCells(std::size_t n, const KeyOfPoint& keyOf, std::size_t p
 
 }  // namespace
 
+// A cloud whose box holds at most this many cells a point is numbered in a
+// grid over the box: clearing the grid costs less than hashing the points.
+constexpr std::uint64_t kGridCellsPerPoint = 4;
+
 CellAssignment assignCells(const std::vector<Vec3f>& points, double size, std::size_t points_per_cell) {
   const KeyOf keyOf(size);
   // Large clouds are numbered in ranges side by side (numberCells).
   const CellBounds bounds = boundsOf(points, size);
+  const std::size_t n = points.size();
+  if (n < kParallelFrom && bounds.boxCells() <= kGridCellsPerPoint * n) {
+    const auto span_y = static_cast<std::uint64_t>(bounds.span.y);
+    const auto span_z = static_cast<std::uint64_t>(bounds.span.z);
+    auto cellOf = [&](std::size_t i) {
+      const VoxelKey key = keyOf(points[i]);
+      return (static_cast<std::uint64_t>(key.x - bounds.low.x) * span_y +
+              static_cast<std::uint64_t>(key.y - bounds.low.y)) *
+                 span_z +
+             static_cast<std::uint64_t>(key.z - bounds.low.z);
+    };
+    CellAssignment out;
+    out.cell_of_point.resize(n);
+    GridNumbers grid(bounds.boxCells());
+    numberRange<std::uint64_t>(0, n, cellOf, grid, out.cell_of_point, out.first_point_of_cell);
+    return out;
+  }
   if (!bounds.packable) {
     return numberCells<VoxelKey>(
         points.size(), [&](std::size_t i) { return keyOf(points[i]); }, points_per_cell);

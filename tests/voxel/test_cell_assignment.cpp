@@ -72,6 +72,22 @@ CellAssignment numberedOneByOne(const std::vector<Vec3f>& points, double size) {
   return out;
 }
 
+// Clouds whose box holds few cells a point (a window at 1 m) are numbered
+// in a grid over the box, others in a hash table: both in first-hit order,
+// near the origin, either side of zero and far from it.
+TEST(CellAssignment, SmallCloudsNumberCellsInFirstHitOrderInAGridOrATable) {
+  std::mt19937 rng(4);
+  for (const Vec3f& centre :
+       {Vec3f(0.0f, 0.0f, 0.0f), Vec3f(-3.3f, 7.1f, -0.4f), Vec3f(512345.0f, -4321.0f, 88.0f)}) {
+    // 20 000 points: a box of 10 m at 1 m is a grid (a few thousand
+    // cells), at 0.1 m and across 2 km a table.
+    for (const auto& [extent, size] : {std::pair{5.0f, 1.0}, {5.0f, 0.5}, {5.0f, 0.1}, {1000.0f, 1.0}}) {
+      const std::vector<Vec3f> points = scanLikePoints(rng, centre, extent, 20000);
+      expectSameAssignment(assignCells(points, size), numberedOneByOne(points, size));
+    }
+  }
+}
+
 // Clouds of millions (refinement blocks: keys taken in parallel) number
 // their cells in first-hit order, with packed and with full keys, for any
 // thread count.
