@@ -7,7 +7,9 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -90,8 +92,19 @@ auto timed(const char* name, Outcomes& outcomes, Stage&& stage) {
 Outcomes runStages(const RunInput& in) {
   Outcomes o;
   o.start = timed("closures", o, [&] { return closeLoops(in); });
-  o.pyramid = timed("pyramid", o, [&] { return buildPyramid(in, o.start); });
-  o.refined = timed("refinement", o, [&] { return refineMap(in, o.start, o.pyramid); });
+  // The refinement's first block is read, and its input's planes found,
+  // beside the last pose graph (one process: a group's members find
+  // planes together, in step).
+  std::optional<refine::PreparedStart> prepared;
+  std::function<void(std::size_t)> prepare;
+  if (in.group.size() == 1) {
+    prepare = [&](std::size_t layer_one_points) {
+      prepared = prepareRefinement(in, o.start, layer_one_points);
+    };
+  }
+  o.pyramid = timed("pyramid", o, [&] { return buildPyramid(in, o.start, prepare); });
+  o.refined = timed("refinement", o,
+                    [&] { return refineMap(in, o.start, o.pyramid, prepared ? &*prepared : nullptr); });
   o.poses = o.refined.outcome.poses;
   if (in.group.root()) {
     o.anchored = timed("anchoring", o, [&] { return anchorOnPriors(in, o.start, o.refined); });

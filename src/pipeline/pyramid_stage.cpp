@@ -2,6 +2,7 @@
 // and top-down, repeated until the poses settle; each layer and pose graph
 // timed, logged and reported, the pose graph's poses shared by a group.
 #include <spdlog/spdlog.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <memory>
@@ -122,7 +123,8 @@ std::vector<Pose> topDown(const RunInput& in, const ClosedStart& start, const py
 
 }  // namespace
 
-PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start) {
+PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start,
+                            const std::function<void(std::size_t layer_one_points)>& beside_last_graph) {
   PyramidOutcome out;
   out.poses = start.closed.start;
   OuterRounds rounds(in.settings);
@@ -131,7 +133,26 @@ PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start) {
     pyramid::StageTimes times;
     const pyramid::Pyramid built = bottomUp(in, iteration, times, out);
     addStageTimes(times, out);
-    std::vector<Pose> updated = topDown(in, start, built, iteration, out);
+    std::vector<Pose> updated;
+    if (iteration == in.settings.outer_iterations && beside_last_graph) {
+      // The pose graph keeps one thread (repeatable poses): the other
+      // cores do what comes next and needs none of its poses.
+      tbb::task_group beside;
+      beside.run([&, points = out.layer_one_points] { beside_last_graph(points); });
+      try {
+        updated = topDown(in, start, built, iteration, out);
+      } catch (...) {
+        beside.cancel();
+        try {
+          beside.wait();
+        } catch (...) {  // the pose graph's error is the one to report
+        }
+        throw;
+      }
+      beside.wait();
+    } else {
+      updated = topDown(in, start, built, iteration, out);
+    }
     // The first process's pose graph speaks for all: members with other
     // thread counts (other machines) then still stop at the same iteration.
     if (in.group.size() > 1) updated = posesFromRoot(in.group, updated);

@@ -27,20 +27,40 @@ ClosedStart closeLoops(const RunInput& in) {
   return out;
 }
 
-RefinedMap refineMap(const RunInput& in, const ClosedStart& start, const PyramidOutcome& pyramid) {
+namespace {
+
+refine::HierarchyFacts factsOf(const RunInput& in, std::size_t layer_one_points) {
   refine::HierarchyFacts facts;
   facts.layers = in.layers;
-  facts.layer_one_points = pyramid.layer_one_points;
+  facts.layer_one_points = layer_one_points;
   facts.scans_kept = in.scans.kept();
-  // Every process of a group runs it, each with its share of the planes
-  // (docs/mpi.md).
+  return facts;
+}
+
+// Every process of a group runs it, each with its share of the planes
+// (docs/mpi.md).
+refine::RefineSettings refiningOf(const RunInput& in) {
   refine::RefineSettings refining = settings::refineSettingsOf(in.settings);
   refining.ba.spread_over = &in.group;
-  // The motion prior and the self-check take the closed start as the
-  // input: its steps are the input's, its loops closed.
+  return refining;
+}
+
+}  // namespace
+
+// The motion prior and the self-check take the closed start as the input:
+// its steps are the input's, its loops closed.
+refine::PreparedStart prepareRefinement(const RunInput& in, const ClosedStart& start,
+                                        std::size_t layer_one_points) {
+  return refine::prepareStart(in.scans.source(), start.closed.start, factsOf(in, layer_one_points),
+                              refiningOf(in));
+}
+
+RefinedMap refineMap(const RunInput& in, const ClosedStart& start, const PyramidOutcome& pyramid,
+                     refine::PreparedStart* prepared) {
   RefinedMap out;
-  out.outcome = refine::refineAndCheck(in.scans.source(), start.closed.start, pyramid.poses, facts,
-                                       start.closed.priors, refining);
+  out.outcome = refine::refineAndCheck(in.scans.source(), start.closed.start, pyramid.poses,
+                                       factsOf(in, pyramid.layer_one_points), start.closed.priors,
+                                       refiningOf(in), prepared);
   const RefinementReport& r = out.outcome.refinement;
   // Its blocks hold the priors themselves; the groups (which do not see
   // them) may move the frames after.

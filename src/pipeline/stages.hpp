@@ -4,6 +4,7 @@
 // which). Each takes what it reads and returns what it found; none reads
 // another's report: the run's report is assembled from their outcomes.
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,7 +59,10 @@ struct PyramidOutcome {
   std::size_t layer_one_points = 0;  // the points layer 1 held (its first round)
   std::size_t planes_found = 0;      // of every layer and round (none: the input is returned)
 };
-PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start);
+// `beside_last_graph`, when set: run beside the last round's pose graph
+// (which keeps one thread), given the points layer 1 held.
+PyramidOutcome buildPyramid(const RunInput& in, const ClosedStart& start,
+                            const std::function<void(std::size_t layer_one_points)>& beside_last_graph = {});
 
 // The self-check against the input's planes and the refinement over every
 // scan (src/refine); each process solves with its share of the planes.
@@ -68,7 +72,12 @@ struct RefinedMap {
   // frames without the priors): no re-anchoring is due.
   bool priors_held = false;
 };
-RefinedMap refineMap(const RunInput& in, const ClosedStart& start, const PyramidOutcome& pyramid);
+RefinedMap refineMap(const RunInput& in, const ClosedStart& start, const PyramidOutcome& pyramid,
+                     refine::PreparedStart* prepared = nullptr);
+// The refinement's first block and its input's planes, which need no pose
+// of the pyramid's (refine::prepareStart).
+refine::PreparedStart prepareRefinement(const RunInput& in, const ClosedStart& start,
+                                        std::size_t layer_one_points);
 
 // With position priors the refinement did not hold: back onto them,
 // bending over long stretches only.

@@ -99,6 +99,12 @@ Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_
 
 namespace {
 
+// Bit for bit: planes found at other poses are other planes.
+bool samePoses(const std::vector<Pose>& a, const std::vector<Pose>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                    [](const Pose& p, const Pose& q) { return p.t == q.t && p.q.coeffs() == q.q.coeffs(); });
+}
+
 // The hierarchy lowered the cost of the input's planes by more than
 // `significant_gain` times what `frames` poses gain by fitting the noise.
 bool hierarchyGainsBeyondNoise(const BlockOutcome& out, std::size_t frames, double significant_gain) {
@@ -115,7 +121,7 @@ bool hierarchyGainsBeyondNoise(const BlockOutcome& out, std::size_t frames, doub
 BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
                          const std::vector<Pose>& result, const std::vector<double>& steps,
                          const std::vector<graph::PositionPriorFactor>& priors,
-                         const RefineSettings& settings, bool refines) {
+                         const RefineSettings& settings, bool refines, InputPlanes* found_before) {
   std::vector<const PointCloud*> pointers;
   for (const PointCloud& cloud : block.clouds) pointers.push_back(&cloud);
   // The input of this block, moved rigidly onto the result at its first
@@ -126,7 +132,9 @@ BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vecto
   // The input's planes, as the refinement associates them (kept whole while
   // the map judges the hierarchy: a refinement from the input starts on
   // this very association).
-  ba::Association found = ba::refinementAssociation(pointers, input, rs);
+  ba::Association found = found_before != nullptr && samePoses(found_before->poses, input)
+                              ? std::move(found_before->association)
+                              : ba::refinementAssociation(pointers, input, rs);
   BlockOutcome out(FixedPlaneMap(found.problem, input.size(), regionCount(input.size())));
   const FixedPlaneMap::Figures at_input = out.map.figures(input);
   out.input_rms = at_input.rms;

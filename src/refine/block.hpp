@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "consistency.hpp"
+#include "hba/ba/association.hpp"
 #include "hba/core/point_cloud.hpp"
 #include "hba/core/pose.hpp"
 #include "hba/graph/factors.hpp"
@@ -53,13 +54,21 @@ struct BlockOutcome {
   StageNotes notes;
 };
 
+// A block's input planes found before refineBlock, at `poses`.
+struct InputPlanes {
+  std::vector<Pose> poses;
+  ba::Association association;
+};
+
 // The block's self-check, and its refinement when `refines`: from the
 // hierarchy's poses (`result`), or from the input's where the hierarchy made
 // the map blurrier. `index` counts blocks from 0: later blocks stay held at
 // their first frame, which the block before placed.
+// `found_before`: the input's planes found already, taken where they are
+// at the block's input poses.
 BlockOutcome refineBlock(const Block& block, std::size_t index, const std::vector<Pose>& initial,
                          const std::vector<Pose>& result, const std::vector<double>& steps,
                          const std::vector<graph::PositionPriorFactor>& priors,
-                         const RefineSettings& settings, bool refines);
+                         const RefineSettings& settings, bool refines, InputPlanes* found_before = nullptr);
 
 }  // namespace hba::refine

@@ -143,7 +143,52 @@ void logSummary(const RefineOutcome& out, std::size_t frames) {
       c.planes, c.input_rms, c.hierarchy_rms, c.final_rms);
 }
 
+// The hierarchy was more than one global BA: the blocks refine it.
+bool refinesAfter(const HierarchyFacts& facts, const RefineSettings& settings) {
+  return settings.refine && facts.layers > 1;
+}
+
+// A sequence longer than one block is read again: the blocks overlap, and
+// the groups read every scan once more. There each scan is parsed and
+// downsampled once and then kept on disk. Layer 1 counted the scans'
+// points at a finer voxel: more than a block there means a second block,
+// so scans are kept from the first on (else from the second block,
+// should one follow after all).
+std::unique_ptr<io::SpilledScanSource> keptFromTheStart(const io::ScanSource& scans,
+                                                        const HierarchyFacts& facts,
+                                                        const RefineSettings& settings) {
+  if (refinesAfter(facts, settings) && facts.layer_one_points > settings.max_points && !facts.scans_kept)
+    return std::make_unique<io::SpilledScanSource>(scans);
+  return nullptr;
+}
+
 }  // namespace
+
+struct PreparedStart::Parts {
+  std::unique_ptr<io::SpilledScanSource> spilled;  // what the blocks read through, when set
+  Block block;
+  InputPlanes planes;
+};
+
+PreparedStart::PreparedStart() = default;
+PreparedStart::PreparedStart(PreparedStart&&) noexcept = default;
+PreparedStart& PreparedStart::operator=(PreparedStart&&) noexcept = default;
+PreparedStart::~PreparedStart() = default;
+
+PreparedStart prepareStart(const io::ScanSource& scans, const std::vector<Pose>& initial,
+                           const HierarchyFacts& facts, const RefineSettings& settings) {
+  PreparedStart prepared;
+  prepared.parts = std::make_unique<PreparedStart::Parts>();
+  PreparedStart::Parts& p = *prepared.parts;
+  p.spilled = keptFromTheStart(scans, facts, settings);
+  p.block = loadBlock(p.spilled ? *p.spilled : scans, 0, settings.max_points, settings.scan_voxel);
+  std::vector<const PointCloud*> pointers;
+  for (const PointCloud& cloud : p.block.clouds) pointers.push_back(&cloud);
+  // As refineBlock finds them where the hierarchy kept the first frame.
+  p.planes.poses = slice(initial, 0, p.block.end);
+  p.planes.association = ba::refinementAssociation(pointers, p.planes.poses, settings.ba);
+  return prepared;
+}
 
 void StageNotes::warn(std::string message) {
   spdlog::warn("{}", message);
@@ -159,32 +204,26 @@ void StageNotes::add(const StageNotes& other) {
 RefineOutcome refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                              const std::vector<Pose>& hierarchy, const HierarchyFacts& facts,
                              const std::vector<graph::PositionPriorFactor>& priors,
-                             const RefineSettings& settings) {
+                             const RefineSettings& settings, PreparedStart* prepared) {
   const auto start = Clock::now();
   RefineOutcome out;
   out.poses = hierarchy;
   const std::vector<double> steps = stepLengths(initial);
-  const bool refines = settings.refine && facts.layers > 1;  // one layer is one global BA already
+  const bool refines = refinesAfter(facts, settings);  // one layer is one global BA already
   const bool groups_follow = refines && settings.groups;
-  // A sequence longer than one block is read again: the blocks overlap, and
-  // the groups read every scan once more. There each scan is parsed and
-  // downsampled once and then kept on disk. Layer 1 counted the scans'
-  // points at a finer voxel: more than a block there means a second block,
-  // so scans are kept from the first on (else from the second block,
-  // should one follow after all).
-  std::unique_ptr<io::SpilledScanSource> spilled;
-  const io::ScanSource* source = &scans;
-  if (refines && facts.layer_one_points > settings.max_points && !facts.scans_kept) {
-    spilled = std::make_unique<io::SpilledScanSource>(scans);
-    source = spilled.get();
-  }
+  std::unique_ptr<io::SpilledScanSource> spilled =
+      prepared ? std::move(prepared->parts->spilled) : keptFromTheStart(scans, facts, settings);
+  const io::ScanSource* source = spilled ? spilled.get() : &scans;
   BlockSums sums;
   BlockMaps kept_maps;  // for the groups' re-measure, when they run
   std::size_t first = 0;
   for (std::size_t index = 0;; ++index) {
     releaseFreedMemory();  // what the hierarchy or the block before left
-    const Block block = loadBlock(*source, first, settings.max_points, settings.scan_voxel);
-    const BlockOutcome b = refineBlock(block, index, initial, out.poses, steps, priors, settings, refines);
+    const bool ready = index == 0 && prepared != nullptr;
+    const Block block = ready ? std::move(prepared->parts->block)
+                              : loadBlock(*source, first, settings.max_points, settings.scan_voxel);
+    const BlockOutcome b = refineBlock(block, index, initial, out.poses, steps, priors, settings, refines,
+                                       ready ? &prepared->parts->planes : nullptr);
     sums.add(block, b, out);
     std::copy(b.poses.begin(), b.poses.end(), out.poses.begin() + static_cast<long>(block.first));
     const bool last = block.end >= initial.size();

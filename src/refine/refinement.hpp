@@ -3,6 +3,7 @@
 // the sparse plane BA over every layer-1 frame, in blocks, then rigid
 // groups (docs/pyramid.md, "Refinement and self-check").
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,12 +58,31 @@ struct RefineOutcome {
   StageNotes notes;
 };
 
+// The first block read and its input's planes found before the
+// hierarchy's poses are known: none of it needs them while the hierarchy
+// keeps the first frame where the input has it (it holds it unless
+// position priors place the map). The pipeline makes it beside the last
+// pose graph, which runs on one thread. Taken whole by refineAndCheck.
+class PreparedStart {
+ public:
+  struct Parts;
+  PreparedStart();
+  PreparedStart(PreparedStart&&) noexcept;
+  PreparedStart& operator=(PreparedStart&&) noexcept;
+  ~PreparedStart();
+  std::unique_ptr<Parts> parts;
+};
+PreparedStart prepareStart(const io::ScanSource& scans, const std::vector<Pose>& initial,
+                           const HierarchyFacts& facts, const RefineSettings& settings);
+
 // The final poses from the input poses and the hierarchy's. `priors` (the
 // closure stage's kept ones, in the poses' coordinates) hold the
-// refinement's long-range shape.
+// refinement's long-range shape. `prepared`: prepareStart's of the same
+// scans, input and settings (its planes are found again where the
+// hierarchy moved the first frame).
 RefineOutcome refineAndCheck(const io::ScanSource& scans, const std::vector<Pose>& initial,
                              const std::vector<Pose>& hierarchy, const HierarchyFacts& facts,
                              const std::vector<graph::PositionPriorFactor>& priors,
-                             const RefineSettings& settings);
+                             const RefineSettings& settings, PreparedStart* prepared = nullptr);
 
 }  // namespace hba::refine

@@ -152,5 +152,55 @@ TEST(RefineStage, BlocksBoundTheMemoryAndStillRefine) {
   EXPECT_LE(report.consistency.final_rms, report.consistency.input_rms);
 }
 
+// The first block read and its input's planes found beforehand (beside
+// the pose graph, in the pipeline) give the very outcome of the stage
+// finding them itself: in one block and in several, its scans kept from
+// the start or not, and where the hierarchy moved the first frame (its
+// planes are then found again).
+TEST(RefineStage, APreparedStartGivesTheSameOutcome) {
+  const auto& seq = simulated();
+  const io::MemoryScanSource scans(seq.scans);
+  HbaSettings settings;
+  const voxel::DownsampledScanSource source(scans, settings.scan_voxel);
+  std::size_t points = 0;
+  for (const PointCloud& scan : seq.scans) points += scan.size();
+  // The truth, placed where the input has its first frame (as the
+  // hierarchy holds it), and moved off it by a centimetre.
+  const Pose onto = seq.initial.front() * seq.truth.poses.front().inverse();
+  std::vector<Pose> held;
+  for (const Pose& pose : seq.truth.poses) held.push_back(onto * pose);
+  held.front() = seq.initial.front();
+  std::vector<Pose> moved = held;
+  for (Pose& pose : moved) pose.t += Vec3(0.01, 0.0, 0.0);
+  for (const std::size_t max_points : {std::size_t{100000000}, std::max<std::size_t>(1000, points / 12)}) {
+    for (const std::size_t layer_one_points : {std::size_t{0}, std::size_t{1} << 40}) {
+      for (const std::vector<Pose>* hierarchy : {&held, &moved}) {
+        settings.refine_max_points = max_points;
+        const RefineSettings refining = settings::refineSettingsOf(settings);
+        HierarchyFacts facts;
+        facts.layers = 3;
+        facts.layer_one_points = layer_one_points;
+        const RefineOutcome found = refineAndCheck(source, seq.initial, *hierarchy, facts, {}, refining);
+        PreparedStart prepared = prepareStart(source, seq.initial, facts, refining);
+        const RefineOutcome given =
+            refineAndCheck(source, seq.initial, *hierarchy, facts, {}, refining, &prepared);
+        const std::string where = std::to_string(max_points) + " points a block, " +
+                                  (hierarchy == &held ? "first frame held" : "first frame moved");
+        ASSERT_EQ(found.poses.size(), given.poses.size()) << where;
+        for (std::size_t i = 0; i < found.poses.size(); ++i) {
+          ASSERT_EQ(found.poses[i].t, given.poses[i].t) << where << ", frame " << i;
+          ASSERT_EQ(found.poses[i].q.coeffs(), given.poses[i].q.coeffs()) << where << ", frame " << i;
+        }
+        EXPECT_EQ(found.consistency.input_rms, given.consistency.input_rms) << where;
+        EXPECT_EQ(found.consistency.final_rms, given.consistency.final_rms) << where;
+        EXPECT_EQ(found.refinement.blocks, given.refinement.blocks) << where;
+        if (max_points < 100000000) {
+          EXPECT_GE(found.refinement.blocks, 2u) << where;
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hba::refine
