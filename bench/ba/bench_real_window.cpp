@@ -33,19 +33,26 @@ struct RealWindow {
 };
 
 // Loaded once: the benchmarks time the window's work, not the disk.
+// Scans [first, end) of `data` (clamped to it) at `voxel`, with their poses.
+RealWindow readScans(const io::Dataset& data, std::size_t first, std::size_t end, double voxel,
+                     std::size_t points_per_cell) {
+  RealWindow w;
+  for (std::size_t i = first; i < std::min(data.size(), end); ++i) {
+    w.scans.push_back(voxel::downsample(data.loadScan(i), voxel, points_per_cell));
+    w.poses.push_back(data.trajectory().poses[i]);
+    w.points += w.scans.back().size();
+  }
+  return w;
+}
+
 const std::optional<RealWindow>& realWindow() {
   static const std::optional<RealWindow> window = []() -> std::optional<RealWindow> {
     const char* dir = std::getenv("HBA_BENCH_WINDOW");
     if (dir == nullptr) return std::nullopt;
     const io::Dataset data = io::Dataset::open(dir);
-    RealWindow w;
     const std::size_t first = data.size() / 2;
+    RealWindow w = readScans(data, first, first + 10, 0.1, 0);
     w.raw = data.loadScan(first);
-    for (std::size_t i = first; i < std::min(data.size(), first + 10); ++i) {
-      w.scans.push_back(voxel::downsample(data.loadScan(i), 0.1));
-      w.poses.push_back(data.trajectory().poses[i]);
-      w.points += w.scans.back().size();
-    }
     return w;
   }();
   return window;
@@ -57,15 +64,7 @@ const std::optional<RealWindow>& realBlock() {
     const char* dir = std::getenv("HBA_BENCH_WINDOW");
     if (dir == nullptr) return std::nullopt;
     const char* count = std::getenv("HBA_BENCH_BLOCK_SCANS");
-    const io::Dataset data = io::Dataset::open(dir);
-    RealWindow b;
-    const std::size_t scans = std::min<std::size_t>(data.size(), count ? std::stoul(count) : 300);
-    for (std::size_t i = 0; i < scans; ++i) {
-      b.scans.push_back(voxel::downsample(data.loadScan(i), 0.2, 2));
-      b.poses.push_back(data.trajectory().poses[i]);
-      b.points += b.scans.back().size();
-    }
-    return b;
+    return readScans(io::Dataset::open(dir), 0, count ? std::stoul(count) : 300, 0.2, 2);
   }();
   return block;
 }

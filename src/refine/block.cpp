@@ -53,6 +53,14 @@ void refineFrom(const Block& block, const std::vector<const PointCloud*>& pointe
 
 }  // namespace
 
+namespace {
+
+// Bit for bit: planes found at other poses are other planes, and a pose
+// made again from itself differs in its last bits.
+bool samePose(const Pose& a, const Pose& b) { return a.t == b.t && a.q.coeffs() == b.q.coeffs(); }
+
+}  // namespace
+
 std::vector<Pose> slice(const std::vector<Pose>& poses, std::size_t first, std::size_t end) {
   return {poses.begin() + static_cast<long>(first), poses.begin() + static_cast<long>(end)};
 }
@@ -63,8 +71,7 @@ std::vector<Pose> inputOnto(const std::vector<Pose>& initial, const std::vector<
   // input itself: P * P^-1 is the identity only to rounding, which moved a
   // converged input by 1e-16 on some toolchains (Debian 13), and it then
   // did not come back unchanged.
-  if (result[first].t == initial[first].t && result[first].q.coeffs() == initial[first].q.coeffs())
-    return slice(initial, first, end);
+  if (samePose(result[first], initial[first])) return slice(initial, first, end);
   const Pose onto = result[first] * initial[first].inverse();
   std::vector<Pose> input = slice(initial, first, end);
   for (Pose& pose : input) pose = onto * pose;
@@ -99,10 +106,8 @@ Block loadBlock(const io::ScanSource& scans, std::size_t first, std::size_t max_
 
 namespace {
 
-// Bit for bit: planes found at other poses are other planes.
 bool samePoses(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  return std::equal(a.begin(), a.end(), b.begin(), b.end(),
-                    [](const Pose& p, const Pose& q) { return p.t == q.t && p.q.coeffs() == q.q.coeffs(); });
+  return std::equal(a.begin(), a.end(), b.begin(), b.end(), samePose);
 }
 
 // The hierarchy lowered the cost of the input's planes by more than
