@@ -3,7 +3,8 @@
 # run A from its input, then from A's poses the default run again (B) and
 # the hierarchy alone (C, --no-refine). Prints, for B and C, how far the
 # poses moved from A (RMS and largest distance, unaligned), the self-check's
-# plane RMS (input -> hierarchy) and whether it warned "less consistent".
+# plane RMS (input -> hierarchy), whether it warned "less consistent" and
+# how many warnings it gave in all.
 # Issue #58, item 1: B and C should move (almost) nothing and never warn.
 #   scripts/bench/fixed_point.sh [--hba PATH] [--work DIR] DATA_DIR...
 # A dataset whose folder holds odom_poses.txt (hku1, nclt) starts from those.
@@ -45,7 +46,7 @@ consistency() {
   local line warned=no
   line=$(grep -h 'map consistency' "$1" | sed 's/.*planes): //') || line="(no self-check line)"
   grep -q '\[warning\].*less consistent' "$1" && warned=yes
-  echo "$line; less-consistent warning: $warned"
+  echo "$line; less-consistent warning: $warned; warnings: $(grep -c '\[warning\]' "$1")"
 }
 
 mkdir -p "$WORK"

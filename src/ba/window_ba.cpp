@@ -46,29 +46,75 @@ std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> co
   return costs;
 }
 
-// The trust and settle checks of `result.poses` on `planes`, the finest
-// planes found at the input poses (`cost_at_input` there): sets the fixed
-// map's costs, `trusted`, `gain_over_noise` and `settled`.
-void checkAgainstInput(const PlaneProblem& planes, double cost_at_input, const std::vector<Pose>& initial,
-                       const std::vector<double>& path_m, const BaSettings& settings, BaResult& result) {
-  result.fixed_map_cost_initial = cost_at_input;
-  result.fixed_map_cost_final = planes.cost(result.poses);
+// The trust and settle checks of `poses` on `planes`, the finest planes
+// found at the input poses (`cost_at_input` there).
+struct InputCheck {
+  double cost_final = 0.0;  // of `planes` at `poses`
+  bool slid = false;
+  bool trusted = false;
+  bool settled = false;
+  double gain_over_noise = 0.0;
+};
+
+InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
+                             const std::vector<Pose>& initial, const std::vector<Pose>& poses,
+                             const std::vector<double>& path_m, const BaSettings& settings) {
+  InputCheck check;
+  check.cost_final = planes.cost(poses);
   // Not trusted: a blurrier map on the input's own planes, or neighbouring
   // frames pulled apart far beyond what the prior allows (planes that
   // merge unrelated surfaces can make a map look crisper while frames
   // slide by metres).
-  const bool slid =
+  check.slid =
       settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
-      !stepsBeyondThePrior(initial, result.poses, path_m, settings.motion_prior, settings.slide_sigmas)
-           .empty();
-  const double gain = result.fixed_map_cost_initial - result.fixed_map_cost_final;
-  result.trusted = !slid && gain >= 0.0;
-  if (!result.trusted) return;
+      !stepsBeyondThePrior(initial, poses, path_m, settings.motion_prior, settings.slide_sigmas).empty();
+  const double gain = cost_at_input - check.cost_final;
+  check.trusted = !check.slid && gain >= 0.0;
+  if (!check.trusted) return check;
   // Settled: no more gained than fitting the frames to noise would.
-  const double noise = offsetNoiseGain(frameOffsets(planes, result.poses), initial.size());
-  result.gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
-  result.settled =
-      settings.significant_gain > 0.0 && noise > 0.0 && gain <= settings.significant_gain * noise;
+  const double noise = offsetNoiseGain(frameOffsets(planes, poses), initial.size());
+  check.gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
+  check.settled = settings.significant_gain > 0.0 && noise > 0.0 && gain <= settings.significant_gain * noise;
+  return check;
+}
+
+// The trust and settle checks of the window's result on `fixed`, its finest
+// planes found at the input poses: sets result's `trusted`, `settled`,
+// `gain_over_noise` and fixed-map costs. A result blurrier there (without
+// sliding) after coarser rounds: at a converged map a coarse round carries a
+// window off an input its finest planes already hold, and the finest round,
+// on planes found where it went, need not bring it back. Those planes are
+// then solved once more from the input, and that result is judged instead
+// (becoming `last`, its linearization `last_lin`) when it passes.
+void judgeAgainstInput(const std::shared_ptr<const Association>& fixed, const std::vector<Pose>& initial,
+                       const LmSettings& lm, const MotionPrior& prior, const std::vector<double>& path_m,
+                       const BaSettings& settings, std::shared_ptr<const Association>& last,
+                       Linearization& last_lin, BaResult& result) {
+  InputCheck check =
+      checkAgainstInput(fixed->problem, fixed->cost(), initial, result.poses, path_m, settings);
+  if (!check.trusted && !check.slid && fixed != last) {
+    std::vector<Pose> again = initial;
+    Linearization again_lin;
+    const auto start = Clock::now();
+    const LmSummary summary =
+        solveLevenbergMarquardt(fixed->problem, again, lm, prior, fixed->cost(), &again_lin);
+    result.seconds_solve += secondsBetween(start, Clock::now());
+    result.iterations += summary.iterations;
+    result.solved_again_at_input = true;
+    const InputCheck again_check =
+        checkAgainstInput(fixed->problem, fixed->cost(), initial, again, path_m, settings);
+    if (again_check.trusted) {
+      check = again_check;
+      result.poses = std::move(again);
+      last = fixed;
+      last_lin = std::move(again_lin);
+    }
+  }
+  result.fixed_map_cost_initial = fixed->cost();
+  result.fixed_map_cost_final = check.cost_final;
+  result.trusted = check.trusted;
+  result.settled = check.settled;
+  result.gain_over_noise = check.gain_over_noise;
 }
 
 }  // namespace
@@ -126,12 +172,13 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   }
 
   if (settings.check_fixed_map) {
-    checkAgainstInput(fixed->problem, fixed->cost(), initial, path_m, settings, result);
+    judgeAgainstInput(fixed, initial, lm, fixed->problem.numPlanes() > 0 ? full_prior : no_prior, path_m,
+                      settings, last, last_lin, result);
     if (!result.trusted || result.settled) {
       result.poses = initial;
       last = fixed;
-      last_at_input = true;
     }
+    if (last == fixed) last_at_input = true;  // the finest planes found at the input
   }
   const bool moved = result.trusted && !result.settled;
   const MotionPrior& prior = last->problem.numPlanes() > 0 ? full_prior : no_prior;

@@ -32,6 +32,10 @@ void logLayer(const LayerReport& r) {
         "prior, and keep their input poses",
         r.layer, r.windows_untrusted, r.windows);
   }
+  if (r.windows_solved_again > 0) {
+    spdlog::debug("  layer {}: {} windows blurred their input's finest planes and were solved again on them",
+                  r.layer, r.windows_solved_again);
+  }
   if (r.windows_settled > 0) {
     spdlog::info(
         "  layer {}: {} of {} windows settled (gained no more than fitting noise would) and keep their "

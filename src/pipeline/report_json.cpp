@@ -14,6 +14,7 @@ nlohmann::json layersJson(const HbaReport& r) {
                       {"windows_without_planes", l.windows_without_planes},
                       {"windows_untrusted", l.windows_untrusted},
                       {"windows_settled", l.windows_settled},
+                      {"windows_solved_again", l.windows_solved_again},
                       {"planes", l.planes},
                       {"plane_points", l.plane_points},
                       {"cloud_points", l.cloud_points},

@@ -21,6 +21,7 @@ LayerReport sumLayerReport(const std::vector<WindowSummary>& windows) {
     if (!w.outcome.has_planes) ++report.windows_without_planes;
     if (!w.trusted) ++report.windows_untrusted;
     if (w.settled) ++report.windows_settled;
+    if (w.solved_again) ++report.windows_solved_again;
   }
   if (report.planes > 0) {
     report.rms_before = std::sqrt(sq_before / static_cast<double>(report.planes));

@@ -31,6 +31,7 @@ void putSummary(dist::ByteWriter& out, const WindowSummary& s) {
   out.put<std::int32_t>(s.rounds);
   out.put<std::uint8_t>(s.trusted);
   out.put<std::uint8_t>(s.settled);
+  out.put<std::uint8_t>(s.solved_again);
 }
 
 WindowSummary getSummary(dist::ByteReader& in) {
@@ -53,6 +54,7 @@ WindowSummary getSummary(dist::ByteReader& in) {
   s.rounds = in.get<std::int32_t>();
   s.trusted = in.get<std::uint8_t>() != 0;
   s.settled = in.get<std::uint8_t>() != 0;
+  s.solved_again = in.get<std::uint8_t>() != 0;
   return s;
 }
 

@@ -38,6 +38,7 @@ WindowSummary summarizeWindow(const Layer& layer, const Window& window, const ba
   out.rounds = result.rounds;
   out.trusted = result.trusted;
   out.settled = result.settled;
+  out.solved_again = result.solved_again_at_input;
   spdlog::debug("  window of frames {}-{}: gained {:.2f} times what fitting noise would{}", window.first,
                 window.first + window.count - 1, result.gain_over_noise,
                 result.settled ? ", settled" : (result.trusted ? "" : ", not trusted"));

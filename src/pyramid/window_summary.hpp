@@ -21,6 +21,7 @@ struct WindowSummary {
   int rounds = 0;
   bool trusted = true;
   bool settled = false;
+  bool solved_again = false;  // ba::BaResult::solved_again_at_input
 };
 
 // The summary of `window` of `layer` from its BA result. The BA's Hessian

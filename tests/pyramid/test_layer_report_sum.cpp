@@ -24,8 +24,11 @@ WindowSummary summary(std::size_t planes, double rms_before, double rms_after, b
 }
 
 TEST(LayerReportSum, SumsCountsAndCostsOverWindows) {
-  const LayerReport r = sumLayerReport(
-      {summary(3, 0.02, 0.01, true), summary(1, 0.06, 0.03, false), summary(0, 0.0, 0.0, true)});
+  WindowSummary settled_again = summary(3, 0.02, 0.01, true);
+  settled_again.settled = true;
+  settled_again.solved_again = true;
+  const LayerReport r =
+      sumLayerReport({settled_again, summary(1, 0.06, 0.03, false), summary(0, 0.0, 0.0, true)});
   EXPECT_EQ(r.windows, 3u);
   EXPECT_EQ(r.planes, 4u);
   EXPECT_EQ(r.plane_points, 80u);
@@ -35,6 +38,8 @@ TEST(LayerReportSum, SumsCountsAndCostsOverWindows) {
   EXPECT_DOUBLE_EQ(r.cost_after, 2.0);
   EXPECT_EQ(r.windows_without_planes, 1u);
   EXPECT_EQ(r.windows_untrusted, 1u);
+  EXPECT_EQ(r.windows_settled, 1u);
+  EXPECT_EQ(r.windows_solved_again, 1u);
 }
 
 TEST(LayerReportSum, RmsWeighsEveryPlaneAlike) {

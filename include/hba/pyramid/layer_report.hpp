@@ -22,6 +22,10 @@ struct LayerReport {
   // Windows whose BA gained no more than fitting noise would: they keep
   // their start poses (settle check, docs/pyramid.md).
   std::size_t windows_settled = 0;
+  // Windows whose coarse-to-fine result blurred their input's finest
+  // planes, solved again on those from their input (counted with
+  // whichever verdict that then got: settled, moved or untrusted).
+  std::size_t windows_solved_again = 0;
   std::size_t planes = 0;        // summed over windows
   std::size_t plane_points = 0;  // summed over windows
   std::size_t cloud_points = 0;  // points in this layer's clouds (after downsampling)
