@@ -50,7 +50,6 @@ std::vector<double> planeRms(const PlaneProblem& problem, std::vector<double> co
 // found at the input poses (`cost_at_input` there).
 struct InputCheck {
   double cost_final = 0.0;  // of `planes` at `poses`
-  bool slid = false;
   bool trusted = false;
   bool settled = false;
   double gain_over_noise = 0.0;
@@ -65,11 +64,11 @@ InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
   // frames pulled apart far beyond what the prior allows (planes that
   // merge unrelated surfaces can make a map look crisper while frames
   // slide by metres).
-  check.slid =
+  const bool slid =
       settings.motion_prior.enabled && settings.slide_sigmas > 0.0 &&
       !stepsBeyondThePrior(initial, poses, path_m, settings.motion_prior, settings.slide_sigmas).empty();
   const double gain = cost_at_input - check.cost_final;
-  check.trusted = !check.slid && gain >= 0.0;
+  check.trusted = !slid && gain >= 0.0;
   if (!check.trusted) return check;
   // Settled: no more gained than fitting the frames to noise would.
   const double noise = offsetNoiseGain(frameOffsets(planes, poses), initial.size());
@@ -80,19 +79,20 @@ InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
 
 // The trust and settle checks of the window's result on `fixed`, its finest
 // planes found at the input poses: sets result's `trusted`, `settled`,
-// `gain_over_noise` and fixed-map costs. A result blurrier there (without
-// sliding) after coarser rounds: at a converged map a coarse round carries a
-// window off an input its finest planes already hold, and the finest round,
-// on planes found where it went, need not bring it back. Those planes are
-// then solved once more from the input, and that result is judged instead
-// (becoming `last`, its linearization `last_lin`) when it passes.
+// `gain_over_noise` and fixed-map costs. A result that fails (blurrier
+// there, or frames slid apart) after coarser rounds is not yet the window's
+// verdict: at a converged map a coarse round carries a window off an input
+// its finest planes already hold, and the finest round, on planes found
+// where it went, need not bring it back. Those planes are then solved once
+// more from the input, and that result is judged instead (becoming `last`,
+// its linearization `last_lin`) when it passes.
 void judgeAgainstInput(const std::shared_ptr<const Association>& fixed, const std::vector<Pose>& initial,
                        const LmSettings& lm, const MotionPrior& prior, const std::vector<double>& path_m,
                        const BaSettings& settings, std::shared_ptr<const Association>& last,
                        Linearization& last_lin, BaResult& result) {
   InputCheck check =
       checkAgainstInput(fixed->problem, fixed->cost(), initial, result.poses, path_m, settings);
-  if (!check.trusted && !check.slid && fixed != last) {
+  if (!check.trusted && fixed != last) {
     std::vector<Pose> again = initial;
     Linearization again_lin;
     const auto start = Clock::now();

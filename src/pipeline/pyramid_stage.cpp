@@ -33,8 +33,9 @@ void logLayer(const LayerReport& r) {
         r.layer, r.windows_untrusted, r.windows);
   }
   if (r.windows_solved_again > 0) {
-    spdlog::debug("  layer {}: {} windows blurred their input's finest planes and were solved again on them",
-                  r.layer, r.windows_solved_again);
+    spdlog::debug(
+        "  layer {}: {} windows failed the trust check and were solved again on their input's planes",
+        r.layer, r.windows_solved_again);
   }
   if (r.windows_settled > 0) {
     spdlog::info(

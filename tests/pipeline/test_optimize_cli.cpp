@@ -416,6 +416,9 @@ void expectAFixedPoint(const fs::path& data, const test::TempDir& dir) {
   for (const auto& warning : report.at("warnings"))
     EXPECT_EQ(warning.get<std::string>().find("less consistent"), std::string::npos) << warning;
   EXPECT_EQ(r.output.find("[warning] frames 0-"), std::string::npos) << r.output;
+  // Nor do the windows, which a coarse round may carry off such a map
+  // (nclt's window 962-1014 slid frames, before it was solved again).
+  EXPECT_EQ(r.output.find("made the map blurrier"), std::string::npos) << r.output;
 }
 
 // On a simulation the hierarchy run again is not less consistent, only no

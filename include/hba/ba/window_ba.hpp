@@ -42,8 +42,8 @@ struct BaSettings {
   MotionPriorSettings motion_prior;
   // Trust check: the planes found at the input poses (finest voxel) must not
   // get blurrier at the result; a result that fails keeps the input poses.
-  // One that got blurrier after coarser rounds is first solved again on
-  // those planes from the input (BaResult::solved_again_at_input).
+  // One that fails after coarser rounds is first solved again on those
+  // planes from the input (BaResult::solved_again_at_input).
   bool check_fixed_map = true;
   // Also not trusted (with check_fixed_map and the prior on): neighbouring
   // frames whose relative pose moved by more than this many prior sigmas
@@ -86,10 +86,11 @@ struct BaResult {
   // fitting noise (measured whenever the trust check passed; 0 otherwise).
   bool settled = false;
   double gain_over_noise = 0.0;
-  // Coarse to fine, the last round's result made the input's finest planes
-  // blurrier (without sliding): those planes were solved again from the
-  // input, and that result, when it passed the trust check, was judged
-  // instead (a converged map, which coarser planes pull off).
+  // Coarse to fine, the last round's result failed the trust check (the
+  // input's finest planes blurrier, or frames slid apart): those planes
+  // were solved again from the input, and that result, when it passed the
+  // trust check, was judged instead (a converged map, which coarser planes
+  // pull off).
   bool solved_again_at_input = false;
   int rounds = 0;              // association rounds run
   std::size_t num_planes = 0;  // plane features used in the last round

@@ -22,8 +22,8 @@ struct LayerReport {
   // Windows whose BA gained no more than fitting noise would: they keep
   // their start poses (settle check, docs/pyramid.md).
   std::size_t windows_settled = 0;
-  // Windows whose coarse-to-fine result blurred their input's finest
-  // planes, solved again on those from their input (counted with
+  // Windows whose coarse-to-fine result failed the trust check, solved
+  // again on their input's finest planes from their input (counted with
   // whichever verdict that then got: settled, moved or untrusted).
   std::size_t windows_solved_again = 0;
   std::size_t planes = 0;        // summed over windows
