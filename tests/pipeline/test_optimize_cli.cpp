@@ -499,7 +499,7 @@ TEST_F(OptimizeSimulated, TheHierarchyAloneLeavesItsOwnOutputAlone) {
 // ended blurrier on their input's 1 m planes than they started, once the
 // 2 m round had carried them off and the 1 m round, on planes found where
 // they went, had not brought them back; they kept their input poses, and the
-// run warned that they "made the map blurrier" (7 of 23 windows here; 78 of
+// run warned that they "made the map blurrier" (7 of 23 windows here; 72 of
 // 199 on 1000 frames). Solved again on those planes from their input, they
 // gain no more than fitting noise and settle: nothing to warn of.
 TEST_F(OptimizeSimulated, AConvergedMapsWindowsDoNotCallItBlurrier) {
