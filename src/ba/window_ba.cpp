@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
+
+#include <Eigen/Cholesky>
 
 #include "core/stopwatch.hpp"
 #include "hba/ba/association.hpp"
@@ -77,6 +80,18 @@ InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
   return check;
 }
 
+// What one Gauss-Newton step from `lin` would gain, frame 0 held (the
+// window's gauge); infinite where the Hessian gives no such step.
+double gaussNewtonGain(const Linearization& lin) {
+  const Eigen::Index n = lin.gradient.size() - 6;
+  if (n <= 0) return 0.0;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(lin.hessian.bottomRightCorner(n, n));
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd g = lin.gradient.tail(n);
+  const double gain = 0.5 * g.dot(ldlt.solve(g));
+  return std::isfinite(gain) && gain >= 0.0 ? gain : std::numeric_limits<double>::infinity();
+}
+
 // The trust and settle checks of the window's result on `fixed`, its finest
 // planes found at the input poses: sets result's `trusted`, `settled`,
 // `gain_over_noise` and fixed-map costs. A result that fails (blurrier
@@ -85,13 +100,28 @@ InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
 // its finest planes already hold, and the finest round, on planes found
 // where it went, need not bring it back. Those planes are then solved once
 // more from the input, and that result is judged instead (becoming `last`,
-// its linearization `last_lin`) when it passes.
+// its linearization `last_lin`) when it passes. Where a Gauss-Newton step
+// from the input could gain no more than the settle check allows, the
+// window settles without the solve, and `input_lin` holds that
+// linearization (its Hessian there).
 void judgeAgainstInput(const std::shared_ptr<const Association>& fixed, const std::vector<Pose>& initial,
                        const LmSettings& lm, const MotionPrior& prior, const std::vector<double>& path_m,
                        const BaSettings& settings, std::shared_ptr<const Association>& last,
-                       Linearization& last_lin, BaResult& result) {
+                       Linearization& last_lin, Linearization& input_lin, BaResult& result) {
   InputCheck check =
       checkAgainstInput(fixed->problem, fixed->cost(), initial, result.poses, path_m, settings);
+  if (!check.trusted && fixed != last && settings.significant_gain > 0.0) {
+    Linearization at_input = fixed->problem.linearize(initial);
+    prior.addTo(at_input, initial);
+    const double noise = offsetNoiseGain(frameOffsets(fixed->problem, initial), initial.size());
+    const double predicted = gaussNewtonGain(at_input);
+    if (noise > 0.0 && predicted <= settings.significant_gain * noise) {
+      result.solved_again_at_input = true;
+      check = InputCheck{fixed->cost(), true, true, predicted / noise};
+      input_lin = std::move(at_input);
+      last = fixed;
+    }
+  }
   if (!check.trusted && fixed != last) {
     std::vector<Pose> again = initial;
     Linearization again_lin;
@@ -133,6 +163,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   // once), or the first round's own when it is at the finest voxel already.
   std::shared_ptr<const Association> last, fixed;
   Linearization last_lin;      // where the last round's solver settled, when it did
+  Linearization input_lin;     // at the input on the finest planes, when made for the trust check
   bool last_at_input = false;  // `last` was found at the input poses
   // Halvings from voxel_size down to final_voxel_size (coarse to fine).
   const double coarsest = settings.planes.voxel_size;
@@ -173,7 +204,7 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
 
   if (settings.check_fixed_map) {
     judgeAgainstInput(fixed, initial, lm, fixed->problem.numPlanes() > 0 ? full_prior : no_prior, path_m,
-                      settings, last, last_lin, result);
+                      settings, last, last_lin, input_lin, result);
     if (!result.trusted || result.settled) {
       result.poses = initial;
       last = fixed;
@@ -195,6 +226,8 @@ BaResult optimizeWindow(const std::vector<const PointCloud*>& scans, const std::
   Linearization final_lin;
   if (moved && last_lin.gradient.size() > 0) {
     final_lin = std::move(last_lin);
+  } else if (!moved && input_lin.gradient.size() > 0) {
+    final_lin = std::move(input_lin);  // at the input, on the same planes
   } else {
     final_lin = last->problem.linearize(result.poses);
     prior.addTo(final_lin, result.poses);

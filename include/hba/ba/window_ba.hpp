@@ -90,7 +90,8 @@ struct BaResult {
   // input's finest planes blurrier, or frames slid apart): those planes
   // were solved again from the input, and that result, when it passed the
   // trust check, was judged instead (a converged map, which coarser planes
-  // pull off).
+  // pull off); or settled there, where one Gauss-Newton step from the input
+  // predicted no more gain than the settle check allows.
   bool solved_again_at_input = false;
   int rounds = 0;              // association rounds run
   std::size_t num_planes = 0;  // plane features used in the last round
