@@ -58,6 +58,12 @@ struct InputCheck {
   double gain_over_noise = 0.0;
 };
 
+// The settle check: `gain` no more than significant_gain times what fitting
+// the frames to noise would (`noise`).
+bool settles(double gain, double noise, const BaSettings& settings) {
+  return settings.significant_gain > 0.0 && noise > 0.0 && gain <= settings.significant_gain * noise;
+}
+
 InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
                              const std::vector<Pose>& initial, const std::vector<Pose>& poses,
                              const std::vector<double>& path_m, const BaSettings& settings) {
@@ -76,7 +82,7 @@ InputCheck checkAgainstInput(const PlaneProblem& planes, double cost_at_input,
   // Settled: no more gained than fitting the frames to noise would.
   const double noise = offsetNoiseGain(frameOffsets(planes, poses), initial.size());
   check.gain_over_noise = noise > 0.0 ? gain / noise : 0.0;
-  check.settled = settings.significant_gain > 0.0 && noise > 0.0 && gain <= settings.significant_gain * noise;
+  check.settled = settles(gain, noise, settings);
   return check;
 }
 
@@ -110,34 +116,31 @@ void judgeAgainstInput(const std::shared_ptr<const Association>& fixed, const st
                        Linearization& last_lin, Linearization& input_lin, BaResult& result) {
   InputCheck check =
       checkAgainstInput(fixed->problem, fixed->cost(), initial, result.poses, path_m, settings);
-  if (!check.trusted && fixed != last && settings.significant_gain > 0.0) {
+  if (!check.trusted && fixed != last) {
+    result.solved_again_at_input = true;
     Linearization at_input = fixed->problem.linearize(initial);
     prior.addTo(at_input, initial);
     const double noise = offsetNoiseGain(frameOffsets(fixed->problem, initial), initial.size());
     const double predicted = gaussNewtonGain(at_input);
-    if (noise > 0.0 && predicted <= settings.significant_gain * noise) {
-      result.solved_again_at_input = true;
+    if (settles(predicted, noise, settings)) {
       check = InputCheck{fixed->cost(), true, true, predicted / noise};
       input_lin = std::move(at_input);
-      last = fixed;
-    }
-  }
-  if (!check.trusted && fixed != last) {
-    std::vector<Pose> again = initial;
-    Linearization again_lin;
-    const auto start = Clock::now();
-    const LmSummary summary =
-        solveLevenbergMarquardt(fixed->problem, again, lm, prior, fixed->cost(), &again_lin);
-    result.seconds_solve += secondsBetween(start, Clock::now());
-    result.iterations += summary.iterations;
-    result.solved_again_at_input = true;
-    const InputCheck again_check =
-        checkAgainstInput(fixed->problem, fixed->cost(), initial, again, path_m, settings);
-    if (again_check.trusted) {
-      check = again_check;
-      result.poses = std::move(again);
-      last = fixed;
-      last_lin = std::move(again_lin);
+    } else {
+      std::vector<Pose> again = initial;
+      Linearization again_lin;
+      const auto start = Clock::now();
+      const LmSummary summary =
+          solveLevenbergMarquardt(fixed->problem, again, lm, prior, fixed->cost(), &again_lin);
+      result.seconds_solve += secondsBetween(start, Clock::now());
+      result.iterations += summary.iterations;
+      const InputCheck again_check =
+          checkAgainstInput(fixed->problem, fixed->cost(), initial, again, path_m, settings);
+      if (again_check.trusted) {
+        check = again_check;
+        result.poses = std::move(again);
+        last = fixed;
+        last_lin = std::move(again_lin);
+      }
     }
   }
   result.fixed_map_cost_initial = fixed->cost();
