@@ -5,21 +5,17 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <string>
 
 #include "consistency.hpp"
 #include "core/progress.hpp"
 #include "core/stopwatch.hpp"
 #include "hba/ba/global_refinement.hpp"
+#include "hba/core/error.hpp"
 #include "hba/voxel/downsample.hpp"
 
 namespace hba::refine {
 namespace {
-
-// Frames [first, end) of one group.
-struct GroupSpan {
-  std::size_t first = 0;
-  std::size_t end = 0;
-};
 
 std::vector<GroupSpan> planGroups(std::size_t frames, std::size_t size) {
   std::vector<GroupSpan> groups;
@@ -54,6 +50,32 @@ PointCloud mergeGroup(const io::ScanSource& scans, const std::vector<Pose>& pose
 }
 
 }  // namespace
+
+std::vector<Pose> spreadGroupMoves(const std::vector<GroupSpan>& groups, const std::vector<Pose>& moves,
+                                   const std::vector<Pose>& current) {
+  if (moves.size() != groups.size()) {
+    throw Error("group moves: " + std::to_string(moves.size()) + " moves for " +
+                std::to_string(groups.size()) + " groups");
+  }
+  std::vector<Pose> out = current;
+  if (groups.empty()) return out;
+  auto centre = [&](std::size_t k) { return 0.5 * static_cast<double>(groups[k].first + groups[k].end - 1); };
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    for (std::size_t i = groups[k].first; i < groups[k].end && i < current.size(); ++i) {
+      const double at = static_cast<double>(i);
+      // The centres either side of the frame: this group's and the nearer neighbour's.
+      const bool before = at < centre(k);
+      if ((before && k == 0) || (!before && k + 1 == groups.size()) || at == centre(k)) {
+        out[i] = moves[k] * current[i];
+        continue;
+      }
+      const std::size_t a = before ? k - 1 : k;
+      const double s = (at - centre(a)) / (centre(a + 1) - centre(a));
+      out[i] = interpolate(moves[a] * current[i], moves[a + 1] * current[i], s);
+    }
+  }
+  return out;
+}
 
 std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t min_frames) {
   const std::size_t groups = std::max<std::size_t>(max_groups, 1);
@@ -102,6 +124,11 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
   ba::RefinementSettings rs = settings.ba;
   // Few unknowns, whose weak long-range modes are the point: exact steps.
   rs.lm.dense_max_frames = groups.size();
+  // Every step that lowers the cost is taken: a weak long mode gains less
+  // a step than fitting the noise would, and moving it is what the groups
+  // are for (5000 simulated frames: 3.85 mm ATE with the blocks' step gate
+  // here, 2.34 mm without).
+  rs.step_gain = 0.0;
   // A dense solve is one process's: every member places the groups alike
   // (the same sums, whatever its thread count).
   rs.spread_over = nullptr;
@@ -132,14 +159,11 @@ std::vector<Pose> refineGroups(const io::ScanSource& scans, const std::vector<Po
                     groups.size(), g.rms_before, g.rms_after));
     return current;
   }
-  std::vector<Pose> out(current.size());
-  for (std::size_t k = 0; k < groups.size(); ++k) {
-    const Pose move = refined.poses[k] * start_poses[k].inverse();
-    for (std::size_t i = groups[k].first; i < groups[k].end; ++i) {
-      out[i] = move * current[i];
-      g.largest_move_m = std::max(g.largest_move_m, (out[i].t - current[i].t).norm());
-    }
-  }
+  std::vector<Pose> moves(groups.size());
+  for (std::size_t k = 0; k < groups.size(); ++k) moves[k] = refined.poses[k] * start_poses[k].inverse();
+  std::vector<Pose> out = spreadGroupMoves(groups, moves, current);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    g.largest_move_m = std::max(g.largest_move_m, (out[i].t - current[i].t).norm());
   spdlog::info(
       "refinement: groups placed, plane RMS {:.4f} -> {:.4f} m on their {} planes, "
       "largest move {:.3f} m, {:.1f} s",

@@ -19,8 +19,25 @@ namespace hba::refine {
 // most `max_groups` groups, and never fewer than `min_frames`.
 std::size_t groupSize(std::size_t frames, std::size_t max_groups, std::size_t min_frames);
 
-// Moves the groups of `current` rigidly to fit one plane BA over all of
-// them; the relative poses inside a group are kept. `input` gives the
+// Frames [first, end) of one group.
+struct GroupSpan {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
+// The frames of `current` with each group's rigid move (`moves[k]`, applied
+// on the left) spread along the sequence: a group's move holds exactly at
+// its centre frame, and a frame between two centres takes the two moves'
+// placements of it blended by its position between them (positions
+// linearly, orientations along the shortest arc); frames before the first
+// centre or after the last take that group's move. Applied group by group
+// instead, the moves would step at every group's edge by the whole
+// difference between neighbouring groups.
+std::vector<Pose> spreadGroupMoves(const std::vector<GroupSpan>& groups, const std::vector<Pose>& moves,
+                                   const std::vector<Pose>& current);
+
+// Moves the groups of `current` to fit one plane BA over all of them, each
+// as a rigid body, and spreads their moves to the frames (spreadGroupMoves). `input` gives the
 // motion prior's reference (the odometry's steps between groups). Returns
 // `current` unchanged, with a warning, if the groups' map would get
 // blurrier (report.rejected), or if there are fewer than three groups.

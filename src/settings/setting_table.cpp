@@ -363,7 +363,8 @@ void addRefinement(std::vector<Setting>& t) {
   t.push_back(real(
       "refine_step_gain", "", ba::RefinementSettings{}.step_gain, zeroOr("off", 0.01, 1e6),
       [](HbaSettings& h) -> double& { return h.refinement.step_gain; },
-      "end a round's LM at a step gaining less than this many times fitting the noise"));
+      "end a round's LM at a step gaining less than this many times fitting the noise (the blocks'; the "
+      "groups' BA takes every step)"));
   t.push_back(onOff(
       "refine_groups", "", true, [](HbaSettings& h) -> bool& { return h.refine_groups; },
       "beyond one block, then place rigid groups of frames as a whole"));
