@@ -37,8 +37,9 @@ std::vector<Pose> spreadGroupMoves(const std::vector<GroupSpan>& groups, const s
                                    const std::vector<Pose>& current);
 
 // Moves the groups of `current` to fit one plane BA over all of them, each
-// as a rigid body, and spreads their moves to the frames (spreadGroupMoves). `input` gives the
-// motion prior's reference (the odometry's steps between groups). Returns
+// as a rigid body, and spreads their moves to the frames
+// (spreadGroupMoves). `input` gives the motion prior's reference (the
+// odometry's steps between groups). Returns
 // `current` unchanged, with a warning, if the groups' map would get
 // blurrier (report.rejected), or if there are fewer than three groups.
 // Position priors stay out: a group of ten frames may hold one, and the
