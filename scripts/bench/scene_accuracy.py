@@ -3,9 +3,9 @@
 
 The gate of every speed change (issue #13, item 3): each simulated scene
 (city, indoor and open, a spinning HDL-32 and a solid-state Livox; a mixed
-scene with three seeds; 5000 frames unless --no-long) is optimized by both builds with the defaults and
-scored by its ATE against the ground truth; hku1 and nclt, which have none,
-by their mean map entropy. Scenes are simulated once into --data-dir/scenes
+scene with three seeds; 5000 frames unless --no-long) is optimized by both
+builds with the defaults and scored by its ATE against the ground truth;
+hku1 and nclt, which have none, by their mean map entropy. Scenes are simulated once into --data-dir/scenes
 (by build A, kept while their flags are unchanged). Prints a Markdown table
 and writes it to --output.
 
