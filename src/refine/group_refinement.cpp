@@ -53,15 +53,15 @@ PointCloud mergeGroup(const io::ScanSource& scans, const std::vector<Pose>& pose
 
 std::vector<Pose> spreadGroupMoves(const std::vector<GroupSpan>& groups, const std::vector<Pose>& moves,
                                    const std::vector<Pose>& current) {
-  if (moves.size() != groups.size()) {
+  if (moves.size() != groups.size() || (!groups.empty() && groups.back().end > current.size())) {
     throw Error("group moves: " + std::to_string(moves.size()) + " moves for " +
-                std::to_string(groups.size()) + " groups");
+                std::to_string(groups.size()) + " groups over " + std::to_string(current.size()) + " frames");
   }
   std::vector<Pose> out = current;
   if (groups.empty()) return out;
   auto centre = [&](std::size_t k) { return 0.5 * static_cast<double>(groups[k].first + groups[k].end - 1); };
   for (std::size_t k = 0; k < groups.size(); ++k) {
-    for (std::size_t i = groups[k].first; i < groups[k].end && i < current.size(); ++i) {
+    for (std::size_t i = groups[k].first; i < groups[k].end; ++i) {
       const double at = static_cast<double>(i);
       // The centres either side of the frame: this group's and the nearer neighbour's.
       const bool before = at < centre(k);
