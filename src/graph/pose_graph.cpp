@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include <ceres/iteration_callback.h>
 #include <ceres/loss_function.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
@@ -45,6 +46,9 @@ void validate(const std::vector<Pose>& initial, const FactorGraph& factors,
   if (settings.prior_robust_loss != RobustLoss::None && !(settings.prior_robust_loss_scale > 0.0)) {
     throw Error("pose graph: prior_robust_loss_scale must be positive");
   }
+  if (!(settings.last_step_gain >= 0.0 && settings.last_step_gain < 1.0)) {
+    throw Error("pose graph: last_step_gain must be in [0, 1)");
+  }
   if (!(settings.min_prior_spread > 0.0) || !std::isfinite(settings.min_prior_spread)) {
     throw Error("pose graph: min_prior_spread must be positive and finite");
   }
@@ -61,6 +65,21 @@ std::unique_ptr<ceres::LossFunction> makeLoss(RobustLoss kind, double scale) {
   }
   return nullptr;
 }
+
+// Ends the solve after a taken step that gained less than `fraction` of
+// the cost it started from (PoseGraphSettings::last_step_gain).
+class LastStepGain final : public ceres::IterationCallback {
+ public:
+  explicit LastStepGain(double fraction) : fraction_(fraction) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& step) override {
+    const bool small = step.cost_change < fraction_ * (step.cost + step.cost_change);
+    if (step.iteration > 0 && step.step_is_successful && small) return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  double fraction_;
+};
 
 ceres::Solver::Options solverOptions(const PoseGraphSettings& settings) {
   ceres::Solver::Options options;
@@ -153,14 +172,18 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
     }
   }
 
+  ceres::Solver::Options options = solverOptions(settings);
+  LastStepGain last_step(settings.last_step_gain);
+  if (settings.last_step_gain > 0.0) options.callbacks.push_back(&last_step);
   ceres::Solver::Summary summary;
-  ceres::Solve(solverOptions(settings), &problem, &summary);
+  ceres::Solve(options, &problem, &summary);
 
   // Ceres' cost is 1/2 sum rho(|S e|^2); report the pose graph's sum.
   result.initial_cost = 2.0 * summary.initial_cost;
   result.final_cost = 2.0 * summary.final_cost;
   result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.converged =
+      summary.termination_type == ceres::CONVERGENCE || summary.termination_type == ceres::USER_SUCCESS;
   // Copy back only what moved, so fixed and untouched poses stay bit-identical.
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (touched[i] && !fixed[i]) result.poses[i] = poseFromBlock(blocks[i].data());

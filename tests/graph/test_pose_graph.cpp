@@ -78,26 +78,36 @@ TEST(PoseGraph, RecoversTruthFromPerturbedPosesWithConsistentMeasurements) {
   EXPECT_LT(maxPoseError(result.poses, truth), 1e-6);
 }
 
-TEST(PoseGraph, ReducesDriftWithNoisyMeasurementsOfKnownCovariance) {
-  const std::vector<Pose> truth = loopTrajectory(60, 25.0);
-  std::mt19937 rng(12);
+// loopFactors(truth) with noise of known covariance, and the poses dead
+// reckoning from their odometry factors reaches (drifting; the loop closes it).
+struct NoisyLoop {
+  std::vector<RelativePoseFactor> factors;
+  std::vector<Pose> initial;
+};
+
+NoisyLoop noisyLoop(const std::vector<Pose>& truth, unsigned seed) {
+  std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   Vec6 sigma;
   sigma << 0.05, 0.05, 0.05, 0.005, 0.005, 0.005;
   const Mat6 information = sigma.cwiseInverse().cwiseAbs2().asDiagonal();
 
-  std::vector<RelativePoseFactor> factors = loopFactors(truth);
-  for (RelativePoseFactor& f : factors) {
+  NoisyLoop loop{loopFactors(truth), {truth[0]}};
+  for (RelativePoseFactor& f : loop.factors) {
     Vec6 noise;
     for (int k = 0; k < 6; ++k) noise[k] = sigma[k] * normal(rng);
     f.measurement = f.measurement * se3Exp(noise);
     f.information = information;
   }
-  // Dead reckoning from the noisy odometry factors drifts; the loop closes it.
-  std::vector<Pose> initial = {truth[0]};
   for (std::size_t i = 0; i + 1 < truth.size(); ++i) {
-    initial.push_back(initial.back() * factors[i].measurement);
+    loop.initial.push_back(loop.initial.back() * loop.factors[i].measurement);
   }
+  return loop;
+}
+
+TEST(PoseGraph, ReducesDriftWithNoisyMeasurementsOfKnownCovariance) {
+  const std::vector<Pose> truth = loopTrajectory(60, 25.0);
+  const auto [factors, initial] = noisyLoop(truth, 12);
   const PoseGraphResult result = optimizePoseGraph(initial, factors);
   EXPECT_TRUE(result.converged);
   EXPECT_LT(result.final_cost, result.initial_cost);
@@ -106,6 +116,36 @@ TEST(PoseGraph, ReducesDriftWithNoisyMeasurementsOfKnownCovariance) {
   EXPECT_LT(after, 0.5 * before) << "before " << before << " after " << after;
   // About one chi-square degree of freedom per residual dimension.
   EXPECT_LT(result.final_cost, 6.0 * static_cast<double>(factors.size()));
+}
+
+TEST(PoseGraph, EndsAfterAStepThatGainsLessThanItsShareOfTheCost) {
+  const std::vector<Pose> truth = loopTrajectory(60, 25.0);
+  const auto [factors, initial] = noisyLoop(truth, 12);
+  PoseGraphSettings to_the_end;
+  to_the_end.last_step_gain = 0.0;
+  const PoseGraphResult full = optimizePoseGraph(initial, factors, to_the_end);
+  EXPECT_TRUE(full.converged);
+
+  // The default share ends where Ceres' tolerances would, or earlier, at
+  // poses no different.
+  const PoseGraphResult ended = optimizePoseGraph(initial, factors);
+  EXPECT_TRUE(ended.converged);
+  EXPECT_LE(ended.iterations, full.iterations);
+  EXPECT_LT(maxPoseError(ended.poses, full.poses), 1e-6);
+  EXPECT_NEAR(ended.final_cost, full.final_cost, 1e-9 * full.final_cost);
+
+  // A larger share ends earlier, with the step that gained too little
+  // taken: lower than Ceres' function tolerance ends, which drops it.
+  PoseGraphSettings share;
+  share.last_step_gain = 1e-3;
+  const PoseGraphResult early = optimizePoseGraph(initial, factors, share);
+  PoseGraphSettings tolerance = to_the_end;
+  tolerance.function_tolerance = 1e-3;
+  const PoseGraphResult dropped = optimizePoseGraph(initial, factors, tolerance);
+  EXPECT_TRUE(early.converged);
+  EXPECT_LT(early.iterations, full.iterations);
+  EXPECT_LT(early.final_cost, dropped.final_cost);
+  EXPECT_LT(maxPoseError(early.poses, full.poses), maxPoseError(dropped.poses, full.poses));
 }
 
 TEST(PoseGraph, HoldsTheGaugeAndLeavesUntouchedNodesAlone) {
@@ -257,6 +297,11 @@ TEST(PoseGraph, RejectsBadInput) {
   PoseGraphSettings settings;
   settings.threads = -1;
   EXPECT_THROW(optimizePoseGraph(initial, {}, settings), Error);
+  for (const double gain : {-0.1, 1.0, std::nan("")}) {
+    PoseGraphSettings bad_gain;
+    bad_gain.last_step_gain = gain;
+    EXPECT_THROW(optimizePoseGraph(initial, {}, bad_gain), Error) << gain;
+  }
 }
 
 }  // namespace
