@@ -12,7 +12,7 @@ set -euo pipefail
 # and let the one configuration serve the demo and the tests alike).
 tool=(
   build-essential cmake ninja-build ccache pkg-config
-  libeigen3-dev libceres-dev libtbb-dev
+  libeigen3-dev libceres-dev libsuitesparse-dev libtbb-dev
   libcli11-dev libspdlog-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libpng-dev libstb-dev libnanoflann-dev liblzf-dev liblz4-dev libzstd-dev libbz2-dev libsqlite3-dev zlib1g-dev

@@ -27,6 +27,10 @@ std::vector<CostPiece> FactorModel::newCosts(bool /*whole*/) const {
   return pieces;
 }
 
+void FactorModel::addNormalEquations(const std::vector<Pose>& /*poses*/, NormalEquations& /*system*/) const {
+  throw Error(std::string("pose graph: a ") + name() + " factor does not form its normal equations");
+}
+
 void checkNode(std::size_t node, std::size_t num_poses, const std::string& label) {
   if (node >= num_poses) {
     throw Error(label + " links node " + std::to_string(node) + " but there are " +

@@ -17,6 +17,8 @@
 
 namespace hba::graph {
 
+class NormalEquations;
+
 // One Ceres cost of a factor and the nodes it depends on, as positions in
 // the factor's nodes().
 struct CostPiece {
@@ -53,6 +55,14 @@ class FactorModel {
   // (a robust loss must see the whole residual). By default newCost() over
   // every node.
   virtual std::vector<CostPiece> newCosts(bool whole) const;
+
+  // Whether the factor adds its own terms to the normal equations in the
+  // nodes' tangent (addNormalEquations) faster than they are formed from
+  // newCost()'s Jacobian.
+  virtual bool formsNormalEquations() const { return false; }
+  // Adds e^T Omega e, J^T Omega e and J^T Omega J at `poses`, J = d e /
+  // d (dt, dphi) of each node (formsNormalEquations() only).
+  virtual void addNormalEquations(const std::vector<Pose>& poses, NormalEquations& system) const;
 };
 
 // Checks shared by the kinds; each throws hba::Error starting with `label`.

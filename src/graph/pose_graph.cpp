@@ -16,6 +16,7 @@
 #include "hba/core/error.hpp"
 #include "orientation_held_manifold.hpp"
 #include "pose_block.hpp"
+#include "tangent_solver.hpp"
 #include "world_pose_manifold.hpp"
 
 namespace hba::graph {
@@ -100,18 +101,53 @@ ceres::Solver::Options solverOptions(const PoseGraphSettings& settings) {
 
 }  // namespace
 
-PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const FactorGraph& factors,
-                                    const PoseGraphSettings& settings) {
-  validate(initial, factors, settings);
-  PoseGraphResult result;
-  result.poses = initial;
-  if (factors.empty()) {
-    result.converged = true;
-    return result;
-  }
+namespace {
 
+// Which nodes the factors touch, and which of those hold the gauge (also
+// listed in `result`).
+struct Gauge {
+  std::vector<bool> touched;
+  std::vector<bool> fixed;
+  std::vector<bool> orientation_fixed;
+};
+
+Gauge chooseGauge(std::size_t poses, const FactorGraph& factors, const PoseGraphSettings& settings,
+                  PoseGraphResult& result) {
+  Gauge gauge{std::vector<bool>(poses, false), std::vector<bool>(poses, false),
+              std::vector<bool>(poses, false)};
+  std::vector<GaugeInput> inputs;
+  inputs.reserve(factors.size());
+  for (const auto& model : factors.models()) {
+    inputs.push_back({model->nodes(), model->gaugePin()});
+    for (const std::size_t node : inputs.back().nodes) gauge.touched[node] = true;
+  }
+  for (const GaugeAnchor& anchor : componentAnchors(poses, inputs, settings.min_prior_spread)) {
+    if (anchor.hold == GaugeHold::Pose) {
+      gauge.fixed[anchor.node] = true;
+      result.held_nodes.push_back(anchor.node);
+    } else {
+      gauge.orientation_fixed[anchor.node] = true;
+      result.orientation_held_nodes.push_back(anchor.node);
+    }
+  }
+  return gauge;
+}
+
+void solveInTangent(const std::vector<Pose>& initial, const FactorGraph& factors, const Gauge& gauge,
+                    const PoseGraphSettings& settings, PoseGraphResult& result) {
+  std::vector<bool> variable(initial.size());
+  for (std::size_t i = 0; i < initial.size(); ++i) variable[i] = gauge.touched[i] && !gauge.fixed[i];
+  TangentSolve solved = solveInTangent(initial, factors, variable, settings);
+  result.poses = std::move(solved.poses);
+  result.initial_cost = solved.initial_cost;
+  result.final_cost = solved.final_cost;
+  result.iterations = solved.iterations;
+  result.converged = solved.converged;
+}
+
+void solveWithCeres(const std::vector<Pose>& initial, const FactorGraph& factors, const Gauge& gauge,
+                    const PoseGraphSettings& settings, PoseGraphResult& result) {
   std::vector<PoseBlock> blocks(initial.size());
-  std::vector<bool> touched(initial.size(), false);
   for (std::size_t i = 0; i < initial.size(); ++i) blocks[i] = toPoseBlock(initial[i]);
 
   // The problem borrows the manifolds and the losses; it owns the costs.
@@ -133,44 +169,22 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
     if (group == LossGroup::Prior) return prior_loss.get();
     return nullptr;
   };
-
-  std::vector<GaugeInput> gauge_inputs;
-  gauge_inputs.reserve(factors.size());
   for (const auto& model : factors.models()) {
-    GaugeInput gauge{model->nodes(), model->gaugePin()};
-    for (const std::size_t node : gauge.nodes) touched[node] = true;
+    const std::vector<std::size_t> nodes = model->nodes();
     ceres::LossFunction* loss = lossOf(model->lossGroup());
     for (CostPiece& piece : model->newCosts(loss != nullptr)) {
       std::vector<double*> parameters;
-      for (const std::size_t k : piece.node_positions) parameters.push_back(blocks[gauge.nodes[k]].data());
+      for (const std::size_t k : piece.node_positions) parameters.push_back(blocks[nodes[k]].data());
       problem.AddResidualBlock(piece.cost.release(), loss, parameters);
     }
-    gauge_inputs.push_back(std::move(gauge));
-  }
-  const std::vector<GaugeAnchor> anchors =
-      componentAnchors(initial.size(), gauge_inputs, settings.min_prior_spread);
-  std::vector<bool> fixed(initial.size(), false);
-  std::vector<bool> orientation_fixed(initial.size(), false);
-  for (const GaugeAnchor& anchor : anchors) {
-    if (anchor.hold == GaugeHold::Pose) fixed[anchor.node] = true;
-    if (anchor.hold == GaugeHold::Orientation) orientation_fixed[anchor.node] = true;
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (!touched[i]) continue;
-    if (orientation_fixed[i]) {
-      problem.SetManifold(blocks[i].data(), &orientation_held);
-    } else {
-      problem.SetManifold(blocks[i].data(), &manifold);
-    }
+    if (!gauge.touched[i]) continue;
+    problem.SetManifold(blocks[i].data(), gauge.orientation_fixed[i]
+                                              ? static_cast<ceres::Manifold*>(&orientation_held)
+                                              : &manifold);
   }
-  for (const GaugeAnchor& anchor : anchors) {
-    if (anchor.hold == GaugeHold::Pose) {
-      problem.SetParameterBlockConstant(blocks[anchor.node].data());
-      result.held_nodes.push_back(anchor.node);
-    } else {
-      result.orientation_held_nodes.push_back(anchor.node);
-    }
-  }
+  for (const std::size_t node : result.held_nodes) problem.SetParameterBlockConstant(blocks[node].data());
 
   ceres::Solver::Options options = solverOptions(settings);
   LastStepGain last_step(settings.last_step_gain);
@@ -186,7 +200,30 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
       summary.termination_type == ceres::CONVERGENCE || summary.termination_type == ceres::USER_SUCCESS;
   // Copy back only what moved, so fixed and untouched poses stay bit-identical.
   for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (touched[i] && !fixed[i]) result.poses[i] = poseFromBlock(blocks[i].data());
+    if (gauge.touched[i] && !gauge.fixed[i]) result.poses[i] = poseFromBlock(blocks[i].data());
+  }
+}
+
+}  // namespace
+
+PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const FactorGraph& factors,
+                                    const PoseGraphSettings& settings) {
+  validate(initial, factors, settings);
+  PoseGraphResult result;
+  result.poses = initial;
+  if (factors.empty()) {
+    result.converged = true;
+    return result;
+  }
+  const Gauge gauge = chooseGauge(initial.size(), factors, settings, result);
+  // Ours where it applies: no robust loss, whole poses held.
+  const bool robust = settings.robust_loss != RobustLoss::None ||
+                      settings.loop_robust_loss != RobustLoss::None ||
+                      settings.prior_robust_loss != RobustLoss::None;
+  if (settings.normal_equations && !robust && result.orientation_held_nodes.empty()) {
+    solveInTangent(initial, factors, gauge, settings, result);
+  } else {
+    solveWithCeres(initial, factors, gauge, settings, result);
   }
   return result;
 }

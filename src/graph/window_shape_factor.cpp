@@ -11,6 +11,7 @@
 #include "hba/core/error.hpp"
 #include "hba/core/relative_pose_error.hpp"
 #include "information_root.hpp"
+#include "normal_equations.hpp"
 #include "pose_block.hpp"
 #include "world_pose_manifold.hpp"
 
@@ -132,6 +133,57 @@ class WindowShapeFactorModel final : public FactorModel {
   ceres::CostFunction* newCost() const override {
     return new WindowShapeCost(factor_.relative,
                                squareRoot(factor_.information, "window shape information").s);
+  }
+
+  bool formsNormalEquations() const override { return true; }
+
+  // Each error e_k depends on the first frame (D0_k) and frame k (Dk) only:
+  // J^T Omega J block by block, about K^2 products of 6x6 blocks, where
+  // J^T J of the whitened rows costs about K^3.
+  void addNormalEquations(const std::vector<Pose>& poses, NormalEquations& system) const override {
+    const std::vector<std::size_t>& nodes = factor_.nodes;
+    const std::size_t frames = factor_.relative.size();
+    const Eigen::MatrixXd& omega = factor_.information;
+    Eigen::VectorXd error(omega.rows());
+    std::vector<Mat6> d_first(frames);
+    std::vector<Mat6> d_own(frames);
+    for (std::size_t k = 0; k < frames; ++k) {
+      const RelativePoseErrorJacobians e =
+          relativePoseErrorJacobians(factor_.relative[k], poses[nodes[0]], poses[nodes[k + 1]]);
+      error.segment<6>(static_cast<Eigen::Index>(6 * k)) = e.error;
+      d_first[k] = e.d_from;
+      d_own[k] = e.d_to;
+    }
+    const Eigen::VectorXd weighted = omega * error;
+    system.addCost(error.dot(weighted));
+    // Omega times the Jacobian's columns: of each frame, and of the first.
+    Eigen::MatrixXd omega_own(omega.rows(), omega.cols());
+    Eigen::Matrix<double, Eigen::Dynamic, 6> omega_first =
+        Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(omega.rows(), 6);
+    Vec6 first_gradient = Vec6::Zero();
+    for (std::size_t l = 0; l < frames; ++l) {
+      const auto col = static_cast<Eigen::Index>(6 * l);
+      omega_own.middleCols<6>(col).noalias() = omega.middleCols<6>(col) * d_own[l];
+      omega_first.noalias() += omega.middleCols<6>(col) * d_first[l];
+      system.addGradient(nodes[l + 1], d_own[l].transpose() * weighted.segment<6>(col));
+      first_gradient.noalias() += d_first[l].transpose() * weighted.segment<6>(col);
+    }
+    system.addGradient(nodes[0], first_gradient);
+    Mat6 first_first = Mat6::Zero();
+    for (std::size_t l = 0; l < frames; ++l) {
+      const auto col = static_cast<Eigen::Index>(6 * l);
+      Mat6 first_own = Mat6::Zero();
+      for (std::size_t k = 0; k < frames; ++k) {
+        const auto row = static_cast<Eigen::Index>(6 * k);
+        if (k <= l)
+          system.addHessian(nodes[k + 1], nodes[l + 1],
+                            d_own[k].transpose() * omega_own.block<6, 6>(row, col));
+        first_own.noalias() += d_first[k].transpose() * omega_own.block<6, 6>(row, col);
+      }
+      system.addHessian(nodes[0], nodes[l + 1], first_own);
+      first_first.noalias() += d_first[l].transpose() * omega_first.middleRows<6>(col);
+    }
+    system.addHessian(nodes[0], nodes[0], first_first);
   }
 
   std::vector<CostPiece> newCosts(bool whole) const override {

@@ -1,7 +1,8 @@
 #pragma once
 // The top-down pose graph: all layer-1 poses as unknowns, relative-pose
 // factors from the BA windows of every layer, optionally loop closures and
-// priors. Solved with Ceres (Levenberg-Marquardt, sparse normal Cholesky).
+// priors. Solved by Levenberg-Marquardt on its normal equations with CHOLMOD
+// (ours, tangent_solver.cpp) or, with robust losses, by Ceres.
 // See docs/graph.md.
 #include <cstddef>
 #include <vector>
@@ -26,6 +27,11 @@ struct PoseGraphSettings {
   // cost, then one of 4e-9 of the poses' norm, each solve 0.15 s); 0 leaves
   // the ending to Ceres.
   double last_step_gain = 1e-6;
+  // Solve by our own Levenberg-Marquardt on the normal equations in the
+  // poses' tangent, each window-shape factor adding its blocks directly and
+  // CHOLMOD factoring them (src/graph/tangent_solver.cpp), where no robust
+  // loss is set and the gauge holds whole poses; else, or when false, Ceres.
+  bool normal_equations = true;
   // Not used by the solve, which runs on one thread so that its poses are
   // repeatable (src/graph/pose_graph.cpp); must be >= 0.
   int threads = 0;
