@@ -1,6 +1,7 @@
 #pragma once
 // Small helpers shared by the graph tests: random poses, the BA's world-frame
 // perturbation, and gauge-invariant synthetic window Hessians.
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -83,6 +84,17 @@ inline Eigen::MatrixXd pairwiseHessian(const std::vector<Pose>& poses,
     H += 2.0 * J.transpose() * W * J;
   }
   return H;
+}
+
+// The largest position distance (m) or rotation angle (rad) between the
+// poses of `a` and `b`, pairwise.
+inline double maxPoseError(const std::vector<Pose>& a, const std::vector<Pose>& b) {
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, (a[i].t - b[i].t).norm());
+    worst = std::max(worst, a[i].q.angularDistance(b[i].q));
+  }
+  return worst;
 }
 
 }  // namespace hba::graph::test

@@ -20,6 +20,7 @@
 namespace hba::graph {
 namespace {
 
+using test::maxPoseError;
 using test::perturbWorld;
 using test::randomPose;
 using test::randomVec6;
@@ -146,15 +147,6 @@ ShapeGraph shapeGraph(unsigned seed) {
   return out;
 }
 
-double largestMove(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) {
-    worst = std::max(worst, (a[k].t - b[k].t).norm());
-    worst = std::max(worst, a[k].q.angularDistance(b[k].q));
-  }
-  return worst;
-}
-
 TEST(NormalEquations, TheSolveEndsAtTheMinimumAsCloseAsCeresDoes) {
   for (const unsigned seed : {1u, 2u, 3u}) {
     const ShapeGraph g = shapeGraph(seed);
@@ -171,7 +163,7 @@ TEST(NormalEquations, TheSolveEndsAtTheMinimumAsCloseAsCeresDoes) {
     EXPECT_LT(minimum.final_cost, 0.01 * minimum.initial_cost) << seed;
     EXPECT_NEAR(ours.final_cost, minimum.final_cost, 1e-9 * minimum.final_cost) << seed;
     // Within 1e-5 of the minimum (Ceres' default: 1.2e-6 to 3.1e-6 on these).
-    EXPECT_LT(largestMove(ours.poses, minimum.poses), 1e-5) << seed;
+    EXPECT_LT(maxPoseError(ours.poses, minimum.poses), 1e-5) << seed;
     EXPECT_EQ(ours.held_nodes, theirs.held_nodes);
     EXPECT_EQ(ours.poses[0].t, g.start[0].t);  // the held node, bit for bit
   }

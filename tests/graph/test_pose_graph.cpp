@@ -11,6 +11,7 @@
 namespace hba::graph {
 namespace {
 
+using test::maxPoseError;
 using test::randomVec6;
 
 // A closed loop of `n` poses on a tilted circle, heading along the path.
@@ -43,15 +44,6 @@ std::vector<RelativePoseFactor> loopFactors(const std::vector<Pose>& truth) {
   for (std::size_t i = 0; i + 3 < n; ++i) factors.push_back(exactFactor(truth, i, i + 3));
   factors.push_back(exactFactor(truth, n - 1, 0));
   return factors;
-}
-
-double maxPoseError(const std::vector<Pose>& a, const std::vector<Pose>& b) {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    worst = std::max(worst, (a[i].t - b[i].t).norm());
-    worst = std::max(worst, a[i].q.angularDistance(b[i].q));
-  }
-  return worst;
 }
 
 double meanPositionError(const std::vector<Pose>& a, const std::vector<Pose>& b) {
