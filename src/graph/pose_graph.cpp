@@ -133,8 +133,8 @@ Gauge chooseGauge(std::size_t poses, const FactorGraph& factors, const PoseGraph
   return gauge;
 }
 
-void solveInTangent(const std::vector<Pose>& initial, const FactorGraph& factors, const Gauge& gauge,
-                    const PoseGraphSettings& settings, PoseGraphResult& result) {
+void solveByNormalEquations(const std::vector<Pose>& initial, const FactorGraph& factors, const Gauge& gauge,
+                            const PoseGraphSettings& settings, PoseGraphResult& result) {
   std::vector<bool> variable(initial.size());
   for (std::size_t i = 0; i < initial.size(); ++i) variable[i] = gauge.touched[i] && !gauge.fixed[i];
   TangentSolve solved = solveInTangent(initial, factors, variable, settings);
@@ -221,7 +221,7 @@ PoseGraphResult optimizeFactorGraph(const std::vector<Pose>& initial, const Fact
                       settings.loop_robust_loss != RobustLoss::None ||
                       settings.prior_robust_loss != RobustLoss::None;
   if (settings.normal_equations && !robust && result.orientation_held_nodes.empty()) {
-    solveInTangent(initial, factors, gauge, settings, result);
+    solveByNormalEquations(initial, factors, gauge, settings, result);
   } else {
     solveWithCeres(initial, factors, gauge, settings, result);
   }
