@@ -45,24 +45,29 @@ inline Eigen::MatrixXd gaugeBasis(const std::vector<Pose>& poses) {
   return N;
 }
 
+// The central difference of f(poses) along tangent direction `d` of pose
+// `node` (perturbWorld by +-h): (f(ahead) - f(behind)) / 2h.
+template <typename F>
+auto centralDifference(const std::vector<Pose>& poses, std::size_t node, int d, double h, const F& f) {
+  Vec6 step = Vec6::Zero();
+  step[d] = h;
+  std::vector<Pose> ahead = poses;
+  std::vector<Pose> behind = poses;
+  ahead[node] = perturbWorld(poses[node], step);
+  behind[node] = perturbWorld(poses[node], -step);
+  return ((f(ahead) - f(behind)) / (2.0 * h)).eval();
+}
+
 // d relativePoseError(measured(a, b), a, b) / d (all window perturbations)
 // by central differences, 6 x 6K.
 inline Eigen::MatrixXd numericRelativeErrorJacobian(const std::vector<Pose>& poses, std::size_t a,
                                                     std::size_t b) {
   const Pose measurement = relative(poses[a], poses[b]);
-  const double h = 1e-6;
+  const auto error = [&](const std::vector<Pose>& p) { return relativePoseError(measurement, p[a], p[b]); };
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(6, 6 * poses.size());
   for (std::size_t frame : {a, b}) {
     for (int k = 0; k < 6; ++k) {
-      Vec6 delta = Vec6::Zero();
-      delta[k] = h;
-      std::vector<Pose> plus = poses;
-      std::vector<Pose> minus = poses;
-      plus[frame] = perturbWorld(poses[frame], delta);
-      minus[frame] = perturbWorld(poses[frame], -delta);
-      J.col(static_cast<Eigen::Index>(6 * frame) + k) = (relativePoseError(measurement, plus[a], plus[b]) -
-                                                         relativePoseError(measurement, minus[a], minus[b])) /
-                                                        (2.0 * h);
+      J.col(static_cast<Eigen::Index>(6 * frame) + k) = centralDifference(poses, frame, k, 1e-6, error);
     }
   }
   return J;

@@ -20,6 +20,7 @@
 namespace hba::graph {
 namespace {
 
+using test::centralDifference;
 using test::maxPoseError;
 using test::perturbWorld;
 using test::randomPose;
@@ -81,16 +82,13 @@ TEST(NormalEquations, WindowShapeTermsAreThoseOfItsWhitenedResidualAndItsCostsSl
   }
 
   // The gradient is half the cost's slope along each tangent direction.
-  const double h = 1e-6;
+  // A 1x1 matrix, so that centralDifference's .eval() applies to a scalar too.
+  const auto model_cost = [&](const std::vector<Pose>& p) {
+    return Eigen::Matrix<double, 1, 1>(model->cost(p));
+  };
   for (const std::size_t node : nodes) {
     for (int d = 0; d < 6; ++d) {
-      Vec6 step = Vec6::Zero();
-      step[d] = h;
-      std::vector<Pose> ahead = poses;
-      std::vector<Pose> behind = poses;
-      ahead[node] = perturbWorld(poses[node], step);
-      behind[node] = perturbWorld(poses[node], -step);
-      const double slope = (model->cost(ahead) - model->cost(behind)) / (2.0 * h);
+      const double slope = centralDifference(poses, node, d, 1e-6, model_cost)(0);
       EXPECT_NEAR(direct->gradient()[static_cast<Eigen::Index>(6 * node) + d], 0.5 * slope,
                   1e-5 * (1.0 + std::abs(slope)))
           << "node " << node << " direction " << d;
